@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The main job: render and trace the example scenes into out/ (English and Romanian narrations).
+set -euo pipefail
+cd "$(dirname "$0")"
+cargo build --release --quiet
+mkdir -p out
+bin=target/release/whitted
+for scene in scenes/*.json; do
+  name=$(basename "$scene" .json)
+  "$bin" check "$scene" > "out/$name.check.txt"
+  "$bin" render "$scene" -o "out/$name.png"
+done
+"$bin" trace scenes/whitted.json --pixel 400,200 > out/whitted.trace.en.txt
+"$bin" trace scenes/whitted.json --pixel 400,200 --lang ro > out/whitted.trace.ro.txt
+"$bin" trace scenes/whitted.json --pixel 400,200 --json > out/whitted.trace.json
+"$bin" trace scenes/flat.json --pixel 30 --json > out/flat.trace.json
+echo "wrote out/"

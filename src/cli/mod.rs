@@ -1,0 +1,115 @@
+//! The command line: the only code that knows clap, files, stdout/stderr and exit codes.
+//! `Cli` and `Command` are the interface of product.md; their doc comments are the `--help` text.
+#![allow(clippy::print_stdout)]
+
+mod check;
+mod parse;
+mod render;
+mod trace;
+
+use clap::{Parser, Subcommand};
+use std::fmt;
+use std::path::{Path, PathBuf};
+use whitted::scene::load::load_str;
+use whitted::scene::AnyScene;
+
+/// Recursive (Whitted) ray tracing, taught in the open.
+#[derive(Parser, Debug)]
+#[command(name = "whitted", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// The commands.
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render an image: one ray through each pixel centre; a one-line summary on stderr.
+    Render(render::RenderArgs),
+    /// Trace one pixel (or one ray) and tell every step, or print the trace document with --json.
+    Trace(trace::TraceArgs),
+    /// Validate a scene and say what it models; every error at once (exit code 2).
+    Check(check::CheckArgs),
+}
+
+/// An error with its exit code: 2 for bad input (scene, arguments), 1 for anything else.
+#[derive(Debug)]
+pub struct Failure {
+    /// The message, one line per problem.
+    pub message: String,
+    /// The process exit code.
+    pub code: u8,
+}
+
+impl Failure {
+    /// Bad input: exit code 2.
+    pub fn input(message: impl Into<String>) -> Self {
+        Self { message: message.into(), code: 2 }
+    }
+    /// Anything else (writing a file failed): exit code 1.
+    pub fn other(message: impl Into<String>) -> Self {
+        Self { message: message.into(), code: 1 }
+    }
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+/// Reads and validates a scene file; every problem becomes one line of the failure.
+pub fn load_scene(path: &Path) -> Result<AnyScene, Failure> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| Failure::input(format!("{}: cannot read the scene: {e}", path.display())))?;
+    load_str(&text).map_err(|errors| {
+        let lines: Vec<String> = errors.iter().map(|e| format!("{}: {e}", path.display())).collect();
+        Failure::input(lines.join("\n"))
+    })
+}
+
+/// Writes bytes to a file.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
+    std::fs::write(path, bytes).map_err(|e| Failure::other(format!("{}: cannot write: {e}", path.display())))
+}
+
+/// Prints to stdout; a closed pipe (`| head`) is not an error.
+pub fn print_out(text: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+}
+
+/// Runs the command line and returns the exit code.
+pub fn main() -> u8 {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return code;
+        }
+    };
+    let result = match cli.command {
+        Command::Render(args) => render::run(&args),
+        Command::Trace(args) => trace::run(&args),
+        Command::Check(args) => check::run(&args),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(f) => {
+            eprintln!("{}", prefix_lines(&f.message));
+            f.code
+        }
+    }
+}
+
+fn prefix_lines(message: &str) -> String {
+    message.lines().map(|l| format!("error: {l}")).collect::<Vec<_>>().join("\n")
+}
+
+/// The default output file: the scene's name with `.png`, in the current folder.
+pub fn default_output(scene: &Path, ext: &str) -> PathBuf {
+    let stem = scene.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+    PathBuf::from(format!("{stem}.{ext}"))
+}

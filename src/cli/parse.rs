@@ -1,0 +1,85 @@
+//! Value parsers for the command line: `--pixel I,J`, `--ray OX,OY,OZ:DX,DY,DZ`, `--size WxH`.
+
+/// `I,J` or `I` (2D) → column and optional row.
+///
+/// # Errors
+/// A message naming the expected form.
+pub fn pixel(text: &str) -> Result<(usize, Option<usize>), String> {
+    let bad = || format!("--pixel: expected I,J (or I in 2D) with whole numbers ≥ 0, got `{text}`");
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    match parts.as_slice() {
+        [i] => Ok((i.parse().map_err(|_| bad())?, None)),
+        [i, j] => Ok((i.parse().map_err(|_| bad())?, Some(j.parse().map_err(|_| bad())?))),
+        _ => Err(bad()),
+    }
+}
+
+/// `OX,OY,OZ:DX,DY,DZ` (2 components each in 2D) → origin and direction components.
+///
+/// # Errors
+/// A message naming the expected form.
+pub fn ray(text: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
+    let bad =
+        |why: &str| format!("--ray: expected OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D), {why}, got `{text}`");
+    let (o, d) = text.split_once(':').ok_or_else(|| bad("missing `:`"))?;
+    let nums = |s: &str| -> Result<Vec<f64>, String> {
+        s.split(',')
+            .map(|x| x.trim().parse::<f64>().ok().filter(|v| v.is_finite() && v.abs() <= 1e100))
+            .collect::<Option<Vec<f64>>>()
+            .ok_or_else(|| bad("with finite numbers"))
+    };
+    let (o, d) = (nums(o)?, nums(d)?);
+    if o.len() != d.len() || !(2..=3).contains(&o.len()) {
+        return Err(bad("with 2 or 3 numbers on each side"));
+    }
+    if d.iter().all(|x| *x == 0.0) {
+        return Err(bad("with a non-zero direction"));
+    }
+    Ok((o, d))
+}
+
+/// `WxH` or `W` → width and optional height.
+///
+/// # Errors
+/// A message naming the expected form.
+pub fn size(text: &str) -> Result<(usize, Option<usize>), String> {
+    let bad = || format!("--size: expected WxH (or W) with whole numbers in [1, 65536], got `{text}`");
+    let check = |s: &str| s.trim().parse::<usize>().ok().filter(|n| (1..=65_536).contains(n)).ok_or_else(bad);
+    match text.split_once(['x', 'X']) {
+        Some((w, h)) => Ok((check(w)?, Some(check(h)?))),
+        None => Ok((check(text)?, None)),
+    }
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pixels() {
+        assert_eq!(pixel("12,7"), Ok((12, Some(7))));
+        assert_eq!(pixel("3"), Ok((3, None)));
+        assert!(pixel("1,2,3").is_err());
+        assert!(pixel("-1,2").is_err());
+        assert!(pixel("a").is_err());
+    }
+
+    #[test]
+    fn rays() {
+        assert_eq!(ray("0,0,5:0,0,-1"), Ok((vec![0.0, 0.0, 5.0], vec![0.0, 0.0, -1.0])));
+        assert!(ray("0,0,5").is_err());
+        assert!(ray("0,0,5:0,0").is_err());
+        assert!(ray("0,0,5:0,0,0").is_err());
+        assert!(ray("0,0,nan:0,0,1").is_err());
+    }
+
+    #[test]
+    fn sizes() {
+        assert_eq!(size("640x480"), Ok((640, Some(480))));
+        assert_eq!(size("64"), Ok((64, None)));
+        assert!(size("0x4").is_err());
+        assert!(size("axb").is_err());
+    }
+}

@@ -1,0 +1,115 @@
+//! `whitted trace`: one pixel (or one ray) traced with `EventLog`; `--json` prints the trace
+//! document, otherwise the numbered narration (`doc::narrate`) in English or Romanian.
+
+use super::{load_scene, parse, print_out, Failure};
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+use whitted::accel::{Accel, AccelKind};
+use whitted::doc::narrate::{narrate, Lang};
+use whitted::doc::{trace_document, TraceTarget};
+use whitted::geom::ray::Ray;
+use whitted::record::EventLog;
+use whitted::scene::{AnyScene, Scene};
+use whitted::shape::Dim;
+use whitted::trace::Tracer;
+
+/// The narration's language.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum LangArg {
+    /// English.
+    En,
+    /// Romanian (with diacritics).
+    Ro,
+}
+
+/// Options of `whitted trace`.
+#[derive(Args, Debug)]
+pub struct TraceArgs {
+    /// The scene file (JSON).
+    scene: PathBuf,
+    /// The pixel: I,J (column from the left, row from the BOTTOM); in 2D, I (or I,0).
+    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray", required_unless_present = "ray")]
+    pixel: Option<(usize, Option<usize>)>,
+    /// A ray given by hand: OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D); traced as a primary ray.
+    #[arg(long, value_parser = parse::ray)]
+    ray: Option<(Vec<f64>, Vec<f64>)>,
+    /// Print the trace document (JSON) instead of the narration.
+    #[arg(long)]
+    json: bool,
+    /// Override the scene's max_depth (0 = ray casting).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    depth: Option<u32>,
+    /// The narration's language.
+    #[arg(long, value_enum, default_value = "en")]
+    lang: LangArg,
+}
+
+/// Runs `whitted trace`.
+pub fn run(args: &TraceArgs) -> Result<(), Failure> {
+    match load_scene(&args.scene)? {
+        AnyScene::Flat(s) => trace_scene(&s, args),
+        AnyScene::Space(s) => trace_scene(&s, args),
+    }
+}
+
+/// The primary ray and what it was asked as.
+fn target<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(Ray<V>, TraceTarget), Failure> {
+    let cam = &scene.camera;
+    if let Some((i, j)) = args.pixel {
+        let j = match (V::DIM, j) {
+            (2, None | Some(0)) => 0,
+            (2, Some(j)) => {
+                return Err(Failure::input(format!("--pixel: a 2D image has one row (j = 0), got j = {j}")))
+            }
+            (_, None) => return Err(Failure::input("--pixel: a 3D scene needs I,J".to_string())),
+            (_, Some(j)) => j,
+        };
+        if i >= cam.nx || j >= cam.ny {
+            return Err(Failure::input(format!(
+                "--pixel: ({i}, {j}) is outside the image: i must be < {}, j < {}",
+                cam.nx, cam.ny
+            )));
+        }
+        let (u, v) = cam.pixel_center(i, j);
+        let ray = cam.primary_ray(u, v);
+        let (pixel, uv) = if V::DIM == 2 { (vec![i], vec![u]) } else { (vec![i, j], vec![u, v]) };
+        return Ok((ray, TraceTarget { pixel: Some(pixel), uv: Some(uv) }));
+    }
+    let Some((o, d)) = &args.ray else {
+        return Err(Failure::input("give --pixel I,J or --ray O:D"));
+    };
+    let wrong = |what: &str, n: usize| {
+        Failure::input(format!(
+            "--ray: the {what} must have {} numbers in a {}D scene, got {n}",
+            V::DIM,
+            V::DIM
+        ))
+    };
+    let origin = V::from_slice(o).ok_or_else(|| wrong("origin", o.len()))?;
+    let dir = V::from_slice(d).ok_or_else(|| wrong("direction", d.len()))?;
+    let dir = dir.try_unit().ok_or_else(|| Failure::input("--ray: the direction must not be zero"))?;
+    Ok((Ray::new(origin, dir), TraceTarget { pixel: None, uv: None }))
+}
+
+fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure> {
+    let (ray, target) = target(scene, args)?;
+    let accel = Accel::build(scene, AccelKind::None);
+    let mut tracer = Tracer::new(scene, &accel, EventLog::new());
+    if let Some(d) = args.depth {
+        tracer.max_depth = d;
+    }
+    let uv = target.uv.clone().unwrap_or_default();
+    let color = tracer.trace_primary(&ray, &uv);
+    if args.json {
+        let doc = trace_document(scene, &tracer.recorder, &tracer.stats, &target, color);
+        let text = serde_json::to_string_pretty(&doc).map_err(|e| Failure::other(e.to_string()))?;
+        print_out(&format!("{text}\n"));
+    } else {
+        let lang = match args.lang {
+            LangArg::En => Lang::En,
+            LangArg::Ro => Lang::Ro,
+        };
+        print_out(&narrate(scene, &tracer.recorder, &tracer.stats, &target, tracer.max_depth, lang));
+    }
+    Ok(())
+}

@@ -1,0 +1,488 @@
+//! The narration of a trace: numbered steps a student can follow, each giving the lecture's
+//! formula and then the numbers put into it, in English or Romanian (`whitted trace` without
+//! `--json`). It reads the recorded events and tree only; it never traces anything itself.
+
+use super::TraceTarget;
+use crate::geom::Vector;
+use crate::record::event::{Event, LightTerm, ObjectRef};
+use crate::record::{EventLog, RayNode};
+use crate::scene::camera::Projection;
+use crate::scene::material::Rgb;
+use crate::scene::Scene;
+use crate::shape::Dim;
+use crate::trace::stats::Stats;
+use std::fmt::Write;
+
+/// The language of the narration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lang {
+    /// English.
+    En,
+    /// Romanian, with diacritics.
+    Ro,
+}
+
+/// A number as a person reads it: up to 6 significant digits, no `-0`.
+#[must_use]
+pub fn num(x: f64) -> String {
+    if x == f64::INFINITY {
+        return "∞".into();
+    }
+    if x == f64::NEG_INFINITY {
+        return "−∞".into();
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let a = x.abs();
+    let s = if (1e-4..1e7).contains(&a) {
+        // 1e-4 ≤ a < 1e7, so the exponent lies in [−4, 6] and the cast is exact.
+        #[allow(clippy::cast_possible_truncation)]
+        let exponent = a.log10().floor() as i64;
+        let decimals = usize::try_from((5 - exponent).clamp(0, 12)).unwrap_or(0);
+        let s = format!("{x:.decimals$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        format!("{x:.5e}")
+    };
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.replace('-', "−")
+    }
+}
+
+fn vec_str<V: Vector>(v: V) -> String {
+    let parts: Vec<String> = v.to_vec().into_iter().map(num).collect();
+    format!("({})", parts.join(", "))
+}
+
+fn rgb(c: Rgb) -> String {
+    format!("({}, {}, {})", num(c.0[0]), num(c.0[1]), num(c.0[2]))
+}
+
+struct Writer<'a, V: Dim> {
+    scene: &'a Scene<V>,
+    log: &'a EventLog<V>,
+    lang: Lang,
+    out: String,
+    step: usize,
+    max_depth: u32,
+}
+
+impl<'a, V: Dim> Writer<'a, V> {
+    fn t(&self, en: &'static str, ro: &'static str) -> &'static str {
+        match self.lang {
+            Lang::En => en,
+            Lang::Ro => ro,
+        }
+    }
+
+    /// A numbered step: its title, then indented lines.
+    fn step(&mut self, indent: usize, title: &str, lines: &[String]) {
+        self.step += 1;
+        let pad = "   ".repeat(indent);
+        let _ = writeln!(self.out, "{pad}{}. {title}", self.step);
+        for l in lines {
+            let _ = writeln!(self.out, "{pad}     {l}");
+        }
+    }
+
+    fn object(&self, o: ObjectRef) -> String {
+        let obj = &self.scene.objects[o.index];
+        let base = match &obj.name {
+            Some(n) => format!("“{n}” ({} {})", obj.shape.kind(), o.index),
+            None => format!("{} {}", obj.shape.kind(), o.index),
+        };
+        match o.triangle {
+            Some(t) => format!("{base}, {} {t}", self.t("triangle", "triunghiul")),
+            None => base,
+        }
+    }
+
+    fn kind_name(&self, node: &RayNode<V>) -> &'static str {
+        use crate::record::event::RayKind::{Primary, Reflected, Transmitted};
+        match node.start.kind {
+            Primary => self.t("primary ray", "raza primară"),
+            Reflected => self.t("reflected ray R", "raza reflectată R"),
+            Transmitted => self.t("transmitted ray T", "raza transmisă T"),
+        }
+    }
+
+    fn events_of(&self, node: usize) -> Vec<&'a Event<V>> {
+        self.log.events.iter().filter(|e| e.ray == Some(node)).map(|e| &e.event).collect()
+    }
+
+    fn node(&mut self, index: usize, indent: usize) {
+        let node = &self.log.nodes[index];
+        let events = self.events_of(index);
+        let title = format!(
+            "{} — {} {} ({} {})",
+            self.kind_name(node),
+            self.t("level", "nivelul"),
+            node.start.level,
+            self.t("max_depth", "max_depth"),
+            self.max_depth
+        );
+        let ray_line = format!(
+            "r(t) = O + t·D, O = {}, D = {}",
+            vec_str(node.start.origin),
+            vec_str(node.start.direction)
+        );
+        self.step(indent, &title, &[ray_line]);
+        let mut children = node.children.iter();
+        let mut lights_done = false;
+        for e in events {
+            match e {
+                Event::ObjectTest { object, roots, accepted } => {
+                    let roots_s = if roots.is_empty() {
+                        self.t("no real root: the ray misses", "nicio rădăcină reală: raza ratează")
+                            .to_string()
+                    } else {
+                        let r: Vec<String> = roots.iter().map(|x| num(*x)).collect();
+                        format!("{} t = {}", self.t("roots", "rădăcini"), r.join(", "))
+                    };
+                    let acc = match accepted {
+                        Some(t) => format!(
+                            "→ {} t = {}",
+                            self.t("accepted (least t > 0)", "acceptat (cel mai mic t > 0)"),
+                            num(*t)
+                        ),
+                        None => self.t("→ no root with t > 0", "→ nicio rădăcină cu t > 0").to_string(),
+                    };
+                    let title = format!(
+                        "{} {}",
+                        self.t("Intersection test with", "Test de intersecție cu"),
+                        self.object(*object)
+                    );
+                    self.step(indent + 1, &title, &[format!("{roots_s} {acc}")]);
+                }
+                Event::Hit { object, t, point, normal, entering } => {
+                    let d = node.start.direction;
+                    let dn = d.dot(*normal);
+                    let side = if *entering {
+                        self.t("D·N ≤ 0: the ray is entering, N_f = N", "D·N ≤ 0: raza intră, N_f = N")
+                    } else {
+                        self.t("D·N > 0: the ray is leaving, N_f = −N", "D·N > 0: raza iese, N_f = −N")
+                    };
+                    let title = format!(
+                        "{} {}",
+                        self.t("Nearest hit I on", "Cea mai apropiată intersecție I pe"),
+                        self.object(*object)
+                    );
+                    let lines = vec![
+                        format!("t = {}, I = r(t) = {}", num(*t), vec_str(*point)),
+                        format!(
+                            "N = {} ({})",
+                            vec_str(*normal),
+                            self.t("outward unit normal", "normala exterioară unitară")
+                        ),
+                        format!("D·N = {} — {side}", num(dn)),
+                    ];
+                    self.step(indent + 1, &title, &lines);
+                }
+                Event::Miss { color } => {
+                    let title = self.t(
+                        "No object is hit: the colour is the background",
+                        "Niciun obiect intersectat: culoarea este fundalul",
+                    );
+                    self.step(indent + 1, title, &[format!("I = {}", rgb(*color))]);
+                }
+                Event::ShadowRay { .. } => {
+                    if !lights_done {
+                        self.local_model(node, index, indent + 1);
+                        lights_done = true;
+                    }
+                }
+                Event::Reflect { origin, direction, offset } => {
+                    if !lights_done {
+                        self.local_model(node, index, indent + 1);
+                        lights_done = true;
+                    }
+                    let title = self.t("Reflected ray R (ks > 0)", "Raza reflectată R (ks > 0)");
+                    self.step(
+                        indent + 1,
+                        title,
+                        &[
+                            format!("R = 2(N_f·V)·N_f − V, V = −D → R = {}", vec_str(*direction)),
+                            format!(
+                                "{} δ = 2⁻⁴⁴·M = {} → O_R = I + δ·N_f = {}",
+                                self.t("spawn offset", "deplasare"),
+                                num(*offset),
+                                vec_str(*origin)
+                            ),
+                        ],
+                    );
+                    if let Some(&c) = children.next() {
+                        self.node(c, indent + 1);
+                    }
+                }
+                Event::Refract { origin, direction, offset, n1, n2 } => {
+                    if !lights_done {
+                        self.local_model(node, index, indent + 1);
+                        lights_done = true;
+                    }
+                    let title = self.t(
+                        "Transmitted ray T (kt > 0), Snell: n1·sin θi = n2·sin θt",
+                        "Raza transmisă T (kt > 0), Snell: n1·sin θi = n2·sin θt",
+                    );
+                    self.step(
+                        indent + 1,
+                        title,
+                        &[
+                            format!("n1 = {}, n2 = {}, η = n1/n2 = {}", num(*n1), num(*n2), num(n1 / n2)),
+                            format!(
+                                "T = η·D + (η·c − √k)·N_f, c = −D·N_f, k = (1 − η²) + (η·c)² → T = {}",
+                                vec_str(*direction)
+                            ),
+                            format!(
+                                "{} δ = {} → O_T = {}",
+                                self.t("spawn offset", "deplasare"),
+                                num(*offset),
+                                vec_str(*origin)
+                            ),
+                        ],
+                    );
+                    if let Some(&c) = children.next() {
+                        self.node(c, indent + 1);
+                    }
+                }
+                Event::TotalInternalReflection { k, n1, n2 } => {
+                    if !lights_done {
+                        self.local_model(node, index, indent + 1);
+                        lights_done = true;
+                    }
+                    let title = self.t(
+                        "Total internal reflection: no T ray",
+                        "Reflexie totală internă: nu există raza T",
+                    );
+                    self.step(
+                        indent + 1,
+                        title,
+                        &[format!(
+                            "n1 = {}, n2 = {}, k = (1 − η²) + (η·c)² = {} < 0 → {}",
+                            num(*n1),
+                            num(*n2),
+                            num(*k),
+                            self.t("the kt·T term is dropped", "termenul kt·T lipsește")
+                        )],
+                    );
+                }
+                Event::DepthLimit { level } => {
+                    if !lights_done {
+                        self.local_model(node, index, indent + 1);
+                        lights_done = true;
+                    }
+                    let title =
+                        self.t("Depth limit: no secondary rays", "Limita de adâncime: fără raze secundare");
+                    self.step(indent + 1, title, &[format!("n = {level} > max_depth = {}", self.max_depth)]);
+                }
+                Event::PrimaryRay { .. } | Event::Sample { .. } => {}
+            }
+        }
+        if node.end.as_ref().is_some_and(|e| e.hit.is_some()) && !lights_done {
+            self.local_model(node, index, indent + 1);
+        }
+        self.sum(node, indent + 1);
+    }
+
+    fn local_model(&mut self, node: &RayNode<V>, index: usize, indent: usize) {
+        let Some(hit) = node.end.as_ref().and_then(|e| e.hit) else {
+            return;
+        };
+        let material = self.scene.material_of(hit.object.index);
+        let (ka, _) = material.colors_at(hit.point);
+        let ambient = self.scene.ambient.modulate(ka);
+        let title = self.t(
+            "Local model: I_local = Ia·Ka + Σ Isrc·fat·s·lum·[kd·(N·L) + ks·(N·H)^n]",
+            "Modelul local: I_local = Ia·Ka + Σ Isrc·fat·s·lum·[kd·(N·L) + ks·(N·H)^n]",
+        );
+        let lines = vec![format!("Ia·Ka = {} · {} = {}", rgb(self.scene.ambient), rgb(ka), rgb(ambient))];
+        self.step(indent, title, &lines);
+        let shadows: Vec<&Event<V>> =
+            self.events_of(index).into_iter().filter(|e| matches!(e, Event::ShadowRay { .. })).collect();
+        for term in &node.lights {
+            self.light(term, &shadows, indent + 1, material.n);
+        }
+    }
+
+    fn light(&mut self, term: &LightTerm<V>, shadows: &[&Event<V>], indent: usize, n: f64) {
+        let title = format!("{} {}", self.t("Light", "Sursa de lumină"), term.light);
+        let mut lines = Vec::new();
+        match term.l {
+            Some(l) => lines.push(format!("L = {}, N·L = {}", vec_str(l), num(term.n_dot_l))),
+            None => lines.push(
+                self.t(
+                    "the light sits at I: no direction, lum = 0",
+                    "sursa este chiar în I: nicio direcție, lum = 0",
+                )
+                .to_string(),
+            ),
+        }
+        if term.lum == 0.0 {
+            lines.push(
+                self.t(
+                    "lum = 0 (N·L ≤ 0): the light is behind the surface, no shadow ray",
+                    "lum = 0 (N·L ≤ 0): sursa este în spatele suprafeței, fără rază de umbră",
+                )
+                .to_string(),
+            );
+            self.step(indent, &title, &lines);
+            return;
+        }
+        lines.push(format!("lum = 1, fat = min(1, 1/(c0 + c1·d + c2·d²)) = {}", num(term.fat)));
+        for e in shadows {
+            if let Event::ShadowRay { light, distance, occluders, s, .. } = e {
+                if *light != term.light {
+                    continue;
+                }
+                let occ = if occluders.is_empty() {
+                    self.t("nothing in between", "nimic între ele").to_string()
+                } else {
+                    let list: Vec<String> = occluders
+                        .iter()
+                        .map(|o| format!("{} (kt = {})", self.object(o.object), num(o.kt)))
+                        .collect();
+                    list.join(", ")
+                };
+                lines.push(format!(
+                    "{} d_L = {}: {occ} → s = Π kt = {}",
+                    self.t("shadow ray, segment of length", "raza de umbră, segment de lungime"),
+                    num(*distance),
+                    num(*s)
+                ));
+            }
+        }
+        lines.push(format!("{} Isrc·fat·s·kd·(N·L) = {}", self.t("diffuse", "difuz"), rgb(term.diffuse)));
+        lines.push(format!(
+            "{} Isrc·fat·s·ks·(N·H)^n (n = {}) = {}",
+            self.t("specular", "speculară"),
+            num(n),
+            rgb(term.specular)
+        ));
+        self.step(indent, &title, &lines);
+    }
+
+    fn sum(&mut self, node: &RayNode<V>, indent: usize) {
+        let Some(end) = &node.end else { return };
+        let Some(local) = end.local else { return };
+        let Some(hit) = end.hit else { return };
+        let m = self.scene.material_of(hit.object.index);
+        let mut formula = format!("I = I_local {}", rgb(local));
+        for &c in &node.children {
+            let child = &self.log.nodes[c];
+            let col = child.end.as_ref().map_or(Rgb::BLACK, |e| e.color);
+            let (k, name, sym) = match child.start.kind {
+                crate::record::event::RayKind::Transmitted => (m.kt, "kt", "T"),
+                _ => (m.ks, "ks", "R"),
+            };
+            let _ = write!(formula, " + {name}·{sym} = {} · {}", num(k), rgb(col));
+        }
+        let title = self.t(
+            "Colour of this ray: I = I_local + ks·R + kt·T",
+            "Culoarea acestei raze: I = I_local + ks·R + kt·T",
+        );
+        self.step(indent, title, &[formula, format!("I = {}", rgb(end.color))]);
+    }
+}
+
+/// The numbered narration of a traced primary ray.
+#[must_use]
+pub fn narrate<V: Dim>(
+    scene: &Scene<V>,
+    log: &EventLog<V>,
+    stats: &Stats,
+    target: &TraceTarget,
+    max_depth: u32,
+    lang: Lang,
+) -> String {
+    let mut w = Writer { scene, log, lang, out: String::new(), step: 0, max_depth };
+    let cam = &scene.camera;
+    if let (Some(pixel), Some(uv)) = (&target.pixel, &target.uv) {
+        let win = &cam.window;
+        let mut lines = vec![format!(
+            "u = l + (r − l)·(i + 0.5)/Nx = {} + ({} − {})·({} + 0.5)/{} = {}",
+            num(win.l),
+            num(win.r),
+            num(win.l),
+            pixel[0],
+            cam.nx,
+            num(uv[0])
+        )];
+        if V::DIM == 3 {
+            lines.push(format!(
+                "v = b + (t − b)·(j + 0.5)/Ny = {} + ({} − {})·({} + 0.5)/{} = {}",
+                num(win.b),
+                num(win.t),
+                num(win.b),
+                pixel[1],
+                cam.ny,
+                num(uv[1])
+            ));
+        }
+        let title = if V::DIM == 3 {
+            format!(
+                "{} (i, j) = ({}, {}) {}",
+                w.t("Pixel", "Pixelul"),
+                pixel[0],
+                pixel[1],
+                w.t("— column from the left, row from the bottom", "— coloana de la stânga, rândul de jos")
+            )
+        } else {
+            format!("{} i = {}", w.t("Pixel", "Pixelul"), pixel[0])
+        };
+        w.step(0, &title, &lines);
+        let s = cam.window_point(uv[0], uv.get(1).copied().unwrap_or(0.0));
+        let lines = match cam.projection {
+            Projection::Perspective => vec![
+                format!("S = O + u·u + v·v − p·w = {}", vec_str(s)),
+                format!(
+                    "{} O = {}, D = (S − O)/|S − O|",
+                    w.t("perspective: from the observer", "perspectivă: din observator"),
+                    vec_str(cam.eye)
+                ),
+            ],
+            Projection::Orthographic => vec![
+                format!("S = O + u·u + v·v − p·w = {}", vec_str(s)),
+                w.t("orthographic: from S along D = −w", "ortografică: din S pe direcția D = −w").to_string(),
+            ],
+        };
+        w.step(
+            0,
+            w.t("Primary ray through the window point S", "Raza primară prin punctul S al ferestrei"),
+            &lines,
+        );
+    }
+    if let Some(root) = log.roots().next() {
+        w.node(root, 0);
+        if let Some(end) = &log.nodes[root].end {
+            let title = w.t(
+                "Pixel colour (linear RGB, clamped only when written)",
+                "Culoarea pixelului (RGB liniar, limitată doar la scriere)",
+            );
+            let bytes = end.color.0.map(crate::image::to_byte);
+            w.step(0, title, &[format!("{} → 8 bit {:?}", rgb(end.color), bytes)]);
+        }
+    }
+    let r = stats.rays;
+    let _ = writeln!(
+        w.out,
+        "{}: {} {}, {} {}, {} {}, {} {}; {} {}",
+        w.t("Rays", "Raze"),
+        r.primary,
+        w.t("primary", "primare"),
+        r.reflected,
+        w.t("reflected", "reflectate"),
+        r.transmitted,
+        w.t("transmitted", "transmise"),
+        r.shadow,
+        w.t("shadow", "de umbră"),
+        stats.tests.object,
+        w.t("object tests", "teste de intersecție")
+    );
+    w.out
+}

@@ -1,0 +1,1312 @@
+//! The back-end-free display list: what a figure shows, in world coordinates (f64), before any
+//! back end turns it into pixels (`skia`) or SVG (`svg`).
+//!
+//! A [`Drawing`] maps a world rectangle ([`View`], y up) onto its canvas with one uniform scale, so
+//! circles stay round. Geometry (points, circle radii) is in world units; everything a reader sees
+//! at a fixed size — stroke widths, dashes, arrow heads, dot radii, text sizes and text offsets —
+//! is in *reference pixels* (pixels of the 1920 × 1080 slide, see [`style`]), scaled
+//! by [`Drawing::px_scale`] for other canvas sizes.
+//!
+//! The canvas is laid out once, by [`Drawing::frame`], for both back ends: a title band at the
+//! top, a caption band at the bottom, the plot area between them, and the legend box in a clear
+//! corner of the plot area or in a column to its right ([`LegendPlace`]). Set the title, caption
+//! and legend (and [`LegendPlace::Outside`] if the legend will not fit inside), then the view,
+//! then add items and labels: a label placed with [`TextOpts::avoid_overlap`] is placed against
+//! the transform in force when it is added.
+
+use glam::DVec2;
+
+use super::style::{self, Rgba, TextSize};
+use super::text::{self, Weight};
+
+/// A dash pattern, in reference pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dash {
+    /// Length of each drawn stretch.
+    pub on: f64,
+    /// Length of each gap.
+    pub off: f64,
+}
+
+/// How an item is stroked (and, for text, coloured).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Style {
+    /// The stroke colour (the text colour for text, the fill for a dot without fill).
+    pub color: Rgba,
+    /// The stroke width in reference pixels; 0 draws no stroke.
+    pub width: f64,
+    /// The dash pattern, or `None` for a solid line.
+    pub dash: Option<Dash>,
+}
+
+impl Style {
+    /// No stroke at all: for shapes drawn only by their fill.
+    pub const NONE: Self = Self { color: Rgba { r: 0, g: 0, b: 0, a: 0 }, width: 0.0, dash: None };
+
+    /// A solid stroke.
+    #[must_use]
+    pub const fn solid(color: Rgba, width: f64) -> Self {
+        Self { color, width, dash: None }
+    }
+
+    /// The same stroke, dashed.
+    #[must_use]
+    pub const fn dashed(self, dash: Dash) -> Self {
+        Self { dash: Some(dash), ..self }
+    }
+
+    /// The same stroke at another width.
+    #[must_use]
+    pub const fn with_width(self, width: f64) -> Self {
+        Self { width, ..self }
+    }
+
+    /// The same stroke in another colour.
+    #[must_use]
+    pub const fn with_color(self, color: Rgba) -> Self {
+        Self { color, ..self }
+    }
+
+    /// Whether this style draws a visible stroke.
+    #[must_use]
+    pub fn strokes(&self) -> bool {
+        self.width > 0.0 && self.color.a > 0
+    }
+}
+
+/// A rectangle of the world, `[xmin, xmax] × [ymin, ymax]`, y up.
+///
+/// Guarantees: all four bounds are finite, `xmin < xmax` and `ymin < ymax`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    xmin: f64,
+    xmax: f64,
+    ymin: f64,
+    ymax: f64,
+}
+
+impl View {
+    /// The rectangle `[xmin, xmax] × [ymin, ymax]`, or `None` unless the bounds are finite and
+    /// each minimum is below its maximum.
+    #[must_use]
+    pub fn new(xmin: f64, xmax: f64, ymin: f64, ymax: f64) -> Option<Self> {
+        let finite = [xmin, xmax, ymin, ymax].iter().all(|v| v.is_finite());
+        (finite && xmin < xmax && ymin < ymax).then_some(Self { xmin, xmax, ymin, ymax })
+    }
+
+    /// The smallest rectangle of aspect `aspect` (width / height) that holds every finite point
+    /// of `points` with a margin of `margin` times the larger extent on each side, centred on
+    /// the points. A single point (or a flat set) gets an extent of 1 along its flat axes.
+    /// `None` if no point is finite, or if `margin` or `aspect` is not finite and positive
+    /// (`margin` may be 0).
+    #[must_use]
+    pub fn fit(points: &[DVec2], margin: f64, aspect: f64) -> Option<Self> {
+        if !(margin.is_finite() && margin >= 0.0 && aspect.is_finite() && aspect > 0.0) {
+            return None;
+        }
+        let mut finite = points.iter().filter(|p| p.is_finite());
+        let first = *finite.next()?;
+        let (lo, hi) = finite.fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        let center = (lo + hi) / 2.0;
+        let mut extent = hi - lo;
+        let largest = extent.max_element();
+        let fallback = if largest > 0.0 { largest } else { 1.0 };
+        if extent.x <= 0.0 {
+            extent.x = fallback;
+        }
+        if extent.y <= 0.0 {
+            extent.y = fallback;
+        }
+        let pad = margin * extent.max_element();
+        let mut w = extent.x + 2.0 * pad;
+        let mut h = extent.y + 2.0 * pad;
+        if w / h < aspect {
+            w = h * aspect;
+        } else {
+            h = w / aspect;
+        }
+        Self::new(center.x - w / 2.0, center.x + w / 2.0, center.y - h / 2.0, center.y + h / 2.0)
+    }
+
+    /// The left edge.
+    #[must_use]
+    pub fn xmin(&self) -> f64 {
+        self.xmin
+    }
+    /// The right edge.
+    #[must_use]
+    pub fn xmax(&self) -> f64 {
+        self.xmax
+    }
+    /// The bottom edge.
+    #[must_use]
+    pub fn ymin(&self) -> f64 {
+        self.ymin
+    }
+    /// The top edge.
+    #[must_use]
+    pub fn ymax(&self) -> f64 {
+        self.ymax
+    }
+    /// The width, `xmax − xmin` (> 0).
+    #[must_use]
+    pub fn width(&self) -> f64 {
+        self.xmax - self.xmin
+    }
+    /// The height, `ymax − ymin` (> 0).
+    #[must_use]
+    pub fn height(&self) -> f64 {
+        self.ymax - self.ymin
+    }
+    /// The centre.
+    #[must_use]
+    pub fn center(&self) -> DVec2 {
+        DVec2::new(self.xmin + self.xmax, self.ymin + self.ymax) / 2.0
+    }
+}
+
+/// A rectangle in canvas pixels, y down.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PxRect {
+    /// Top-left corner.
+    pub min: DVec2,
+    /// Bottom-right corner.
+    pub max: DVec2,
+}
+
+impl PxRect {
+    /// The width.
+    #[must_use]
+    pub fn width(&self) -> f64 {
+        self.max.x - self.min.x
+    }
+    /// The height.
+    #[must_use]
+    pub fn height(&self) -> f64 {
+        self.max.y - self.min.y
+    }
+    /// The rectangle grown by `d` on every side.
+    #[must_use]
+    pub fn inflate(&self, d: f64) -> Self {
+        Self { min: self.min - DVec2::splat(d), max: self.max + DVec2::splat(d) }
+    }
+    /// The area shared with `other` (0 when they are apart).
+    #[must_use]
+    pub fn overlap(&self, other: &Self) -> f64 {
+        let lo = self.min.max(other.min);
+        let hi = self.max.min(other.max);
+        let d = (hi - lo).max(DVec2::ZERO);
+        d.x * d.y
+    }
+    /// Whether `other` lies wholly inside.
+    #[must_use]
+    pub fn contains_rect(&self, other: &Self) -> bool {
+        other.min.cmpge(self.min).all() && other.max.cmple(self.max).all()
+    }
+    /// Whether the segment `a`–`b` meets the rectangle (Liang–Barsky clipping).
+    #[must_use]
+    pub fn meets_segment(&self, a: DVec2, b: DVec2) -> bool {
+        let d = b - a;
+        let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+        for (p, q) in [
+            (-d.x, a.x - self.min.x),
+            (d.x, self.max.x - a.x),
+            (-d.y, a.y - self.min.y),
+            (d.y, self.max.y - a.y),
+        ] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return false;
+                }
+            } else {
+                let t = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(t);
+                } else {
+                    t1 = t1.min(t);
+                }
+            }
+        }
+        t0 <= t1
+    }
+}
+
+/// The world → pixel map of a drawing: `px = (tx + s·x, ty − s·y)`, one uniform scale `s` and a
+/// y flip. Back ends narrow its f64 results to f32 at the last moment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transform {
+    scale: f64,
+    tx: f64,
+    ty: f64,
+    px_scale: f64,
+}
+
+impl Transform {
+    /// The pixel position of world point `p`.
+    #[must_use]
+    pub fn to_px(&self, p: DVec2) -> DVec2 {
+        DVec2::new(self.tx + self.scale * p.x, self.ty - self.scale * p.y)
+    }
+    /// The world point at pixel `q` (the inverse of [`Transform::to_px`]).
+    #[must_use]
+    pub fn to_world(&self, q: DVec2) -> DVec2 {
+        DVec2::new((q.x - self.tx) / self.scale, (self.ty - q.y) / self.scale)
+    }
+    /// A world length in pixels.
+    #[must_use]
+    pub fn len_px(&self, world: f64) -> f64 {
+        world * self.scale
+    }
+    /// A length in reference pixels, in this canvas's pixels.
+    #[must_use]
+    pub fn ref_px(&self, reference: f64) -> f64 {
+        reference * self.px_scale
+    }
+    /// A reference-pixel offset with y up (as items give them) → a canvas pixel offset, y down.
+    #[must_use]
+    pub fn offset_px(&self, offset: DVec2) -> DVec2 {
+        DVec2::new(offset.x, -offset.y) * self.px_scale
+    }
+}
+
+/// Horizontal alignment of text to its anchor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum HAlign {
+    /// The text starts at the anchor.
+    Left,
+    /// The text is centred on the anchor.
+    Center,
+    /// The text ends at the anchor.
+    Right,
+}
+
+/// Vertical alignment of text to its anchor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum VAlign {
+    /// The anchor is at the top of the text box.
+    Top,
+    /// The anchor is halfway up the capitals.
+    Middle,
+    /// The anchor is on the baseline.
+    Baseline,
+    /// The anchor is at the bottom of the text box.
+    Bottom,
+}
+
+/// Where text sits relative to its anchor point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Align {
+    /// Horizontally.
+    pub h: HAlign,
+    /// Vertically.
+    pub v: VAlign,
+}
+
+impl Align {
+    /// Centred on the anchor.
+    pub const CENTER: Self = Self { h: HAlign::Center, v: VAlign::Middle };
+    /// To the right of the anchor, centred vertically.
+    pub const RIGHT_OF: Self = Self { h: HAlign::Left, v: VAlign::Middle };
+    /// To the left of the anchor, centred vertically.
+    pub const LEFT_OF: Self = Self { h: HAlign::Right, v: VAlign::Middle };
+    /// Above the anchor, centred horizontally.
+    pub const ABOVE: Self = Self { h: HAlign::Center, v: VAlign::Bottom };
+    /// Below the anchor, centred horizontally.
+    pub const BELOW: Self = Self { h: HAlign::Center, v: VAlign::Top };
+}
+
+/// A text item: markup (see [`text`]) placed at a world anchor.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Text {
+    /// The label, in the markup of [`text`] (`θ_i`, `t_{ex}`).
+    pub text: String,
+    /// The world point the label belongs to.
+    pub anchor: DVec2,
+    /// An offset from the anchor in reference pixels, x right and y up.
+    pub offset: DVec2,
+    /// How the text box sits on the offset anchor.
+    pub align: Align,
+    /// The size class.
+    pub size: TextSize,
+    /// The weight.
+    pub weight: Weight,
+    /// Whether a white halo outlines the glyphs so the text reads over lines.
+    pub halo: bool,
+}
+
+/// How a label is drawn: built from a named baseline such as [`TextOpts::LABEL`], then adjusted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextOpts {
+    /// Offset from the anchor in reference pixels, x right and y up.
+    pub offset: DVec2,
+    /// Alignment to the (offset) anchor.
+    pub align: Align,
+    /// Size class.
+    pub size: TextSize,
+    /// Text colour.
+    pub color: Rgba,
+    /// Weight.
+    pub weight: Weight,
+    /// White halo behind the glyphs.
+    pub halo: bool,
+    /// Nudge the label to a free spot near its anchor when it would overlap an earlier label or
+    /// cross a line (see [`Drawing::text`]).
+    pub avoid_overlap: bool,
+}
+
+impl TextOpts {
+    /// A diagram label: label size, centred on its anchor, dark, with a halo.
+    pub const LABEL: Self = Self {
+        offset: DVec2::ZERO,
+        align: Align::CENTER,
+        size: TextSize::Label,
+        color: style::TEXT,
+        weight: Weight::Regular,
+        halo: true,
+        avoid_overlap: false,
+    };
+    /// A secondary note: small, centred, with a halo.
+    pub const NOTE: Self = Self { size: TextSize::Small, ..Self::LABEL };
+
+    /// With an offset of (`dx`, `dy`) reference pixels, y up.
+    #[must_use]
+    pub const fn offset(self, dx: f64, dy: f64) -> Self {
+        Self { offset: DVec2::new(dx, dy), ..self }
+    }
+    /// With another alignment.
+    #[must_use]
+    pub const fn align(self, align: Align) -> Self {
+        Self { align, ..self }
+    }
+    /// With another size class.
+    #[must_use]
+    pub const fn size(self, size: TextSize) -> Self {
+        Self { size, ..self }
+    }
+    /// In another colour.
+    #[must_use]
+    pub const fn color(self, color: Rgba) -> Self {
+        Self { color, ..self }
+    }
+    /// In bold.
+    #[must_use]
+    pub const fn bold(self) -> Self {
+        Self { weight: Weight::Bold, ..self }
+    }
+    /// Without the halo.
+    #[must_use]
+    pub const fn no_halo(self) -> Self {
+        Self { halo: false, ..self }
+    }
+    /// Placed clear of earlier labels and lines where a free spot exists.
+    #[must_use]
+    pub const fn avoid_overlap(self) -> Self {
+        Self { avoid_overlap: true, ..self }
+    }
+}
+
+/// The geometry of one display-list item.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// An open polyline through world points.
+    Line {
+        /// The vertices, in order.
+        points: Vec<DVec2>,
+    },
+    /// A segment with a filled arrow head at `to`.
+    Arrow {
+        /// Tail, in world coordinates.
+        from: DVec2,
+        /// Tip, in world coordinates.
+        to: DVec2,
+        /// Head length, tip to base, in reference pixels (shortened on short arrows).
+        head: f64,
+    },
+    /// A circle of world radius.
+    Circle {
+        /// Centre, world.
+        center: DVec2,
+        /// Radius, world units.
+        radius: f64,
+        /// Interior fill, if any.
+        fill: Option<Rgba>,
+    },
+    /// A round marker of fixed pixel size (hit points, lights, sample points).
+    Dot {
+        /// Centre, world.
+        center: DVec2,
+        /// Radius in reference pixels.
+        radius: f64,
+        /// Interior fill.
+        fill: Rgba,
+    },
+    /// A closed polygon.
+    Polygon {
+        /// The vertices, in order (the last joins the first).
+        points: Vec<DVec2>,
+        /// Interior fill, if any (its alpha is the fill opacity).
+        fill: Option<Rgba>,
+    },
+    /// An axis-aligned rectangle of the world.
+    Rect {
+        /// The corner with the smaller coordinates.
+        min: DVec2,
+        /// The corner with the larger coordinates.
+        max: DVec2,
+        /// Interior fill, if any.
+        fill: Option<Rgba>,
+    },
+    /// A label.
+    Text(Text),
+}
+
+/// One entry of the display list.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Item {
+    /// A short tag naming what the item shows (`ray:primary`, `object:2`, `label`); the SVG groups
+    /// items by it and tests count by it.
+    pub tag: String,
+    /// Stroke (and text colour).
+    pub style: Style,
+    /// Geometry.
+    pub shape: Shape,
+}
+
+/// What a legend entry's sample looks like.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Sample {
+    /// A short line in the entry's style.
+    Line,
+    /// A short arrow in the entry's style.
+    Arrow,
+    /// A dot of this fill, outlined in the entry's style.
+    Dot(Rgba),
+    /// A filled square of this colour, outlined in the entry's style.
+    Swatch(Rgba),
+}
+
+/// One row of the legend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegendEntry {
+    /// The text (markup).
+    pub label: String,
+    /// The sample's stroke.
+    pub style: Style,
+    /// The sample's kind.
+    pub sample: Sample,
+}
+
+/// A corner of the plot area, for the legend.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Corner {
+    /// Top right.
+    TopRight,
+    /// Top left.
+    TopLeft,
+    /// Bottom right.
+    BottomRight,
+    /// Bottom left.
+    BottomLeft,
+}
+
+impl Corner {
+    /// The corners in the order the automatic placement prefers them.
+    pub const ALL: [Self; 4] = [Self::TopRight, Self::TopLeft, Self::BottomRight, Self::BottomLeft];
+}
+
+/// Where the legend box goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LegendPlace {
+    /// The first corner of the plot area (in [`Corner::ALL`] order) that no line crosses and no
+    /// label overlaps; if none is clear, [`LegendPlace::Outside`]. The view is fitted to the whole
+    /// plot area first, so going outside only shrinks the picture, uniformly.
+    Auto,
+    /// In this corner of the plot area, whatever it covers.
+    Inside(Corner),
+    /// In a column to the right of the plot area, which is narrowed to make room.
+    Outside,
+}
+
+/// A figure: the display list, the world rectangle it shows, its canvas size, and its legend,
+/// title and caption.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Drawing {
+    width: u32,
+    height: u32,
+    /// The world rectangle shown (uniformly scaled and centred in the plot area).
+    pub view: View,
+    /// The display list, drawn in order (later items on top).
+    pub items: Vec<Item>,
+    /// The legend's rows; no box is drawn when empty.
+    pub legend: Vec<LegendEntry>,
+    /// Where the legend box goes.
+    pub legend_place: LegendPlace,
+    /// The caption under the plot (markup), wrapped to the canvas width.
+    pub caption: Option<String>,
+    /// The title above the plot (markup), in bold.
+    pub title: Option<String>,
+}
+
+/// A text line placed in canvas pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlacedLine {
+    /// The markup.
+    pub text: String,
+    /// The start of the baseline, in pixels.
+    pub origin: DVec2,
+    /// Font size in pixels.
+    pub size: f64,
+}
+
+/// One legend row laid out in pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegendRow {
+    /// Where the sample starts (left end, vertical middle of the row).
+    pub sample_from: DVec2,
+    /// Where the sample ends.
+    pub sample_to: DVec2,
+    /// The row's text.
+    pub label: PlacedLine,
+}
+
+/// The legend box laid out in pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegendBox {
+    /// The box.
+    pub rect: PxRect,
+    /// Its rows, top to bottom, in the order of [`Drawing::legend`].
+    pub rows: Vec<LegendRow>,
+}
+
+/// The canvas layout shared by the back ends (see the module doc).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// The world → pixel map.
+    pub transform: Transform,
+    /// The plot area in pixels.
+    pub plot: PxRect,
+    /// The title line, centred at the top.
+    pub title: Option<PlacedLine>,
+    /// The caption lines, centred at the bottom.
+    pub caption: Vec<PlacedLine>,
+    /// The legend box, if there are legend entries.
+    pub legend: Option<LegendBox>,
+}
+
+/// A text item placed in canvas pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlacedText {
+    /// The start of the baseline.
+    pub origin: DVec2,
+    /// The text box.
+    pub bbox: PxRect,
+    /// Font size in pixels.
+    pub size: f64,
+}
+
+/// An arrow laid out in pixels: the shaft to draw and the head to fill.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArrowPx {
+    /// The shaft's start (the arrow's tail).
+    pub shaft_from: DVec2,
+    /// The shaft's end, a little inside the head so no gap shows.
+    pub shaft_to: DVec2,
+    /// The head as a closed quadrilateral: tip, one barb, the notch, the other barb.
+    pub head: [DVec2; 4],
+}
+
+impl ArrowPx {
+    /// The arrow from pixel `from` to pixel `to` with a head `head` pixels long (at most 0.6 of
+    /// the arrow, so a short arrow keeps a shaft), or `None` for a zero-length arrow.
+    #[must_use]
+    pub fn new(from: DVec2, to: DVec2, head: f64) -> Option<Self> {
+        let along = to - from;
+        let len = along.length();
+        if len.is_nan() || len <= f64::EPSILON {
+            return None;
+        }
+        let dir = along / len;
+        let head = head.min(0.6 * len);
+        let base = to - dir * head;
+        let side = dir.perp() * head * 0.42;
+        Some(Self {
+            shaft_from: from,
+            shaft_to: to - dir * head * 0.7,
+            head: [to, base + side, to - dir * head * 0.85, base - side],
+        })
+    }
+}
+
+/// Line spacing of stacked text lines, in em.
+const LINE_SPACING: f64 = 1.3;
+
+impl Drawing {
+    /// An empty drawing for a `width` × `height` pixel canvas showing the world square
+    /// [−1, 1]², or `None` if either size is 0.
+    #[must_use]
+    pub fn new(width: u32, height: u32) -> Option<Self> {
+        let view = View::new(-1.0, 1.0, -1.0, 1.0)?;
+        (width > 0 && height > 0).then_some(Self {
+            width,
+            height,
+            view,
+            items: Vec::new(),
+            legend: Vec::new(),
+            legend_place: LegendPlace::Auto,
+            caption: None,
+            title: None,
+        })
+    }
+
+    /// An empty drawing on the reference slide canvas, 1920 × 1080.
+    #[must_use]
+    pub fn slide() -> Self {
+        Self {
+            width: style::REFERENCE_WIDTH,
+            height: style::REFERENCE_HEIGHT,
+            view: View { xmin: -1.0, xmax: 1.0, ymin: -1.0, ymax: 1.0 },
+            items: Vec::new(),
+            legend: Vec::new(),
+            legend_place: LegendPlace::Auto,
+            caption: None,
+            title: None,
+        }
+    }
+
+    /// Canvas width in pixels.
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Canvas height in pixels.
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Reference pixels → canvas pixels (see [`style::px_scale`]).
+    #[must_use]
+    pub fn px_scale(&self) -> f64 {
+        style::px_scale(self.width, self.height)
+    }
+
+    /// Sets the title (markup).
+    pub fn set_title(&mut self, title: &str) -> &mut Self {
+        self.title = Some(title.to_owned());
+        self
+    }
+
+    /// Sets the caption (markup).
+    pub fn set_caption(&mut self, caption: &str) -> &mut Self {
+        self.caption = Some(caption.to_owned());
+        self
+    }
+
+    /// Sets the world rectangle shown.
+    pub fn set_view(&mut self, view: View) -> &mut Self {
+        self.view = view;
+        self
+    }
+
+    /// Shows every finite point of `points` with a margin of `margin` times their larger extent,
+    /// at the plot area's aspect ratio. Leaves the view unchanged when no point is finite.
+    pub fn fit_view(&mut self, points: &[DVec2], margin: f64) -> &mut Self {
+        let plot = self.plot_area();
+        if let Some(view) = View::fit(points, margin, plot.width() / plot.height()) {
+            self.view = view;
+        }
+        self
+    }
+
+    /// The aspect ratio (width / height) of the plot area, for [`View::fit`].
+    #[must_use]
+    pub fn plot_aspect(&self) -> f64 {
+        let plot = self.plot_area();
+        plot.width() / plot.height()
+    }
+
+    /// Adds an item.
+    pub fn push(&mut self, tag: &str, style: Style, shape: Shape) -> &mut Self {
+        self.items.push(Item { tag: tag.to_owned(), style, shape });
+        self
+    }
+
+    /// Adds a polyline.
+    pub fn line(&mut self, tag: &str, points: impl IntoIterator<Item = DVec2>, style: Style) -> &mut Self {
+        let points = points.into_iter().collect();
+        self.push(tag, style, Shape::Line { points })
+    }
+
+    /// Adds the segment `a`–`b`.
+    pub fn segment(&mut self, tag: &str, a: DVec2, b: DVec2, style: Style) -> &mut Self {
+        self.push(tag, style, Shape::Line { points: vec![a, b] })
+    }
+
+    /// Adds an arrow from `from` to `to`, its head sized for the stroke
+    /// (`max(ARROW_HEAD, 4.5 × width)` reference pixels).
+    pub fn arrow(&mut self, tag: &str, from: DVec2, to: DVec2, style: Style) -> &mut Self {
+        let head = style::ARROW_HEAD.max(4.5 * style.width);
+        self.push(tag, style, Shape::Arrow { from, to, head })
+    }
+
+    /// Adds a circle of world radius `radius`, stroked with `style` and filled with `fill`.
+    pub fn circle(
+        &mut self,
+        tag: &str,
+        center: DVec2,
+        radius: f64,
+        style: Style,
+        fill: Option<Rgba>,
+    ) -> &mut Self {
+        self.push(tag, style, Shape::Circle { center, radius, fill })
+    }
+
+    /// Adds a dot of the standard radius ([`style::DOT_RADIUS`]) filled with `fill`, no outline.
+    pub fn dot(&mut self, tag: &str, center: DVec2, fill: Rgba) -> &mut Self {
+        self.marker(tag, center, style::DOT_RADIUS, fill, Style::NONE)
+    }
+
+    /// Adds a dot of `radius` reference pixels, filled with `fill` and outlined with `outline`.
+    pub fn marker(&mut self, tag: &str, center: DVec2, radius: f64, fill: Rgba, outline: Style) -> &mut Self {
+        self.push(tag, outline, Shape::Dot { center, radius, fill })
+    }
+
+    /// Adds a closed polygon.
+    pub fn polygon(
+        &mut self,
+        tag: &str,
+        points: impl IntoIterator<Item = DVec2>,
+        style: Style,
+        fill: Option<Rgba>,
+    ) -> &mut Self {
+        let points = points.into_iter().collect();
+        self.push(tag, style, Shape::Polygon { points, fill })
+    }
+
+    /// Adds the world rectangle spanned by corners `a` and `b` (in any order).
+    pub fn rect(&mut self, tag: &str, a: DVec2, b: DVec2, style: Style, fill: Option<Rgba>) -> &mut Self {
+        self.push(tag, style, Shape::Rect { min: a.min(b), max: a.max(b), fill })
+    }
+
+    /// Adds a label at `anchor`. With [`TextOpts::avoid_overlap`], the label keeps the requested
+    /// placement if its box is clear of earlier labels and lines and inside the plot area;
+    /// otherwise it takes the first clear spot among candidates around the anchor (eight
+    /// directions, at growing distances), or the least bad one if none is clear.
+    pub fn text(&mut self, tag: &str, anchor: DVec2, markup: &str, opts: TextOpts) -> &mut Self {
+        let mut label = Text {
+            text: markup.to_owned(),
+            anchor,
+            offset: opts.offset,
+            align: opts.align,
+            size: opts.size,
+            weight: opts.weight,
+            halo: opts.halo,
+        };
+        if opts.avoid_overlap {
+            self.place_clear(&mut label);
+        }
+        let style = Style { color: opts.color, width: 0.0, dash: None };
+        self.push(tag, style, Shape::Text(label))
+    }
+
+    /// Adds a legend row.
+    pub fn legend_entry(&mut self, label: &str, style: Style, sample: Sample) -> &mut Self {
+        self.legend.push(LegendEntry { label: label.to_owned(), style, sample });
+        self
+    }
+
+    /// The items whose tag is `tag`.
+    pub fn tagged<'a>(&'a self, tag: &'a str) -> impl Iterator<Item = &'a Item> + 'a {
+        self.items.iter().filter(move |item| item.tag == tag)
+    }
+
+    /// The plot area before the legend is placed: the canvas less its margin, the title and
+    /// caption bands and, for [`LegendPlace::Outside`], the legend column. [`View::fit`] and
+    /// [`Drawing::fit_view`] fit to this area.
+    fn plot_area(&self) -> PxRect {
+        let column = match (self.legend_place, self.legend_size()) {
+            (LegendPlace::Outside, Some(size)) => size.x,
+            _ => 0.0,
+        };
+        self.plot_area_beside(column)
+    }
+
+    /// The plot area with a legend column `column` pixels wide (0 for none) on the right.
+    fn plot_area_beside(&self, column: f64) -> PxRect {
+        let k = self.px_scale();
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        let margin = style::MARGIN * k;
+        let mut top = margin;
+        let mut bottom = h - margin;
+        if self.title.is_some() {
+            top += TextSize::Title.px() * k * LINE_SPACING;
+        }
+        let lines = self.caption_lines().len();
+        if lines > 0 {
+            bottom -= TextSize::Body.px() * k * LINE_SPACING * lines as f64 + margin * 0.5;
+        }
+        // A canvas too small for its bands still gets a plot area of one pixel.
+        let bottom = bottom.max(top + 1.0);
+        let left = margin.min(w / 2.0);
+        let right = if column > 0.0 { w - margin - column - margin } else { w - margin };
+        let right = right.max(left + 1.0);
+        PxRect { min: DVec2::new(left, top), max: DVec2::new(right, bottom) }
+    }
+
+    /// The caption, wrapped to the canvas width.
+    fn caption_lines(&self) -> Vec<String> {
+        let Some(caption) = &self.caption else {
+            return Vec::new();
+        };
+        let k = self.px_scale();
+        let max_width = f64::from(self.width) - 2.0 * style::MARGIN * k;
+        text::wrap(caption, TextSize::Body.px() * k, Weight::Regular, max_width)
+    }
+
+    /// The world → pixel map: the view scaled uniformly to fit the plot area, centred (the plot
+    /// area after the legend is placed, as in [`Drawing::frame`]).
+    #[must_use]
+    pub fn transform(&self) -> Transform {
+        self.placed_legend().0
+    }
+
+    /// The view scaled uniformly to fit `plot`, centred.
+    fn transform_in(&self, plot: &PxRect) -> Transform {
+        let scale = (plot.width() / self.view.width()).min(plot.height() / self.view.height());
+        let c = self.view.center();
+        let mid = (plot.min + plot.max) / 2.0;
+        Transform { scale, tx: mid.x - scale * c.x, ty: mid.y + scale * c.y, px_scale: self.px_scale() }
+    }
+
+    /// Where a text item lands in pixels under `tf`: its baseline origin, box and size.
+    #[must_use]
+    pub fn place_text(label: &Text, tf: &Transform) -> PlacedText {
+        let size = tf.ref_px(label.size.px());
+        let laid = text::layout(&label.text, size, label.weight);
+        let p = tf.to_px(label.anchor) + tf.offset_px(label.offset);
+        let x = match label.align.h {
+            HAlign::Left => p.x,
+            HAlign::Center => p.x - laid.width / 2.0,
+            HAlign::Right => p.x - laid.width,
+        };
+        let baseline = match label.align.v {
+            VAlign::Top => p.y + laid.ascent,
+            VAlign::Middle => p.y + text::cap_height(size) / 2.0,
+            VAlign::Baseline => p.y,
+            VAlign::Bottom => p.y - laid.descent,
+        };
+        let origin = DVec2::new(x, baseline);
+        let bbox = PxRect {
+            min: DVec2::new(x, baseline - laid.ascent),
+            max: DVec2::new(x + laid.width, baseline + laid.descent),
+        };
+        PlacedText { origin, bbox, size }
+    }
+
+    /// The pixel segments of every stroked item (circles as 48-gons, dots as their boxes'
+    /// diagonals), for the overlap tests of label and legend placement.
+    fn segments(&self, tf: &Transform) -> Vec<(DVec2, DVec2)> {
+        let mut out = Vec::new();
+        let chain = |pts: &[DVec2], closed: bool, out: &mut Vec<(DVec2, DVec2)>| {
+            let px: Vec<DVec2> = pts.iter().map(|p| tf.to_px(*p)).collect();
+            out.extend(px.windows(2).map(|w| (w[0], w[1])));
+            if closed && px.len() > 2 {
+                out.push((px[px.len() - 1], px[0]));
+            }
+        };
+        for item in &self.items {
+            match &item.shape {
+                Shape::Line { points } => chain(points, false, &mut out),
+                Shape::Arrow { from, to, .. } => chain(&[*from, *to], false, &mut out),
+                Shape::Polygon { points, .. } => chain(points, true, &mut out),
+                Shape::Rect { min, max, .. } => {
+                    let corners = [*min, DVec2::new(max.x, min.y), *max, DVec2::new(min.x, max.y)];
+                    chain(&corners, true, &mut out);
+                }
+                Shape::Circle { center, radius, .. } => {
+                    let ring: Vec<DVec2> = (0..48)
+                        .map(|i| {
+                            let a = std::f64::consts::TAU * f64::from(i) / 48.0;
+                            *center + *radius * DVec2::new(a.cos(), a.sin())
+                        })
+                        .collect();
+                    chain(&ring, true, &mut out);
+                }
+                Shape::Dot { center, radius, .. } => {
+                    let c = tf.to_px(*center);
+                    let r = tf.ref_px(*radius);
+                    out.push((c - DVec2::splat(r), c + DVec2::splat(r)));
+                    out.push((c + DVec2::new(-r, r), c + DVec2::new(r, -r)));
+                }
+                Shape::Text(_) => {}
+            }
+        }
+        out
+    }
+
+    /// The pixel boxes of every text item.
+    fn text_boxes(&self, tf: &Transform) -> Vec<PxRect> {
+        self.items
+            .iter()
+            .filter_map(|item| match &item.shape {
+                Shape::Text(label) => Some(Self::place_text(label, tf).bbox),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Moves `label` to the clearest candidate spot (see [`Drawing::text`]).
+    fn place_clear(&self, label: &mut Text) {
+        let (tf, plot, _) = self.placed_legend();
+        let segments = self.segments(&tf);
+        let boxes = self.text_boxes(&tf);
+        let pad = tf.ref_px(4.0);
+        let cost = |candidate: &Text| {
+            let b = Self::place_text(candidate, &tf).bbox.inflate(pad);
+            let area = (b.width() * b.height()).max(1.0);
+            let overlap: f64 = boxes.iter().map(|o| b.overlap(o)).sum::<f64>() / area;
+            let crossings = segments.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
+            let outside = if plot.contains_rect(&b) { 0.0 } else { 1.0 };
+            100.0 * overlap + crossings as f64 + 100.0 * outside
+        };
+        let requested = label.clone();
+        let mut best = (cost(&requested), requested.offset, requested.align);
+        if best.0 <= 0.0 {
+            return;
+        }
+        let gap = 14.0;
+        let diag = std::f64::consts::FRAC_1_SQRT_2;
+        let directions = [
+            (DVec2::new(1.0, 0.0), Align::RIGHT_OF),
+            (DVec2::new(0.0, 1.0), Align::ABOVE),
+            (DVec2::new(-1.0, 0.0), Align::LEFT_OF),
+            (DVec2::new(0.0, -1.0), Align::BELOW),
+            (DVec2::new(diag, diag), Align { h: HAlign::Left, v: VAlign::Bottom }),
+            (DVec2::new(-diag, diag), Align { h: HAlign::Right, v: VAlign::Bottom }),
+            (DVec2::new(-diag, -diag), Align { h: HAlign::Right, v: VAlign::Top }),
+            (DVec2::new(diag, -diag), Align { h: HAlign::Left, v: VAlign::Top }),
+        ];
+        for distance in [1.0, 2.5, 4.5, 7.0] {
+            for (dir, align) in directions {
+                let candidate = Text { offset: dir * gap * distance, align, ..requested.clone() };
+                let c = cost(&candidate);
+                if c < best.0 {
+                    best = (c, candidate.offset, candidate.align);
+                    if c <= 0.0 {
+                        break;
+                    }
+                }
+            }
+            if best.0 <= 0.0 {
+                break;
+            }
+        }
+        label.offset = best.1;
+        label.align = best.2;
+    }
+
+    /// Lays out the canvas for the back ends: transform, plot area, title, caption and legend.
+    #[must_use]
+    pub fn frame(&self) -> Frame {
+        let (tf, plot, legend_rect) = self.placed_legend();
+        let k = self.px_scale();
+        let w = f64::from(self.width);
+        let h = f64::from(self.height);
+        let margin = style::MARGIN * k;
+
+        let title = self.title.as_ref().map(|t| {
+            let size = TextSize::Title.px() * k;
+            let laid = text::layout(t, size, Weight::Bold);
+            let origin = DVec2::new((w - laid.width) / 2.0, margin + text::cap_height(size));
+            PlacedLine { text: t.clone(), origin, size }
+        });
+
+        let caption_size = TextSize::Body.px() * k;
+        let lines = self.caption_lines();
+        let step = caption_size * LINE_SPACING;
+        let first = h
+            - margin
+            - step * (lines.len().saturating_sub(1)) as f64
+            - text::layout("g", caption_size, Weight::Regular).descent;
+        let caption = lines
+            .into_iter()
+            .enumerate()
+            .map(|(i, line)| {
+                let width = text::layout(&line, caption_size, Weight::Regular).width;
+                let origin = DVec2::new((w - width) / 2.0, first + step * i as f64);
+                PlacedLine { text: line, origin, size: caption_size }
+            })
+            .collect();
+
+        let legend = legend_rect.map(|rect| self.legend_rows(rect));
+        Frame { transform: tf, plot, title, caption, legend }
+    }
+
+    /// The legend's padding, sample length, gap before the text, and row height, in pixels.
+    fn legend_metrics(&self) -> (f64, f64, f64, f64) {
+        let k = self.px_scale();
+        (18.0 * k, 64.0 * k, 16.0 * k, TextSize::Body.px() * k * LINE_SPACING)
+    }
+
+    /// The legend box's size in pixels, or `None` without legend entries.
+    fn legend_size(&self) -> Option<DVec2> {
+        if self.legend.is_empty() {
+            return None;
+        }
+        let size = TextSize::Body.px() * self.px_scale();
+        let (pad, sample_len, gap, row) = self.legend_metrics();
+        let text_width = self
+            .legend
+            .iter()
+            .map(|e| text::layout(&e.label, size, Weight::Regular).width)
+            .fold(0.0, f64::max);
+        Some(DVec2::new(
+            pad * 2.0 + sample_len + gap + text_width,
+            pad * 2.0 + row * self.legend.len() as f64,
+        ))
+    }
+
+    /// The transform, the plot area and the legend box, with [`LegendPlace::Auto`] resolved.
+    fn placed_legend(&self) -> (Transform, PxRect, Option<PxRect>) {
+        let Some(size) = self.legend_size() else {
+            let plot = self.plot_area_beside(0.0);
+            return (self.transform_in(&plot), plot, None);
+        };
+        let inset = style::MARGIN * self.px_scale() * 0.3;
+        let in_corner = |plot: &PxRect, corner: Corner| {
+            let x = match corner {
+                Corner::TopLeft | Corner::BottomLeft => plot.min.x + inset,
+                Corner::TopRight | Corner::BottomRight => plot.max.x - inset - size.x,
+            };
+            let y = match corner {
+                Corner::TopLeft | Corner::TopRight => plot.min.y + inset,
+                Corner::BottomLeft | Corner::BottomRight => plot.max.y - inset - size.y,
+            };
+            PxRect { min: DVec2::new(x, y), max: DVec2::new(x, y) + size }
+        };
+        let outside = || {
+            let plot = self.plot_area_beside(size.x);
+            let margin = style::MARGIN * self.px_scale();
+            let min = DVec2::new(plot.max.x + margin, plot.min.y);
+            (self.transform_in(&plot), plot, Some(PxRect { min, max: min + size }))
+        };
+        match self.legend_place {
+            LegendPlace::Inside(corner) => {
+                let plot = self.plot_area_beside(0.0);
+                (self.transform_in(&plot), plot, Some(in_corner(&plot, corner)))
+            }
+            LegendPlace::Outside => outside(),
+            LegendPlace::Auto => {
+                let plot = self.plot_area_beside(0.0);
+                let tf = self.transform_in(&plot);
+                let segments = self.segments(&tf);
+                let boxes = self.text_boxes(&tf);
+                let clear = |r: &PxRect| {
+                    let r = r.inflate(inset);
+                    !segments.iter().any(|(a, b)| r.meets_segment(*a, *b))
+                        && boxes.iter().all(|b| r.overlap(b) <= 0.0)
+                };
+                Corner::ALL
+                    .iter()
+                    .map(|c| in_corner(&plot, *c))
+                    .find(|r| clear(r))
+                    .map_or_else(outside, |r| (tf, plot, Some(r)))
+            }
+        }
+    }
+
+    /// The legend's rows inside its box.
+    fn legend_rows(&self, rect: PxRect) -> LegendBox {
+        let size = TextSize::Body.px() * self.px_scale();
+        let (pad, sample_len, gap, row) = self.legend_metrics();
+        let cap = text::cap_height(size);
+        let rows = self
+            .legend
+            .iter()
+            .enumerate()
+            .map(|(i, e)| {
+                let mid_y = rect.min.y + pad + row * (i as f64 + 0.5);
+                let sample_from = DVec2::new(rect.min.x + pad, mid_y);
+                let sample_to = sample_from + DVec2::new(sample_len, 0.0);
+                let origin = DVec2::new(sample_to.x + gap, mid_y + cap / 2.0);
+                let label = PlacedLine { text: e.label.clone(), origin, size };
+                LegendRow { sample_from, sample_to, label }
+            })
+            .collect();
+        LegendBox { rect, rows }
+    }
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64) -> DVec2 {
+        DVec2::new(x, y)
+    }
+
+    #[test]
+    fn views_validate() {
+        assert!(View::new(0.0, 1.0, 0.0, 1.0).is_some());
+        assert!(View::new(1.0, 1.0, 0.0, 1.0).is_none());
+        assert!(View::new(0.0, f64::NAN, 0.0, 1.0).is_none());
+        assert!(Drawing::new(0, 10).is_none());
+    }
+
+    #[test]
+    fn fit_holds_the_points_at_the_requested_aspect() {
+        let pts = [v(-2.0, 0.0), v(3.0, 1.0), v(0.0, -1.0)];
+        let view = View::fit(&pts, 0.1, 16.0 / 9.0).unwrap();
+        assert!((view.width() / view.height() - 16.0 / 9.0).abs() < 1e-9);
+        for p in pts {
+            assert!(p.x > view.xmin() && p.x < view.xmax() && p.y > view.ymin() && p.y < view.ymax());
+        }
+        // One point still gives a view; no finite point gives none.
+        assert!(View::fit(&[v(1.0, 1.0)], 0.1, 1.0).is_some());
+        assert!(View::fit(&[v(f64::NAN, 0.0)], 0.1, 1.0).is_none());
+        assert!(View::fit(&pts, 0.1, 0.0).is_none());
+    }
+
+    #[test]
+    fn transform_is_uniform_with_y_up() {
+        let mut d = Drawing::slide();
+        d.set_view(View::new(0.0, 2.0, 0.0, 1.0).unwrap());
+        let tf = d.transform();
+        let a = tf.to_px(v(0.0, 0.0));
+        let b = tf.to_px(v(1.0, 1.0));
+        assert!(b.y < a.y, "y goes up in the world, down in pixels");
+        assert!(((b.x - a.x) - (a.y - b.y)).abs() < 1e-9, "one scale for both axes");
+        let back = tf.to_world(tf.to_px(v(0.3, 0.7)));
+        assert!((back - v(0.3, 0.7)).length() < 1e-12);
+        // The view's centre lands in the middle of the plot area.
+        let frame = d.frame();
+        let mid = (frame.plot.min + frame.plot.max) / 2.0;
+        assert!((tf.to_px(v(1.0, 0.5)) - mid).length() < 1e-9);
+    }
+
+    #[test]
+    fn fitted_view_keeps_circles_round_on_any_canvas() {
+        let mut d = Drawing::new(800, 1200).unwrap();
+        d.set_title("t").set_caption("c");
+        d.fit_view(&[v(0.0, 0.0), v(10.0, 1.0)], 0.05);
+        let tf = d.transform();
+        let plot = d.frame().plot;
+        let corner_lo = tf.to_px(v(d.view.xmin(), d.view.ymin()));
+        let corner_hi = tf.to_px(v(d.view.xmax(), d.view.ymax()));
+        // The fitted view fills the plot area exactly.
+        assert!((corner_lo.x - plot.min.x).abs() < 1e-6 && (corner_hi.x - plot.max.x).abs() < 1e-6);
+        assert!((corner_hi.y - plot.min.y).abs() < 1e-6 && (corner_lo.y - plot.max.y).abs() < 1e-6);
+    }
+
+    #[test]
+    fn builders_add_one_tagged_item_each() {
+        let mut d = Drawing::slide();
+        d.segment("ray:primary", v(0.0, 0.0), v(1.0, 0.0), style::RayRole::Primary.style())
+            .arrow("ray:reflected", v(0.0, 0.0), v(0.0, 1.0), style::RayRole::Reflected.style())
+            .circle("object:0", v(0.0, 0.0), 0.5, style::object(), Some(style::OBJECT_FILL))
+            .dot("hit", v(0.5, 0.0), style::HIT)
+            .polygon("object:1", [v(0.0, 0.0), v(1.0, 0.0), v(0.0, 1.0)], style::object(), None)
+            .rect("cell", v(1.0, 1.0), v(0.0, 0.0), style::grid(), None)
+            .text("label", v(0.0, 0.0), "θ_i", TextOpts::LABEL);
+        assert_eq!(d.items.len(), 7);
+        assert_eq!(d.tagged("object:1").count(), 1);
+        let Shape::Rect { min, max, .. } = d.tagged("cell").next().unwrap().shape else {
+            panic!("not a rect");
+        };
+        assert!(min.cmple(max).all());
+    }
+
+    #[test]
+    fn segment_rectangle_meeting() {
+        let r = PxRect { min: v(0.0, 0.0), max: v(10.0, 10.0) };
+        assert!(r.meets_segment(v(-5.0, 5.0), v(15.0, 5.0)));
+        assert!(r.meets_segment(v(2.0, 2.0), v(3.0, 3.0)));
+        assert!(!r.meets_segment(v(-5.0, -1.0), v(15.0, -1.0)));
+        assert!(!r.meets_segment(v(11.0, 0.0), v(20.0, 10.0)));
+        assert!(r.meets_segment(v(-1.0, 5.0), v(5.0, -1.0)));
+    }
+
+    #[test]
+    fn avoid_overlap_moves_a_label_off_an_earlier_one_and_off_lines() {
+        let mut d = Drawing::slide();
+        d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
+        d.segment("ray:primary", v(-2.0, 0.0), v(2.0, 0.0), style::RayRole::Primary.style());
+        d.text("label", v(0.0, 0.0), "first", TextOpts::LABEL.avoid_overlap());
+        d.text("label", v(0.0, 0.0), "second", TextOpts::LABEL.avoid_overlap());
+        let tf = d.transform();
+        let boxes = d.text_boxes(&tf);
+        assert_eq!(boxes.len(), 2);
+        assert!(boxes[0].overlap(&boxes[1]) <= 0.0, "{boxes:?}");
+        let y = tf.to_px(v(0.0, 0.0)).y;
+        for b in &boxes {
+            assert!(b.min.y > y || b.max.y < y, "label crosses the ray: {b:?}");
+        }
+    }
+
+    #[test]
+    fn a_clear_label_stays_where_asked() {
+        let mut d = Drawing::slide();
+        let opts = TextOpts::LABEL.offset(10.0, 20.0).align(Align::ABOVE).avoid_overlap();
+        d.text("label", v(0.0, 0.0), "N", opts);
+        let Shape::Text(t) = &d.items[0].shape else { panic!() };
+        assert_eq!(t.offset, v(10.0, 20.0));
+        assert_eq!(t.align, Align::ABOVE);
+    }
+
+    #[test]
+    fn legend_goes_to_the_emptiest_corner() {
+        let mut d = Drawing::slide();
+        d.set_view(View::new(0.0, 16.0, 0.0, 9.0).unwrap());
+        // Clutter the top right corner.
+        for i in 0..10 {
+            let y = 9.0 - f64::from(i) * 0.2;
+            d.segment("clutter", v(10.0, y), v(16.0, y), style::grid());
+        }
+        d.legend_entry("primary", style::RayRole::Primary.style(), Sample::Line);
+        let legend = d.frame().legend.unwrap();
+        let plot = d.frame().plot;
+        assert!(legend.rect.min.x < (plot.min.x + plot.max.x) / 2.0, "{legend:?}");
+        assert_eq!(legend.rows.len(), 1);
+    }
+
+    #[test]
+    fn legend_goes_outside_when_no_corner_is_clear_and_stays_where_fixed() {
+        let mut d = Drawing::slide();
+        d.set_view(View::new(0.0, 16.0, 0.0, 9.0).unwrap());
+        for i in 0..=16 {
+            let x = f64::from(i);
+            d.segment("grid", v(x, 0.0), v(x, 9.0), style::grid());
+        }
+        d.legend_entry("primary", style::RayRole::Primary.style(), Sample::Line);
+        let full = Drawing::slide().frame().plot;
+        let frame = d.frame();
+        let legend = frame.legend.unwrap();
+        assert!(frame.plot.width() < full.width());
+        assert!(legend.rect.min.x > frame.plot.max.x);
+        assert!(legend.rect.max.x <= 1920.0);
+        // The transform follows the narrowed plot area.
+        assert!(d.transform().to_px(v(16.0, 0.0)).x <= frame.plot.max.x + 1e-9);
+
+        d.legend_place = LegendPlace::Inside(Corner::BottomLeft);
+        let frame = d.frame();
+        let legend = frame.legend.unwrap();
+        assert!((frame.plot.width() - full.width()).abs() < 1e-9);
+        assert!(legend.rect.max.y > frame.plot.max.y - 20.0 && legend.rect.min.x < 100.0);
+    }
+
+    #[test]
+    fn title_and_caption_bands_shrink_the_plot() {
+        let mut d = Drawing::slide();
+        let full = d.frame().plot;
+        d.set_title("Title").set_caption("A caption");
+        let frame = d.frame();
+        assert!(frame.plot.height() < full.height());
+        let title = frame.title.unwrap();
+        assert!(title.origin.y < frame.plot.min.y);
+        assert!(frame.caption[0].origin.y > frame.plot.max.y);
+        assert!(frame.caption[0].origin.y < 1080.0);
+    }
+}

@@ -1,0 +1,410 @@
+//! The vector back end: a [`Drawing`] → SVG text, for print.
+//!
+//! It reads the same display list through the same [`Frame`] (transform, plot area, title,
+//! caption, legend) as the raster back end, so the two agree. Each display-list item becomes
+//! exactly one `<g data-tag="…">` group; the title, caption and legend are groups with a `class`
+//! and no `data-tag`. Text stays text: `<text>` in the embedded font's family (the reader's copy of
+//! Noto Sans, or a sans-serif fallback), with sub- and superscripts as
+//! `<tspan baseline-shift="sub" font-size="…">` and the halo as a white stroke painted first.
+
+use std::fmt::Write as _;
+
+use glam::DVec2;
+
+use super::drawing::{
+    ArrowPx, Drawing, Frame, HAlign, LegendBox, PlacedLine, PxRect, Sample, Shape, Style, Text, Transform,
+};
+use super::style::{self, Rgba};
+use super::text::{self, Script, Weight};
+
+/// The id of the clip path that keeps shapes inside the plot area.
+const CLIP_ID: &str = "plot-area";
+
+/// The SVG document of `drawing`.
+#[must_use]
+pub fn to_svg(drawing: &Drawing) -> String {
+    let frame = drawing.frame();
+    let (w, h) = (drawing.width(), drawing.height());
+    let mut out = String::new();
+    out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    // Writing into a String cannot fail, so the results of write! are ignored throughout.
+    let _ = writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
+         viewBox=\"0 0 {w} {h}\" font-family=\"{}, sans-serif\">",
+        escape(text::FAMILY)
+    );
+    let plot = frame.plot;
+    let _ = writeln!(
+        out,
+        "<defs><clipPath id=\"{CLIP_ID}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\
+         </clipPath></defs>",
+        num(plot.min.x),
+        num(plot.min.y),
+        num(plot.width()),
+        num(plot.height())
+    );
+    out.push_str("<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
+    let tf = frame.transform;
+    for item in &drawing.items {
+        let clip = if matches!(item.shape, Shape::Text(_)) {
+            String::new()
+        } else {
+            format!(" clip-path=\"url(#{CLIP_ID})\"")
+        };
+        let _ = write!(out, "<g data-tag=\"{}\"{clip}>", escape(&item.tag));
+        shape(&mut out, &tf, &item.style, &item.shape);
+        out.push_str("</g>\n");
+    }
+    chrome(&mut out, drawing, &frame);
+    out.push_str("</svg>\n");
+    out
+}
+
+/// A number for an attribute: at most two decimals, no trailing zeros, no `-0`.
+fn num(v: f64) -> String {
+    let s = format!("{v:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_owned()
+    } else {
+        s.to_owned()
+    }
+}
+
+/// Escapes text for XML content and attribute values; drops characters XML 1.0 forbids.
+#[must_use]
+pub fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            '\t' | '\n' | '\r' => out.push(c),
+            c if u32::from(c) < 0x20 || c == '\u{FFFE}' || c == '\u{FFFF}' => {}
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// `stroke`, `stroke-width`, dash and opacity attributes of a style (or `stroke="none"`).
+fn stroke_attrs(tf: &Transform, style: &Style) -> String {
+    if !style.strokes() {
+        return " stroke=\"none\"".to_owned();
+    }
+    let mut s = format!(
+        " stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"",
+        style.color.hex(),
+        num(tf.ref_px(style.width))
+    );
+    if let Some(dash) = style.dash {
+        let _ = write!(s, " stroke-dasharray=\"{} {}\"", num(tf.ref_px(dash.on)), num(tf.ref_px(dash.off)));
+    } else {
+        s.push_str(" stroke-linecap=\"round\"");
+    }
+    if style.color.a < 255 {
+        let _ = write!(s, " stroke-opacity=\"{}\"", num(style.color.opacity()));
+    }
+    s
+}
+
+/// `fill` and opacity attributes of an optional fill.
+fn fill_attrs(fill: Option<Rgba>) -> String {
+    match fill {
+        None => " fill=\"none\"".to_owned(),
+        Some(c) if c.a < 255 => format!(" fill=\"{}\" fill-opacity=\"{}\"", c.hex(), num(c.opacity())),
+        Some(c) => format!(" fill=\"{}\"", c.hex()),
+    }
+}
+
+/// `x,y x,y …` of pixel points.
+fn points_attr(points: impl IntoIterator<Item = DVec2>) -> String {
+    let pairs: Vec<String> = points.into_iter().map(|p| format!("{},{}", num(p.x), num(p.y))).collect();
+    pairs.join(" ")
+}
+
+/// The elements of one shape.
+fn shape(out: &mut String, tf: &Transform, style: &Style, shape: &Shape) {
+    match shape {
+        Shape::Line { points } => {
+            let pts = points_attr(points.iter().map(|p| tf.to_px(*p)));
+            let _ = write!(out, "<polyline points=\"{pts}\" fill=\"none\"{}/>", stroke_attrs(tf, style));
+        }
+        Shape::Arrow { from, to, head } => {
+            arrow(out, tf, tf.to_px(*from), tf.to_px(*to), tf.ref_px(*head), style);
+        }
+        Shape::Circle { center, radius, fill } => {
+            let c = tf.to_px(*center);
+            let _ = write!(
+                out,
+                "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{}{}/>",
+                num(c.x),
+                num(c.y),
+                num(tf.len_px(*radius)),
+                fill_attrs(*fill),
+                stroke_attrs(tf, style)
+            );
+        }
+        Shape::Dot { center, radius, fill } => {
+            dot(out, tf, tf.to_px(*center), tf.ref_px(*radius), *fill, style);
+        }
+        Shape::Polygon { points, fill } => {
+            let pts = points_attr(points.iter().map(|p| tf.to_px(*p)));
+            let _ =
+                write!(out, "<polygon points=\"{pts}\"{}{}/>", fill_attrs(*fill), stroke_attrs(tf, style));
+        }
+        Shape::Rect { min, max, fill } => {
+            let a = tf.to_px(DVec2::new(min.x, max.y));
+            let b = tf.to_px(DVec2::new(max.x, min.y));
+            rect(out, tf, &PxRect { min: a, max: b }, *fill, style);
+        }
+        Shape::Text(label) => {
+            let placed = Drawing::place_text(label, tf);
+            let halo = label.halo.then(|| tf.ref_px(style::HALO_WIDTH));
+            text_element(out, label, placed.origin, placed.size, style.color, halo);
+        }
+    }
+}
+
+/// A pixel rectangle.
+fn rect(out: &mut String, tf: &Transform, r: &PxRect, fill: Option<Rgba>, style: &Style) {
+    let _ = write!(
+        out,
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"{}{}/>",
+        num(r.min.x),
+        num(r.min.y),
+        num(r.width()),
+        num(r.height()),
+        fill_attrs(fill),
+        stroke_attrs(tf, style)
+    );
+}
+
+/// A round marker of pixel radius `r`.
+fn dot(out: &mut String, tf: &Transform, c: DVec2, r: f64, fill: Rgba, outline: &Style) {
+    let _ = write!(
+        out,
+        "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{}{}/>",
+        num(c.x),
+        num(c.y),
+        num(r),
+        fill_attrs(Some(fill)),
+        stroke_attrs(tf, outline)
+    );
+}
+
+/// An arrow between pixel points: the shaft as a line, the head as a filled polygon.
+fn arrow(out: &mut String, tf: &Transform, a: DVec2, b: DVec2, head: f64, style: &Style) {
+    let Some(arrow) = ArrowPx::new(a, b, head) else {
+        return;
+    };
+    let _ = write!(
+        out,
+        "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"{}/>",
+        num(arrow.shaft_from.x),
+        num(arrow.shaft_from.y),
+        num(arrow.shaft_to.x),
+        num(arrow.shaft_to.y),
+        stroke_attrs(tf, style)
+    );
+    let _ = write!(
+        out,
+        "<polygon points=\"{}\"{} stroke=\"none\"/>",
+        points_attr(arrow.head),
+        fill_attrs(Some(style.color))
+    );
+}
+
+/// A `<text>` element for a label, anchored so a substitute font keeps the alignment.
+fn text_element(out: &mut String, label: &Text, origin: DVec2, size: f64, color: Rgba, halo: Option<f64>) {
+    let width = text::layout(&label.text, size, label.weight).width;
+    let (x, anchor) = match label.align.h {
+        HAlign::Left => (origin.x, "start"),
+        HAlign::Center => (origin.x + width / 2.0, "middle"),
+        HAlign::Right => (origin.x + width, "end"),
+    };
+    text_line(out, &label.text, DVec2::new(x, origin.y), anchor, size, label.weight, color, halo);
+}
+
+/// One line of markup as `<text>` with `<tspan>`s for its scripts.
+#[allow(clippy::too_many_arguments)]
+fn text_line(
+    out: &mut String,
+    markup: &str,
+    at: DVec2,
+    anchor: &str,
+    size: f64,
+    weight: Weight,
+    color: Rgba,
+    halo: Option<f64>,
+) {
+    let _ = write!(
+        out,
+        "<text x=\"{}\" y=\"{}\" font-size=\"{}\" text-anchor=\"{anchor}\" fill=\"{}\"",
+        num(at.x),
+        num(at.y),
+        num(size),
+        color.hex()
+    );
+    if weight == Weight::Bold {
+        out.push_str(" font-weight=\"bold\"");
+    }
+    if let Some(width) = halo {
+        let _ = write!(
+            out,
+            " stroke=\"#ffffff\" stroke-width=\"{}\" stroke-linejoin=\"round\" \
+             paint-order=\"stroke\"",
+            num(width)
+        );
+    }
+    out.push('>');
+    for run in text::runs(markup, weight) {
+        let content = escape(&run.text);
+        match run.script {
+            Script::Normal => out.push_str(&content),
+            Script::Sub | Script::Super => {
+                let shift = if run.script == Script::Sub { "sub" } else { "super" };
+                let _ = write!(
+                    out,
+                    "<tspan baseline-shift=\"{shift}\" font-size=\"{}\">{content}</tspan>",
+                    num(size * run.script.scale())
+                );
+            }
+        }
+    }
+    out.push_str("</text>");
+}
+
+/// A placed chrome line (its origin is the baseline start).
+fn chrome_line(out: &mut String, line: &PlacedLine, weight: Weight) {
+    text_line(out, &line.text, line.origin, "start", line.size, weight, style::TEXT, None);
+}
+
+/// The title, caption and legend groups.
+fn chrome(out: &mut String, drawing: &Drawing, frame: &Frame) {
+    if let Some(title) = &frame.title {
+        out.push_str("<g class=\"title\">");
+        chrome_line(out, title, Weight::Bold);
+        out.push_str("</g>\n");
+    }
+    if !frame.caption.is_empty() {
+        out.push_str("<g class=\"caption\">");
+        for line in &frame.caption {
+            chrome_line(out, line, Weight::Regular);
+        }
+        out.push_str("</g>\n");
+    }
+    if let Some(legend) = &frame.legend {
+        legend_group(out, drawing, &frame.transform, legend);
+    }
+}
+
+/// The legend box.
+fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &LegendBox) {
+    out.push_str("<g class=\"legend\">");
+    let border = Style::solid(style::LIGHT_GREY, style::GRID_WIDTH);
+    rect(out, tf, &legend.rect, Some(style::WHITE.with_alpha(0.92)), &border);
+    for (entry, row) in drawing.legend.iter().zip(&legend.rows) {
+        let (a, z) = (row.sample_from, row.sample_to);
+        let mid = (a + z) / 2.0;
+        match entry.sample {
+            Sample::Line => {
+                let _ = write!(
+                    out,
+                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"{}/>",
+                    num(a.x),
+                    num(a.y),
+                    num(z.x),
+                    num(z.y),
+                    stroke_attrs(tf, &entry.style)
+                );
+            }
+            Sample::Arrow => {
+                let head = tf.ref_px(style::ARROW_HEAD.max(4.5 * entry.style.width));
+                arrow(out, tf, a, z, head, &entry.style);
+            }
+            Sample::Dot(fill) => dot(out, tf, mid, tf.ref_px(style::DOT_RADIUS * 1.2), fill, &entry.style),
+            Sample::Swatch(fill) => {
+                let half = DVec2::splat(row.label.size * 0.4);
+                rect(out, tf, &PxRect { min: mid - half, max: mid + half }, Some(fill), &entry.style);
+            }
+        }
+        chrome_line(out, &row.label, Weight::Regular);
+    }
+    out.push_str("</g>\n");
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+    use crate::figure::drawing::{Sample, TextOpts, View};
+    use crate::figure::style::RayRole;
+
+    fn demo() -> Drawing {
+        let mut d = Drawing::new(960, 540).unwrap();
+        d.set_title("Refracție <T> & \"R\"").set_caption("θ_t = arcsin(n_1/n_2 · sin θ_i)");
+        d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
+        d.segment("ray:primary", DVec2::new(-2.0, 0.0), DVec2::ZERO, RayRole::Primary.style())
+            .arrow("ray:transmitted", DVec2::ZERO, DVec2::new(1.0, -1.0), RayRole::Transmitted.style())
+            .circle("object:0", DVec2::ZERO, 0.5, style::object(), Some(style::OBJECT_FILL))
+            .dot("hit", DVec2::ZERO, style::HIT)
+            .polygon("object:1", [DVec2::ZERO, DVec2::X, DVec2::Y], style::object(), None)
+            .rect("cell", DVec2::ZERO, DVec2::ONE, style::grid(), Some(style::HIGHLIGHT))
+            .segment("normal", DVec2::ZERO, DVec2::Y, style::normal())
+            .text("label", DVec2::new(0.5, 0.5), "θ_t & t_{ex} <K_s>", TextOpts::LABEL)
+            .text("a\"b", DVec2::new(-0.5, 0.5), "n_1", TextOpts::LABEL);
+        d.legend_entry("primary", RayRole::Primary.style(), Sample::Line)
+            .legend_entry("T", RayRole::Transmitted.style(), Sample::Arrow)
+            .legend_entry("hit", Style::NONE, Sample::Dot(style::HIT))
+            .legend_entry("object", style::object(), Sample::Swatch(style::OBJECT_FILL));
+        d
+    }
+
+    #[test]
+    fn svg_parses_and_has_one_group_per_item() {
+        let d = demo();
+        let svg = to_svg(&d);
+        let doc = roxmltree::Document::parse(&svg).expect("well-formed SVG");
+        let root = doc.root_element();
+        assert_eq!(root.tag_name().name(), "svg");
+        assert_eq!(root.attribute("width"), Some("960"));
+        let tagged: Vec<_> =
+            doc.descendants().filter(|n| n.has_tag_name("g") && n.attribute("data-tag").is_some()).collect();
+        assert_eq!(tagged.len(), d.items.len());
+        assert_eq!(svg.matches("<g data-tag=").count(), d.items.len());
+        for (node, item) in tagged.iter().zip(&d.items) {
+            assert_eq!(node.attribute("data-tag"), Some(item.tag.as_str()));
+        }
+    }
+
+    #[test]
+    fn text_keeps_its_characters_and_scripts() {
+        let svg = to_svg(&demo());
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let label = doc
+            .descendants()
+            .find(|n| n.attribute("data-tag") == Some("label"))
+            .and_then(|g| g.children().find(|c| c.has_tag_name("text")))
+            .unwrap();
+        let all: String = label.descendants().filter(|n| n.is_text()).filter_map(|n| n.text()).collect();
+        assert_eq!(all, "θt & tex <Ks>");
+        let subs: Vec<_> =
+            label.descendants().filter(|n| n.attribute("baseline-shift") == Some("sub")).collect();
+        assert_eq!(subs.len(), 3);
+        assert!(svg.contains("Refracție &lt;T&gt; &amp; &quot;R&quot;"));
+    }
+
+    #[test]
+    fn escaping() {
+        assert_eq!(escape("a<b>&\"c'\u{1}"), "a&lt;b&gt;&amp;&quot;c&apos;");
+        assert_eq!(num(-0.001), "0");
+        assert_eq!(num(2.5), "2.5");
+        assert_eq!(num(3.0), "3");
+    }
+}

@@ -1,0 +1,618 @@
+//! Label text: the embedded fonts, the sub/superscript markup of the lecture's notation, measuring
+//! for layout, and glyph outlines in pixels for a back end to fill (tiny-skia draws no text).
+//!
+//! # Fonts
+//!
+//! Noto Sans (Regular and Bold) and, for the arrows and operators it lacks (→ − ≤ ∈ …), Noto Sans
+//! Math: subsets of the OFL-licensed files, embedded from `assets/fonts/` (see the README and
+//! `OFL.txt` there). They cover Romanian (ă â î ș ț and capitals), Greek (θ η λ Δ …) and the
+//! Unicode sub- and superscripts (₁ ₂ ᵢ ₜ ₓ ₑ …).
+//!
+//! # Markup
+//!
+//! A label is written as the lecture writes it, with TeX-like scripts:
+//! `n_1` → n₁, `θ_i` → θᵢ, `t_{ex}` → t with subscript "ex", `(N·H)^n` → superscript n.
+//! `_` and `^` take one character, or a `{…}` group (not nested); `\` makes the next character
+//! literal (`\_`, `\^`, `\{`, `\\`). Scripts are drawn at [`Script::scale`] of the size and
+//! shifted by [`Script::shift`]. A Unicode sub- or superscript character (₁, ᵢ, ⁿ) is drawn with
+//! the font's own glyph; one the fonts lack (ⱼ) falls back to its base letter, drawn small and
+//! lowered.
+//!
+//! There is no shaping beyond advances: the fonts carry their kerning in GPOS, which `ab_glyph`
+//! does not read, so pairs are not kerned. Labels are short, and this does not show.
+
+use std::sync::OnceLock;
+
+use ab_glyph::{Font, FontRef, GlyphId, OutlineCurve};
+use glam::DVec2;
+
+/// The family name of the embedded font, as SVG's `font-family` names it.
+pub const FAMILY: &str = "Noto Sans";
+
+/// The regular face (a subset of Noto Sans Regular 2.004).
+static REGULAR_TTF: &[u8] = include_bytes!("../../assets/fonts/NotoSans-Regular-subset.ttf");
+/// The bold face (a subset of Noto Sans Bold 2.004).
+static BOLD_TTF: &[u8] = include_bytes!("../../assets/fonts/NotoSans-Bold-subset.ttf");
+/// Arrows and mathematical operators (a subset of Noto Sans Math).
+static MATH_TTF: &[u8] = include_bytes!("../../assets/fonts/NotoSansMath-Regular-subset.ttf");
+
+/// The weight of a piece of text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Weight {
+    /// Labels, legend and captions.
+    Regular,
+    /// Titles.
+    Bold,
+}
+
+/// Where a run of text sits relative to the baseline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Script {
+    /// On the baseline, at full size.
+    Normal,
+    /// A subscript: smaller and lowered (`n_1`).
+    Sub,
+    /// A superscript: smaller and raised (`x^2`).
+    Super,
+}
+
+impl Script {
+    /// The size of this script relative to the text's size.
+    #[must_use]
+    pub const fn scale(self) -> f64 {
+        match self {
+            Self::Normal => 1.0,
+            Self::Sub | Self::Super => 0.7,
+        }
+    }
+
+    /// The baseline shift in em of the text's size, positive upwards.
+    #[must_use]
+    pub const fn shift(self) -> f64 {
+        match self {
+            Self::Normal => 0.0,
+            Self::Sub => -0.2,
+            Self::Super => 0.36,
+        }
+    }
+}
+
+/// A stretch of text in one script, after the markup has been read.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Run {
+    /// The characters, with the markup removed.
+    pub text: String,
+    /// Where they sit.
+    pub script: Script,
+}
+
+/// The three embedded faces, parsed once.
+struct Faces {
+    regular: FontRef<'static>,
+    bold: FontRef<'static>,
+    math: FontRef<'static>,
+}
+
+/// The parsed faces. The embedded files are fixed at compile time and a test parses them, so a
+/// failure here is a broken build, not a runtime condition.
+fn faces() -> &'static Faces {
+    static FACES: OnceLock<Faces> = OnceLock::new();
+    FACES.get_or_init(|| Faces {
+        regular: FontRef::try_from_slice(REGULAR_TTF).expect("embedded Noto Sans Regular parses"),
+        bold: FontRef::try_from_slice(BOLD_TTF).expect("embedded Noto Sans Bold parses"),
+        math: FontRef::try_from_slice(MATH_TTF).expect("embedded Noto Sans Math parses"),
+    })
+}
+
+/// The main face of a weight (Noto Sans Regular or Bold).
+#[must_use]
+pub fn font(weight: Weight) -> &'static FontRef<'static> {
+    match weight {
+        Weight::Regular => &faces().regular,
+        Weight::Bold => &faces().bold,
+    }
+}
+
+/// The fallback face for arrows and mathematical operators (Noto Sans Math).
+#[must_use]
+pub fn math_font() -> &'static FontRef<'static> {
+    &faces().math
+}
+
+/// Which embedded face a glyph comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Face {
+    /// Noto Sans Regular.
+    Regular,
+    /// Noto Sans Bold.
+    Bold,
+    /// Noto Sans Math.
+    Math,
+}
+
+impl Face {
+    /// The parsed font of this face.
+    #[must_use]
+    pub fn font(self) -> &'static FontRef<'static> {
+        match self {
+            Self::Regular => font(Weight::Regular),
+            Self::Bold => font(Weight::Bold),
+            Self::Math => math_font(),
+        }
+    }
+
+    /// Font units per em (1000 for Noto Sans, which is what a broken table would also give).
+    fn units_per_em(self) -> f64 {
+        f64::from(self.font().units_per_em().unwrap_or(1000.0))
+    }
+}
+
+/// The face and glyph that draw `c` at `weight`: the main face if it has the character, else the
+/// math face, else the main face's missing-glyph box (glyph 0).
+fn resolve(c: char, weight: Weight) -> (Face, GlyphId) {
+    let main = match weight {
+        Weight::Regular => Face::Regular,
+        Weight::Bold => Face::Bold,
+    };
+    let id = main.font().glyph_id(c);
+    if id.0 != 0 {
+        return (main, id);
+    }
+    let id = math_font().glyph_id(c);
+    if id.0 != 0 {
+        return (Face::Math, id);
+    }
+    (main, GlyphId(0))
+}
+
+/// Whether the embedded fonts draw `c` with a real glyph (not the missing-glyph box), directly or
+/// through the sub/superscript fallback.
+#[must_use]
+pub fn has_glyph(c: char) -> bool {
+    resolve(c, Weight::Regular).1 .0 != 0
+        || script_base(c).is_some_and(|(_, base)| resolve(base, Weight::Regular).1 .0 != 0)
+}
+
+/// The base character and script of a Unicode sub- or superscript character (`₁` → `1` below).
+fn script_base(c: char) -> Option<(Script, char)> {
+    let sub = |b| Some((Script::Sub, b));
+    let sup = |b| Some((Script::Super, b));
+    match c {
+        '\u{2080}'..='\u{2089}' => sub(char::from_digit(u32::from(c) - 0x2080, 10)?),
+        '₊' => sub('+'),
+        '₋' => sub('−'),
+        '₌' => sub('='),
+        '₍' => sub('('),
+        '₎' => sub(')'),
+        'ₐ' => sub('a'),
+        'ₑ' => sub('e'),
+        'ₒ' => sub('o'),
+        'ₓ' => sub('x'),
+        'ₔ' => sub('ə'),
+        'ₕ' => sub('h'),
+        'ₖ' => sub('k'),
+        'ₗ' => sub('l'),
+        'ₘ' => sub('m'),
+        'ₙ' => sub('n'),
+        'ₚ' => sub('p'),
+        'ₛ' => sub('s'),
+        'ₜ' => sub('t'),
+        'ᵢ' => sub('i'),
+        'ᵣ' => sub('r'),
+        'ᵤ' => sub('u'),
+        'ᵥ' => sub('v'),
+        'ⱼ' => sub('j'),
+        'ᵦ' => sub('β'),
+        'ᵧ' => sub('γ'),
+        'ᵨ' => sub('ρ'),
+        'ᵩ' => sub('φ'),
+        'ᵪ' => sub('χ'),
+        '⁰' => sup('0'),
+        '¹' => sup('1'),
+        '²' => sup('2'),
+        '³' => sup('3'),
+        '\u{2074}'..='\u{2079}' => sup(char::from_digit(u32::from(c) - 0x2070, 10)?),
+        '⁺' => sup('+'),
+        '⁻' => sup('−'),
+        '⁼' => sup('='),
+        '⁽' => sup('('),
+        '⁾' => sup(')'),
+        'ⁿ' => sup('n'),
+        'ⁱ' => sup('i'),
+        _ => None,
+    }
+}
+
+/// Reads the markup into runs (see the module doc), without looking at the fonts.
+#[must_use]
+pub fn parse(markup: &str) -> Vec<Run> {
+    let mut runs = Vec::new();
+    let mut chars = markup.chars().peekable();
+    while let Some(c) = chars.next() {
+        let script = match c {
+            '\\' => {
+                // A backslash makes the next character literal; a trailing one is itself.
+                push(&mut runs, Script::Normal, chars.next().unwrap_or('\\'));
+                continue;
+            }
+            '_' => Script::Sub,
+            '^' => Script::Super,
+            _ => {
+                push(&mut runs, Script::Normal, c);
+                continue;
+            }
+        };
+        match chars.next() {
+            // A group runs to the next closing brace (or the end of the text).
+            Some('{') => {
+                for g in chars.by_ref() {
+                    if g == '}' {
+                        break;
+                    }
+                    push(&mut runs, script, g);
+                }
+            }
+            Some('\\') => push(&mut runs, script, chars.next().unwrap_or('\\')),
+            Some(next) => push(&mut runs, script, next),
+            // A marker at the very end is an ordinary character.
+            None => push(&mut runs, Script::Normal, c),
+        }
+    }
+    runs
+}
+
+/// Appends `c` in `script`, extending the last run when its script matches.
+fn push(runs: &mut Vec<Run>, script: Script, c: char) {
+    match runs.last_mut() {
+        Some(last) if last.script == script => last.text.push(c),
+        _ => runs.push(Run { text: c.to_string(), script }),
+    }
+}
+
+/// The runs to display: [`parse`], then every Unicode sub/superscript character the fonts lack
+/// becomes its base character in a script run (only on the baseline; a script is not scripted
+/// twice). Both back ends draw these runs, so PNG and SVG agree.
+#[must_use]
+pub fn runs(markup: &str, weight: Weight) -> Vec<Run> {
+    let mut out = Vec::new();
+    for run in parse(markup) {
+        for c in run.text.chars() {
+            match script_base(c) {
+                Some((script, base)) if run.script == Script::Normal && resolve(c, weight).1 .0 == 0 => {
+                    push(&mut out, script, base);
+                }
+                _ => push(&mut out, run.script, c),
+            }
+        }
+    }
+    out
+}
+
+/// One glyph placed by [`layout`], in pixels relative to the start of the baseline.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlacedGlyph {
+    /// The face the glyph is taken from.
+    pub face: Face,
+    /// The glyph in that face.
+    pub id: GlyphId,
+    /// The pen position along the baseline, in pixels.
+    pub x: f64,
+    /// The baseline shift, in pixels, positive upwards.
+    pub rise: f64,
+    /// The font size (em) the glyph is drawn at, in pixels.
+    pub size: f64,
+}
+
+/// A line of text laid out at a size: its glyphs and its box.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextLayout {
+    /// The glyphs, left to right.
+    pub glyphs: Vec<PlacedGlyph>,
+    /// The advance width, in pixels.
+    pub width: f64,
+    /// Height of the box above the baseline, in pixels (the font's ascent, or a superscript's top).
+    pub ascent: f64,
+    /// Depth of the box below the baseline, in pixels, positive (the font's descent, or a
+    /// subscript's bottom).
+    pub descent: f64,
+}
+
+impl TextLayout {
+    /// The box's height, ascent + descent.
+    #[must_use]
+    pub fn height(&self) -> f64 {
+        self.ascent + self.descent
+    }
+}
+
+/// Lays out one line of markup at font size `size` (em, pixels).
+#[must_use]
+pub fn layout(markup: &str, size: f64, weight: Weight) -> TextLayout {
+    let main = font(weight);
+    let units = f64::from(main.units_per_em().unwrap_or(1000.0));
+    let line_ascent = f64::from(main.ascent_unscaled()) / units;
+    let line_descent = -f64::from(main.descent_unscaled()) / units;
+    let mut ascent = line_ascent * size;
+    let mut descent = line_descent * size;
+    let mut glyphs = Vec::new();
+    let mut x = 0.0;
+    for run in runs(markup, weight) {
+        let run_size = size * run.script.scale();
+        let rise = size * run.script.shift();
+        ascent = ascent.max(rise + line_ascent * run_size);
+        descent = descent.max(-rise + line_descent * run_size);
+        for c in run.text.chars() {
+            let (face, id) = resolve(c, weight);
+            glyphs.push(PlacedGlyph { face, id, x, rise, size: run_size });
+            let advance = f64::from(face.font().h_advance_unscaled(id));
+            x += advance * run_size / face.units_per_em();
+        }
+    }
+    TextLayout { glyphs, width: x, ascent, descent }
+}
+
+/// The width and height in pixels of one line of regular-weight markup at font size `size`
+/// (the height is the font's ascent + descent, taller than the ink, so boxes of stacked lines
+/// do not touch).
+#[must_use]
+pub fn measure(markup: &str, size: f64) -> (f64, f64) {
+    let laid = layout(markup, size, Weight::Regular);
+    (laid.width, laid.height())
+}
+
+/// The height of a capital letter (the top of "H") at font size `size`, in pixels: what
+/// vertical centring on a point aligns to.
+#[must_use]
+pub fn cap_height(size: f64) -> f64 {
+    let face = Face::Regular;
+    let h = face.font().glyph_id('H');
+    // ab_glyph keeps the unscaled top in `bounds.min.y`; take the larger so either order works.
+    let top = face.font().outline(h).map_or(714.0, |o| f64::from(o.bounds.min.y.max(o.bounds.max.y)));
+    top * size / face.units_per_em()
+}
+
+/// Splits markup into lines no wider than `max_width` pixels at `size`, breaking at spaces outside
+/// `{…}` groups. A word wider than the limit gets a line of its own.
+#[must_use]
+pub fn wrap(markup: &str, size: f64, weight: Weight, max_width: f64) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in words(markup) {
+        let candidate = if line.is_empty() { word.clone() } else { format!("{line} {word}") };
+        if line.is_empty() || layout(&candidate, size, weight).width <= max_width {
+            line = candidate;
+        } else {
+            lines.push(std::mem::replace(&mut line, word));
+        }
+    }
+    if !line.is_empty() || lines.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+/// The space-separated words of markup, keeping `{…}` groups and escaped spaces whole.
+fn words(markup: &str) -> Vec<String> {
+    let mut words = Vec::new();
+    let mut word = String::new();
+    let mut depth = 0_u32;
+    let mut escaped = false;
+    for c in markup.chars() {
+        if escaped {
+            escaped = false;
+        } else if c == '\\' {
+            escaped = true;
+        } else if c == '{' {
+            depth += 1;
+        } else if c == '}' {
+            depth = depth.saturating_sub(1);
+        } else if c == ' ' && depth == 0 {
+            if !word.is_empty() {
+                words.push(std::mem::take(&mut word));
+            }
+            continue;
+        }
+        word.push(c);
+    }
+    if !word.is_empty() {
+        words.push(word);
+    }
+    words
+}
+
+/// Receives glyph outlines in pixel coordinates (y down), contour by contour.
+pub trait PathSink {
+    /// Starts a contour at `p`.
+    fn move_to(&mut self, p: DVec2);
+    /// A straight edge to `p`.
+    fn line_to(&mut self, p: DVec2);
+    /// A quadratic Bézier through control `c` to `p`.
+    fn quad_to(&mut self, c: DVec2, p: DVec2);
+    /// A cubic Bézier through controls `c1`, `c2` to `p`.
+    fn cubic_to(&mut self, c1: DVec2, c2: DVec2, p: DVec2);
+    /// Closes the current contour.
+    fn close(&mut self);
+}
+
+/// Sends the outlines of `laid`, with its baseline starting at pixel `origin` (y down), to `sink`.
+/// Glyphs without outlines (spaces) send nothing.
+pub fn outline(laid: &TextLayout, origin: DVec2, sink: &mut impl PathSink) {
+    for g in &laid.glyphs {
+        let Some(shape) = g.face.font().outline(g.id) else {
+            continue;
+        };
+        let k = g.size / g.face.units_per_em();
+        let at = |p: ab_glyph::Point| {
+            DVec2::new(origin.x + g.x + f64::from(p.x) * k, origin.y - g.rise - f64::from(p.y) * k)
+        };
+        // Curves come as one flat list; a contour ends where the next curve does not start at
+        // the previous curve's end.
+        let mut last_end: Option<ab_glyph::Point> = None;
+        for curve in &shape.curves {
+            let (start, end) = match *curve {
+                OutlineCurve::Line(a, b) | OutlineCurve::Quad(a, _, b) => (a, b),
+                OutlineCurve::Cubic(a, _, _, b) => (a, b),
+            };
+            let continues =
+                last_end.is_some_and(|e| (e.x - start.x).abs() < 1e-3 && (e.y - start.y).abs() < 1e-3);
+            if !continues {
+                if last_end.is_some() {
+                    sink.close();
+                }
+                sink.move_to(at(start));
+            }
+            match *curve {
+                OutlineCurve::Line(_, b) => sink.line_to(at(b)),
+                OutlineCurve::Quad(_, c, b) => sink.quad_to(at(c), at(b)),
+                OutlineCurve::Cubic(_, c1, c2, b) => sink.cubic_to(at(c1), at(c2), at(b)),
+            }
+            last_end = Some(end);
+        }
+        if last_end.is_some() {
+            sink.close();
+        }
+    }
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    /// Counts what a sink receives.
+    #[derive(Default)]
+    struct Count {
+        contours: usize,
+        segments: usize,
+        min: Option<DVec2>,
+        max: Option<DVec2>,
+    }
+
+    impl Count {
+        fn see(&mut self, p: DVec2) {
+            self.min = Some(self.min.map_or(p, |m| m.min(p)));
+            self.max = Some(self.max.map_or(p, |m| m.max(p)));
+        }
+    }
+
+    impl PathSink for Count {
+        fn move_to(&mut self, p: DVec2) {
+            self.contours += 1;
+            self.see(p);
+        }
+        fn line_to(&mut self, p: DVec2) {
+            self.segments += 1;
+            self.see(p);
+        }
+        fn quad_to(&mut self, c: DVec2, p: DVec2) {
+            self.segments += 1;
+            self.see(c);
+            self.see(p);
+        }
+        fn cubic_to(&mut self, c1: DVec2, c2: DVec2, p: DVec2) {
+            self.segments += 1;
+            self.see(c1);
+            self.see(c2);
+            self.see(p);
+        }
+        fn close(&mut self) {}
+    }
+
+    #[test]
+    fn embedded_fonts_parse_and_name_themselves() {
+        assert!(font(Weight::Regular).glyph_count() > 500);
+        assert!(font(Weight::Bold).glyph_count() > 500);
+        assert!(math_font().glyph_count() > 100);
+    }
+
+    #[test]
+    fn lecture_characters_have_real_glyphs() {
+        let needed = "ăâîșțĂÂÎȘȚşţ θηλΔαβγφπρ ₀₁₂ᵢₜₓₑₛ ⁿ²·×→−≤≥ N·L (u, v) Rază reflectată";
+        for c in needed.chars().filter(|c| !c.is_whitespace()) {
+            assert!(has_glyph(c), "no glyph for {c:?} (U+{:04X})", u32::from(c));
+        }
+        // The direct check of the brief: the main face itself has these.
+        for c in "ăâîșțθn1".chars() {
+            assert_ne!(font(Weight::Regular).glyph_id(c).0, 0, "{c:?}");
+        }
+    }
+
+    #[test]
+    fn markup_makes_scripts() {
+        let sub = |t: &str| Run { text: t.into(), script: Script::Sub };
+        let normal = |t: &str| Run { text: t.into(), script: Script::Normal };
+        let sup = |t: &str| Run { text: t.into(), script: Script::Super };
+        assert_eq!(parse("n_1"), vec![normal("n"), sub("1")]);
+        assert_eq!(parse("θ_i"), vec![normal("θ"), sub("i")]);
+        assert_eq!(parse("t_{ex} = 2"), vec![normal("t"), sub("ex"), normal(" = 2")]);
+        assert_eq!(parse("(N·H)^n"), vec![normal("(N·H)"), sup("n")]);
+        assert_eq!(parse("a\\_b"), vec![normal("a_b")]);
+        assert_eq!(parse("x_"), vec![normal("x_")]);
+        assert_eq!(parse("K_s"), vec![normal("K"), sub("s")]);
+    }
+
+    #[test]
+    fn missing_unicode_subscripts_fall_back_to_small_base_letters() {
+        // ⱼ is not in the embedded subset; ₁ is.
+        assert_eq!(resolve('ⱼ', Weight::Regular).1 .0, 0);
+        let runs = runs("uⱼ₁", Weight::Regular);
+        assert_eq!(
+            runs,
+            vec![
+                Run { text: "u".into(), script: Script::Normal },
+                Run { text: "j".into(), script: Script::Sub },
+                Run { text: "₁".into(), script: Script::Normal },
+            ]
+        );
+    }
+
+    #[test]
+    fn measure_grows_with_text_and_size_and_scripts_are_narrower() {
+        let (w1, h1) = measure("n", 40.0);
+        let (w2, h2) = measure("nn", 40.0);
+        let (w3, _) = measure("n", 80.0);
+        assert!(w1 > 0.0 && (w2 - 2.0 * w1).abs() < 1e-9 && (w3 - 2.0 * w1).abs() < 1e-9);
+        assert!((h1 - h2).abs() < 1e-9 && h1 > 40.0);
+        let (normal, _) = measure("n1", 40.0);
+        let (scripted, _) = measure("n_1", 40.0);
+        assert!(scripted < normal);
+        assert!(cap_height(40.0) > 25.0 && cap_height(40.0) < 32.0);
+    }
+
+    #[test]
+    fn every_character_of_a_label_has_ink() {
+        let label = "ă â î ș ț θ n_1";
+        let laid = layout(label, 40.0, Weight::Regular);
+        for g in &laid.glyphs {
+            let space = g.face.font().glyph_id(' ');
+            if g.id == space {
+                continue;
+            }
+            assert_ne!(g.id.0, 0);
+            let mut count = Count::default();
+            let one = TextLayout { glyphs: vec![*g], ..laid.clone() };
+            outline(&one, DVec2::new(0.0, 100.0), &mut count);
+            assert!(count.contours > 0 && count.segments > 2, "{g:?}");
+        }
+    }
+
+    #[test]
+    fn outlines_sit_on_the_baseline_and_subscripts_go_lower() {
+        let mut normal = Count::default();
+        outline(&layout("n", 40.0, Weight::Regular), DVec2::new(10.0, 100.0), &mut normal);
+        let (min, max) = (normal.min.unwrap(), normal.max.unwrap());
+        assert!(min.x >= 10.0 && max.y <= 100.5 && min.y < 85.0);
+        let mut sub = Count::default();
+        outline(&layout("_n", 40.0, Weight::Regular), DVec2::new(10.0, 100.0), &mut sub);
+        assert!(sub.max.unwrap().y > 105.0);
+    }
+
+    #[test]
+    fn wrapping_breaks_at_spaces_outside_groups() {
+        let lines = wrap("one two three t_{a b}", 40.0, Weight::Regular, 130.0);
+        assert!(lines.len() >= 3, "{lines:?}");
+        assert!(lines.iter().any(|l| l.contains("t_{a b}")));
+        assert_eq!(wrap("", 40.0, Weight::Regular, 10.0), vec![String::new()]);
+    }
+}

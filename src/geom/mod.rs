@@ -1,0 +1,139 @@
+//! Dimension-generic mathematics (algorithm.md §3, §9, §11): the [`Vector`] trait over glam's
+//! `DVec2` and `DVec3`, rays, the stable sphere roots, the slab test, optics and the spawn offset.
+//! Nothing here knows of scenes, recorders or serde.
+
+pub mod frame;
+pub mod offset;
+pub mod optics;
+pub mod quadratic;
+pub mod ray;
+pub mod slab;
+
+use glam::{DVec2, DVec3};
+use std::fmt::Debug;
+use std::ops::{Add, Div, Index, IndexMut, Mul, Neg, Sub};
+
+/// A point or direction in 2D or 3D: the few operations the lecture's formulas need, so each
+/// algorithm is written once and instantiated for `DVec2` and `DVec3`.
+pub trait Vector:
+    Copy
+    + Debug
+    + PartialEq
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<f64, Output = Self>
+    + Div<f64, Output = Self>
+    + Neg<Output = Self>
+    + Index<usize, Output = f64>
+    + IndexMut<usize>
+{
+    /// Number of components: 2 or 3.
+    const DIM: usize;
+    /// The zero vector.
+    const ZERO: Self;
+    /// Dot product `a·b`.
+    fn dot(self, other: Self) -> f64;
+    /// A vector with every component equal to `value`.
+    fn splat(value: f64) -> Self;
+    /// Euclidean length `|a|`.
+    fn length(self) -> f64 {
+        self.dot(self).sqrt()
+    }
+    /// The infinity norm `‖a‖∞`, the largest |component|.
+    fn max_abs(self) -> f64 {
+        (0..Self::DIM).fold(0.0, |m, i| f64::max(m, self[i].abs()))
+    }
+    /// Component-wise minimum.
+    fn min_by_axis(self, other: Self) -> Self {
+        let mut out = self;
+        for i in 0..Self::DIM {
+            out[i] = self[i].min(other[i]);
+        }
+        out
+    }
+    /// Component-wise maximum.
+    fn max_by_axis(self, other: Self) -> Self {
+        let mut out = self;
+        for i in 0..Self::DIM {
+            out[i] = self[i].max(other[i]);
+        }
+        out
+    }
+    /// The unit vector along `self`, or `None` for a zero or non-finite vector.
+    ///
+    /// The vector is first divided by its largest |component| (algorithm.md §11, "Normalising"),
+    /// so tiny and huge valid vectors such as `(0, 1e-200, 0)` still normalise.
+    fn try_unit(self) -> Option<Self> {
+        let m = self.max_abs();
+        if !(m > 0.0 && m.is_finite()) {
+            return None;
+        }
+        let scaled = self / m;
+        let len = scaled.length();
+        Some(scaled / len)
+    }
+    /// The unit axis vector `e_axis`.
+    fn axis(axis: usize) -> Self {
+        let mut out = Self::ZERO;
+        out[axis] = 1.0;
+        out
+    }
+    /// The components as a `Vec`, for documents and messages.
+    fn to_vec(self) -> Vec<f64> {
+        (0..Self::DIM).map(|i| self[i]).collect()
+    }
+    /// A vector from exactly `DIM` components.
+    fn from_slice(values: &[f64]) -> Option<Self> {
+        if values.len() != Self::DIM {
+            return None;
+        }
+        let mut out = Self::ZERO;
+        for (i, v) in values.iter().enumerate() {
+            out[i] = *v;
+        }
+        Some(out)
+    }
+    /// Every component finite.
+    fn is_finite_vec(self) -> bool {
+        (0..Self::DIM).all(|i| self[i].is_finite())
+    }
+}
+
+impl Vector for DVec2 {
+    const DIM: usize = 2;
+    const ZERO: Self = DVec2::ZERO;
+    #[inline]
+    fn dot(self, other: Self) -> f64 {
+        DVec2::dot(self, other)
+    }
+    #[inline]
+    fn splat(value: f64) -> Self {
+        DVec2::splat(value)
+    }
+}
+
+impl Vector for DVec3 {
+    const DIM: usize = 3;
+    const ZERO: Self = DVec3::ZERO;
+    #[inline]
+    fn dot(self, other: Self) -> f64 {
+        DVec3::dot(self, other)
+    }
+    #[inline]
+    fn splat(value: f64) -> Self {
+        DVec3::splat(value)
+    }
+}
+
+/// Scalar helper shared by the numerics: `a·b − c·d` with Kahan's error-free FMA trick, whose sign
+/// is exact whenever the inputs are (the watertight triangle test's fallback, algorithm.md §11).
+#[must_use]
+pub fn diff_of_products(a: f64, b: f64, c: f64, d: f64) -> f64 {
+    let cd = c * d;
+    let err = (-c).mul_add(d, cd);
+    let dop = a.mul_add(b, -cd);
+    dop + err
+}

@@ -1,0 +1,196 @@
+//! The slab test (algorithm.md §9 "Axis-aligned box", "Kay–Kajiya slabs"; §11 policies): per slab
+//! `[t_near, t_far]`, their intersection `[max t_near, min t_far]`, closed, NaN-proof.
+
+use super::ray::Ray;
+use super::Vector;
+
+/// One slab's interval along a ray, `t_near ≤ t_far` unless the slab is parallel and outside.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlabInterval {
+    /// Where the ray enters the slab (−∞ for a parallel slab that holds the origin).
+    pub t_near: f64,
+    /// Where the ray leaves the slab (+∞ for a parallel slab that holds the origin).
+    pub t_far: f64,
+}
+
+/// The interval of the slab `lo ≤ n·x ≤ hi` along the ray, given `o = n·O` and `d = n·D`.
+///
+/// §9: `t1 = (lo − o)/d`, `t2 = (hi − o)/d`, `t_near = min(t1, t2)`, `t_far = max(t1, t2)`.
+/// A slab parallel to the ray (`d = 0`, of either sign) is inside iff `lo ≤ o ≤ hi`, recorded as
+/// `(−∞, +∞)`, else outside, recorded as `(+∞, −∞)`: never `0·∞ = NaN` (§11).
+#[inline]
+#[must_use]
+pub fn slab_interval(o: f64, d: f64, lo: f64, hi: f64) -> SlabInterval {
+    if d == 0.0 {
+        return if lo <= o && o <= hi {
+            SlabInterval { t_near: f64::NEG_INFINITY, t_far: f64::INFINITY }
+        } else {
+            SlabInterval { t_near: f64::INFINITY, t_far: f64::NEG_INFINITY }
+        };
+    }
+    let t1 = (lo - o) / d;
+    let t2 = (hi - o) / d;
+    if t1 <= t2 {
+        SlabInterval { t_near: t1, t_far: t2 }
+    } else {
+        SlabInterval { t_near: t2, t_far: t1 }
+    }
+}
+
+/// The intersection of a ray with an axis-aligned box, slab by slab.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoxCrossing {
+    /// `max` over axes of `t_near`: the entry `I = r(t_in)`.
+    pub t_in: f64,
+    /// `min` over axes of `t_far`: the exit `E = r(t_out)`.
+    pub t_out: f64,
+    /// The axis that set `t_in` (ties in the order x, y, z).
+    pub axis_in: usize,
+    /// The axis that set `t_out` (ties in the order x, y, z).
+    pub axis_out: usize,
+}
+
+impl BoxCrossing {
+    /// §9, closed: the line meets the box iff `t_in ≤ t_out`; the ray iff also `t_out ≥ 0`.
+    #[must_use]
+    pub fn hits_ray(&self) -> bool {
+        self.t_in <= self.t_out && self.t_out >= 0.0
+    }
+}
+
+/// The slab test of an axis-aligned box `[min, max]`, returning every axis's interval through
+/// `each` (for the trace) and their intersection.
+#[inline]
+pub fn box_crossing<V: Vector>(
+    ray: &Ray<V>,
+    min: V,
+    max: V,
+    mut each: impl FnMut(usize, SlabInterval),
+) -> BoxCrossing {
+    let mut out = BoxCrossing { t_in: f64::NEG_INFINITY, t_out: f64::INFINITY, axis_in: 0, axis_out: 0 };
+    for axis in 0..V::DIM {
+        let s = slab_interval(ray.origin[axis], ray.dir[axis], min[axis], max[axis]);
+        each(axis, s);
+        // Strict comparisons keep the earlier axis on a tie (x before y before z).
+        if s.t_near > out.t_in {
+            out.t_in = s.t_near;
+            out.axis_in = axis;
+        }
+        if s.t_far < out.t_out {
+            out.t_out = s.t_far;
+            out.axis_out = axis;
+        }
+    }
+    out
+}
+
+/// `γ₃ = 3ε/(1 − 3ε)`, `ε = 2^-53` (pbrt's rounding bound; algorithm.md §11).
+pub const GAMMA3: f64 = 3.0 * f64::EPSILON * 0.5 / (1.0 - 3.0 * f64::EPSILON * 0.5);
+
+/// §11 "Bounding volumes cull conservatively": a culling volume widens its exit by
+/// `t_out·(1 + 2γ₃)` so rounding never loses a hit.
+#[inline]
+#[must_use]
+pub fn widen_exit(t_out: f64) -> f64 {
+    t_out * (1.0 + 2.0 * GAMMA3)
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+    use glam::{DVec2, DVec3};
+
+    fn cross3(o: [f64; 3], d: [f64; 3], min: [f64; 3], max: [f64; 3]) -> BoxCrossing {
+        let ray = Ray::new(DVec3::from(o), DVec3::from(d));
+        box_crossing(&ray, DVec3::from(min), DVec3::from(max), |_, _| {})
+    }
+
+    const B: ([f64; 3], [f64; 3]) = ([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]);
+
+    #[test]
+    fn a1_ray_along_a_box_edge_hits() {
+        let c = cross3([0.0; 3], [1.0, 0.0, 0.0], B.0, B.1);
+        assert!(c.hits_ray());
+        assert_eq!((c.t_in, c.t_out), (1.0, 2.0));
+        let c = cross3([0.0, 1.5, 0.5], [1.0, 0.0, 0.0], B.0, B.1);
+        assert!(!c.hits_ray());
+        assert!(!c.t_in.is_nan() && !c.t_out.is_nan());
+    }
+
+    #[test]
+    fn a2_ray_in_a_face_plane() {
+        assert!(!cross3([5.0, 1.0, 0.5], [1.0, 0.0, 0.0], B.0, B.1).hits_ray());
+        let c = cross3([0.0, 1.0, 0.5], [1.0, 0.0, 0.0], B.0, B.1);
+        assert!(c.hits_ray());
+        assert_eq!((c.t_in, c.t_out), (1.0, 2.0));
+    }
+
+    #[test]
+    fn a3_negative_zero_changes_nothing() {
+        for o in [[0.0, 0.5, 0.5], [0.0, 0.0, 0.5]] {
+            let plus = cross3(o, [1.0, 0.0, 0.0], B.0, B.1);
+            let minus = cross3(o, [1.0, -0.0, 0.0], B.0, B.1);
+            assert_eq!(plus, minus);
+            assert!(minus.hits_ray());
+            assert_eq!((minus.t_in, minus.t_out), (1.0, 2.0));
+        }
+    }
+
+    #[test]
+    fn a4_corner_touch_is_a_hit() {
+        let d = 0.707_106_781_186_547_5;
+        let c = cross3([0.0; 3], [d, d, 0.0], [1.0, 0.0, -1.0], [2.0, 1.0, 1.0]);
+        assert!(c.hits_ray());
+        assert_eq!(c.t_in.to_bits(), c.t_out.to_bits());
+        assert_eq!(c.t_in, std::f64::consts::SQRT_2);
+    }
+
+    #[test]
+    fn a5_zero_thickness_box() {
+        let c = cross3([0.5, 1.0, 0.5], [0.0, -1.0, 0.0], [0.0; 3], [1.0, 0.0, 1.0]);
+        assert!(c.hits_ray());
+        assert_eq!((c.t_in, c.t_out), (1.0, 1.0));
+    }
+
+    #[test]
+    fn a6_origin_inside() {
+        let c = cross3([1.5, 0.5, 0.5], [1.0, 0.0, 0.0], B.0, B.1);
+        assert!(c.hits_ray());
+        assert_eq!((c.t_in, c.t_out), (-0.5, 0.5));
+        assert_eq!(c.axis_out, 0);
+    }
+
+    #[test]
+    fn a7_edge_tie_picks_x() {
+        let d = std::f64::consts::FRAC_1_SQRT_2;
+        let c = cross3([-1.0, -1.0, 0.5], [d, d, 0.0], [0.0; 3], [1.0; 3]);
+        assert_eq!(c.axis_in, 0);
+    }
+
+    #[test]
+    fn a8_large_coordinates() {
+        let c = cross3([0.0, 0.5, 0.5], [1.0, 0.0, 0.0], [1e8, 0.0, 0.0], [1e8 + 1.0, 1.0, 1.0]);
+        assert_eq!((c.t_in, c.t_out), (1e8, 100_000_001.0));
+    }
+
+    #[test]
+    fn parallel_slab_intervals_are_infinite_not_nan() {
+        assert_eq!(
+            slab_interval(0.5, 0.0, 0.0, 1.0),
+            SlabInterval { t_near: f64::NEG_INFINITY, t_far: f64::INFINITY }
+        );
+        assert_eq!(
+            slab_interval(1.5, -0.0, 0.0, 1.0),
+            SlabInterval { t_near: f64::INFINITY, t_far: f64::NEG_INFINITY }
+        );
+    }
+
+    #[test]
+    fn rectangle_in_2d() {
+        let ray = Ray::new(DVec2::new(-1.0, 0.5), DVec2::new(1.0, 0.0));
+        let c = box_crossing(&ray, DVec2::ZERO, DVec2::ONE, |_, _| {});
+        assert_eq!((c.t_in, c.t_out), (1.0, 2.0));
+    }
+}

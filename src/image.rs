@@ -1,0 +1,95 @@
+//! The image (algorithm.md §2, §5): a linear RGB buffer indexed by pixel `(i, j)` with row `j`
+//! counted from the bottom; written as 8 bits per channel `round(255·clamp(c, 0, 1))`, no gamma,
+//! with file row `Ny − 1 − j` (image files store the top row first).
+
+use crate::scene::material::Rgb;
+
+/// Linear colours, `width × height`, row 0 at the bottom.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    /// Columns.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// `pixels[j·width + i]`, j from the bottom.
+    pub pixels: Vec<Rgb>,
+}
+
+/// §5: `round(255·clamp(c, 0, 1))`; round half away from zero (0.5 → 128). A NaN would be a bug
+/// upstream; it is written as 0 rather than panicking.
+#[must_use]
+pub fn to_byte(c: f64) -> u8 {
+    let scaled = (255.0 * c.clamp(0.0, 1.0)).round();
+    // The clamp keeps the value in [0, 255].
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let byte = scaled as u8;
+    byte
+}
+
+impl Image {
+    /// A black image.
+    #[must_use]
+    pub fn new(width: usize, height: usize) -> Self {
+        Self { width, height, pixels: vec![Rgb::BLACK; width * height] }
+    }
+    /// The colour of pixel `(i, j)`, j from the bottom.
+    #[must_use]
+    pub fn get(&self, i: usize, j: usize) -> Rgb {
+        self.pixels[j * self.width + i]
+    }
+    /// 8-bit RGB bytes in file order: file row `Ny − 1 − j` holds image row j.
+    #[must_use]
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(self.width * self.height * 3);
+        for file_row in 0..self.height {
+            let j = self.height - 1 - file_row;
+            for i in 0..self.width {
+                out.extend(self.get(i, j).0.map(to_byte));
+            }
+        }
+        out
+    }
+    /// The image as PNG bytes.
+    ///
+    /// # Errors
+    /// Only if the encoder fails (it does not for valid sizes).
+    pub fn to_png(&self) -> Result<Vec<u8>, String> {
+        let mut bytes = Vec::new();
+        let width = u32::try_from(self.width).map_err(|e| e.to_string())?;
+        let height = u32::try_from(self.height).map_err(|e| e.to_string())?;
+        let encoder = image::codecs::png::PngEncoder::new(&mut bytes);
+        image::ImageEncoder::write_image(
+            encoder,
+            &self.to_rgb8(),
+            width,
+            height,
+            image::ExtendedColorType::Rgb8,
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(bytes)
+    }
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bytes_round_half_away_and_clamp() {
+        assert_eq!(to_byte(0.5), 128);
+        assert_eq!(to_byte(0.0), 0);
+        assert_eq!(to_byte(128.0 / 255.0 - 0.5 / 255.0), 128);
+        assert_eq!(to_byte(-1.0), 0);
+        assert_eq!(to_byte(2.0), 255);
+        assert_eq!(to_byte(f64::NAN), 0);
+    }
+
+    #[test]
+    fn file_rows_are_flipped() {
+        let mut img = Image::new(1, 2);
+        img.pixels[0] = Rgb::grey(1.0);
+        assert_eq!(img.to_rgb8(), vec![0, 0, 0, 255, 255, 255]);
+    }
+}

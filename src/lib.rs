@@ -1,0 +1,20 @@
+//! whitted: recursive (Whitted) ray tracing, taught in the open.
+//!
+//! A scene file is read and validated once (`scene`), the camera turns pixels into primary rays
+//! (`scene::camera`), the tracer follows each ray through the lecture's recursion
+//! `I = I_local + ks·R + kt·T` (`trace`) while reporting every step to a recorder chosen at compile
+//! time (`record`), and what was recorded becomes the trace document (`doc`), a narration, an image
+//! (`render`, `image`) or a diagram. The mathematics is written once for 2D and 3D (`geom`, `shape`).
+//! See `ARCHITECTURE.md` for the codemap and the invariants.
+#![forbid(unsafe_code)]
+
+pub mod accel;
+pub mod doc;
+pub mod figure;
+pub mod geom;
+pub mod image;
+pub mod record;
+pub mod render;
+pub mod scene;
+pub mod shape;
+pub mod trace;

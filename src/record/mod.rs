@@ -1,0 +1,179 @@
+//! Watching the tracer at no cost when off (design.md "Observation is pushed to a recorder"):
+//! the [`Recorder`] trait, the zero-sized [`NoRecorder`] that compiles away, the [`CountingRecorder`]
+//! that only counts (the benchmark's middle point) and the [`EventLog`] that keeps everything:
+//! the events in order and the ray tree.
+
+pub mod event;
+
+use crate::scene::material::Rgb;
+use event::{Event, LightTerm, NodeHit, RayKind};
+
+/// What opens a ray node: its kind, level and geometry.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RayStart<V> {
+    /// Primary, reflected or transmitted.
+    pub kind: RayKind,
+    /// Primary = 1 (§6).
+    pub level: u32,
+    /// The ray's origin (for secondary rays, already offset).
+    pub origin: V,
+    /// The unit direction.
+    pub direction: V,
+}
+
+/// What closes a ray node: the hit, the local term and the colour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RayEnd<V> {
+    /// The nearest hit, if any.
+    pub hit: Option<NodeHit<V>>,
+    /// `I_local` (null on a miss).
+    pub local: Option<Rgb>,
+    /// The node's colour `I_local + ks·R + kt·T` (the background on a miss).
+    pub color: Rgb,
+}
+
+/// Receives what the tracer does. Every method takes a closure that builds its payload, so a
+/// recorder that is off never builds one.
+pub trait Recorder<V> {
+    /// False for [`NoRecorder`]: code guarded by it is removed at compile time.
+    const ENABLED: bool;
+    /// An event, in the order it happened.
+    fn event(&mut self, make: impl FnOnce() -> Event<V>);
+    /// A new ray node, child of the currently open one.
+    fn open_ray(&mut self, make: impl FnOnce() -> RayStart<V>);
+    /// One light's terms at the currently open node's hit.
+    fn light(&mut self, make: impl FnOnce() -> LightTerm<V>);
+    /// Closes the currently open node.
+    fn close_ray(&mut self, make: impl FnOnce() -> RayEnd<V>);
+}
+
+/// Records nothing; zero-sized, every method empty and inlined: rendering uses only this.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoRecorder;
+
+impl<V> Recorder<V> for NoRecorder {
+    const ENABLED: bool = false;
+    #[inline(always)]
+    fn event(&mut self, _make: impl FnOnce() -> Event<V>) {}
+    #[inline(always)]
+    fn open_ray(&mut self, _make: impl FnOnce() -> RayStart<V>) {}
+    #[inline(always)]
+    fn light(&mut self, _make: impl FnOnce() -> LightTerm<V>) {}
+    #[inline(always)]
+    fn close_ray(&mut self, _make: impl FnOnce() -> RayEnd<V>) {}
+}
+
+/// Counts calls without building any payload: measures the cost of the hooks themselves.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CountingRecorder {
+    /// Events, nodes and light entries reported.
+    pub calls: u64,
+}
+
+impl<V> Recorder<V> for CountingRecorder {
+    const ENABLED: bool = true;
+    #[inline]
+    fn event(&mut self, _make: impl FnOnce() -> Event<V>) {
+        self.calls += 1;
+    }
+    #[inline]
+    fn open_ray(&mut self, _make: impl FnOnce() -> RayStart<V>) {
+        self.calls += 1;
+    }
+    #[inline]
+    fn light(&mut self, _make: impl FnOnce() -> LightTerm<V>) {
+        self.calls += 1;
+    }
+    #[inline]
+    fn close_ray(&mut self, _make: impl FnOnce() -> RayEnd<V>) {
+        self.calls += 1;
+    }
+}
+
+/// One node of the recorded ray tree.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RayNode<V> {
+    /// What opened it.
+    pub start: RayStart<V>,
+    /// Per light, in scene order (empty on a miss).
+    pub lights: Vec<LightTerm<V>>,
+    /// What closed it (None while open).
+    pub end: Option<RayEnd<V>>,
+    /// Indices of the children in [`EventLog::nodes`], in the order R, then T.
+    pub children: Vec<usize>,
+    /// The parent's index.
+    pub parent: Option<usize>,
+    /// The anti-aliasing sample this node belongs to, if any.
+    pub sample: Option<usize>,
+}
+
+/// An event with the ray node it belongs to.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Logged<V> {
+    /// The index of the ray node (pre-order) or None for events outside any ray.
+    pub ray: Option<usize>,
+    /// The anti-aliasing sample it belongs to, if any.
+    pub sample: Option<usize>,
+    /// The event.
+    pub event: Event<V>,
+}
+
+/// Keeps every event and the ray tree. Nodes are stored in the order they were opened, which is
+/// the pre-order walk of the tree, so a node's index is the `ray` its events carry.
+#[derive(Clone, Debug, Default)]
+pub struct EventLog<V> {
+    /// Every event, in order.
+    pub events: Vec<Logged<V>>,
+    /// Every ray node, in pre-order; roots have no parent.
+    pub nodes: Vec<RayNode<V>>,
+    /// The chain of open nodes.
+    open: Vec<usize>,
+    /// The sample being traced (set by the sampler).
+    pub current_sample: Option<usize>,
+}
+
+impl<V> EventLog<V> {
+    /// An empty log.
+    #[must_use]
+    pub fn new() -> Self {
+        Self { events: Vec::new(), nodes: Vec::new(), open: Vec::new(), current_sample: None }
+    }
+    /// The roots: one per primary ray traced.
+    pub fn roots(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.nodes.len()).filter(|i| self.nodes[*i].parent.is_none())
+    }
+}
+
+impl<V> Recorder<V> for EventLog<V> {
+    const ENABLED: bool = true;
+    fn event(&mut self, make: impl FnOnce() -> Event<V>) {
+        let ray = self.open.last().copied();
+        self.events.push(Logged { ray, sample: self.current_sample, event: make() });
+    }
+    fn open_ray(&mut self, make: impl FnOnce() -> RayStart<V>) {
+        let index = self.nodes.len();
+        let parent = self.open.last().copied();
+        if let Some(p) = parent {
+            self.nodes[p].children.push(index);
+        }
+        self.nodes.push(RayNode {
+            start: make(),
+            lights: Vec::new(),
+            end: None,
+            children: Vec::new(),
+            parent,
+            sample: self.current_sample,
+        });
+        self.open.push(index);
+    }
+    fn light(&mut self, make: impl FnOnce() -> LightTerm<V>) {
+        if let Some(&i) = self.open.last() {
+            self.nodes[i].lights.push(make());
+        }
+    }
+    fn close_ray(&mut self, make: impl FnOnce() -> RayEnd<V>) {
+        if let Some(i) = self.open.pop() {
+            self.nodes[i].end = Some(make());
+        }
+    }
+}

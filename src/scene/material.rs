@@ -1,0 +1,149 @@
+//! Materials (algorithm.md §5, product.md "Defaults"): `ka`, `kd` (RGB), `ks`, `n`, `kt`, `ior`,
+//! and the checker that swaps `kd` (and `ka`) by the parity of the hit point's cell; and [`Rgb`].
+
+use crate::geom::Vector;
+use std::ops::{Add, AddAssign, Mul};
+
+/// A linear RGB colour (no gamma; clamped only when a pixel is written, §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Rgb(pub [f64; 3]);
+
+impl Rgb {
+    /// Black.
+    pub const BLACK: Rgb = Rgb([0.0; 3]);
+    /// Grey of the given level.
+    #[must_use]
+    pub const fn grey(level: f64) -> Rgb {
+        Rgb([level; 3])
+    }
+    /// Channel-wise product (light times reflectance).
+    #[must_use]
+    pub fn modulate(self, other: Rgb) -> Rgb {
+        Rgb([self.0[0] * other.0[0], self.0[1] * other.0[1], self.0[2] * other.0[2]])
+    }
+    /// The largest over channels of `|a − b|`... of the spread `max − min` of several colours.
+    #[must_use]
+    pub fn spread(colors: &[Rgb]) -> f64 {
+        (0..3)
+            .map(|c| {
+                let (lo, hi) = colors
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x.0[c]), hi.max(x.0[c])));
+                hi - lo
+            })
+            .fold(0.0, f64::max)
+    }
+}
+
+impl Add for Rgb {
+    type Output = Rgb;
+    fn add(self, o: Rgb) -> Rgb {
+        Rgb([self.0[0] + o.0[0], self.0[1] + o.0[1], self.0[2] + o.0[2]])
+    }
+}
+
+impl AddAssign for Rgb {
+    fn add_assign(&mut self, o: Rgb) {
+        *self = *self + o;
+    }
+}
+
+impl Mul<f64> for Rgb {
+    type Output = Rgb;
+    fn mul(self, k: f64) -> Rgb {
+        Rgb([self.0[0] * k, self.0[1] * k, self.0[2] * k])
+    }
+}
+
+/// A checker pattern: the second colours where the cell parity is odd.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Checker {
+    /// Side of a cell, > 0.
+    pub size: f64,
+    /// The diffuse colour of the odd cells.
+    pub kd2: Rgb,
+    /// The ambient colour of the odd cells (default: the material's `ka`).
+    pub ka2: Rgb,
+}
+
+impl Checker {
+    /// product.md: odd iff `Σ floor(x_i/size + 1e-10)` is odd (`rem_euclid(2) == 1`), at the hit
+    /// point; the 1e-10 keeps a boundary such as y = −1 (size 1) from speckling.
+    #[must_use]
+    pub fn is_odd<V: Vector>(&self, point: V) -> bool {
+        let sum: f64 = (0..V::DIM).map(|i| (point[i] / self.size + 1e-10).floor()).sum();
+        // The sum is an integer-valued float, so its remainder is exactly 0 or 1.
+        #[allow(clippy::float_cmp)]
+        let odd = sum.rem_euclid(2.0) == 1.0;
+        odd
+    }
+}
+
+/// A material with every field given or defaulted (product.md's table).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Ambient coefficient Ka (RGB, each in [0, 1]); default 0.1.
+    pub ka: Rgb,
+    /// Diffuse coefficient kd (RGB, each in [0, 1]); default 0.7.
+    pub kd: Rgb,
+    /// Specular coefficient ks in [0, 1], also the weight of the reflected ray; default 0.
+    pub ks: f64,
+    /// Specular exponent n ≥ 0; default 32.
+    pub n: f64,
+    /// Transmission coefficient kt in [0, 1], the weight of T and the shadow factor; default 0.
+    pub kt: f64,
+    /// Index of refraction of the inside, > 0; default 1.
+    pub ior: f64,
+    /// An optional checker pattern.
+    pub checker: Option<Checker>,
+}
+
+impl Material {
+    /// product.md's defaults: `ka 0.1, kd 0.7, ks 0, n 32, kt 0, ior 1`, no checker.
+    pub const DEFAULT: Material = Material {
+        ka: Rgb::grey(0.1),
+        kd: Rgb::grey(0.7),
+        ks: 0.0,
+        n: 32.0,
+        kt: 0.0,
+        ior: 1.0,
+        checker: None,
+    };
+    /// The object spawns R iff `ks > 0` (§6).
+    #[must_use]
+    pub fn reflects(&self) -> bool {
+        self.ks > 0.0
+    }
+    /// The object spawns T iff `kt > 0` (§6).
+    #[must_use]
+    pub fn transmits(&self) -> bool {
+        self.kt > 0.0
+    }
+    /// `(ka, kd)` at a point, after the checker.
+    #[must_use]
+    pub fn colors_at<V: Vector>(&self, point: V) -> (Rgb, Rgb) {
+        match &self.checker {
+            Some(c) if c.is_odd(point) => (c.ka2, c.kd2),
+            _ => (self.ka, self.kd),
+        }
+    }
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    #[test]
+    fn checker_boundary_does_not_speckle() {
+        let c = Checker { size: 1.0, kd2: Rgb::BLACK, ka2: Rgb::BLACK };
+        // y = −1 exactly (a floor at a tile boundary) stays in one parity class along x.
+        let a = c.is_odd(DVec3::new(0.5, -1.0, 0.5));
+        let b = c.is_odd(DVec3::new(0.5, -1.0 + 1e-14, 0.5));
+        assert_eq!(a, b);
+        assert_ne!(c.is_odd(DVec3::new(0.5, 0.5, 0.5)), c.is_odd(DVec3::new(1.5, 0.5, 0.5)));
+        assert!(!c.is_odd(DVec3::new(-0.5, 0.5, -0.5)));
+    }
+}

@@ -1,0 +1,85 @@
+//! What a scene is, after validation (product.md "Scene files", algorithm.md §11 "Validation
+//! instead of sanitising"). The path is JSON text → `load` (every check, every default) →
+//! [`Scene`], valid by construction.
+
+pub mod camera;
+pub mod error;
+pub mod light;
+pub mod load;
+pub mod material;
+
+use crate::shape::{Dim, Shape};
+use camera::Camera;
+use glam::{DVec2, DVec3};
+use light::Light;
+use material::{Material, Rgb};
+
+/// One object of the scene: its shape, its material and its optional name.
+#[derive(Clone, Debug)]
+pub struct Object<V: Dim> {
+    /// The `name` field, if given.
+    pub name: Option<String>,
+    /// The geometry.
+    pub shape: Shape<V>,
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+}
+
+/// A validated scene in 2D (`V = DVec2`) or 3D (`V = DVec3`).
+///
+/// # Guarantees
+/// Every number is finite and at most 1e100 in magnitude; directions are unit; radii, `p`, the
+/// window and the resolution are positive; every material index is valid; every coefficient is in
+/// its range (§11); `max_depth ≤ 64`; there is no mix of dimensions.
+#[derive(Clone, Debug)]
+pub struct Scene<V: Dim> {
+    /// The camera.
+    pub camera: Camera<V>,
+    /// The colour of a ray that hits nothing.
+    pub background: Rgb,
+    /// Ia, the ambient light.
+    pub ambient: Rgb,
+    /// Children are spawned by a node at level n iff `n ≤ max_depth` (§6).
+    pub max_depth: u32,
+    /// Point lights.
+    pub lights: Vec<Light<V>>,
+    /// Every material: the named ones first, in file order, then the inline ones.
+    pub materials: Vec<Material>,
+    /// The objects, in file order (the index breaks ties of equal t, §6).
+    pub objects: Vec<Object<V>>,
+}
+
+impl<V: Dim> Scene<V> {
+    /// The material of object `index`.
+    #[must_use]
+    pub fn material_of(&self, index: usize) -> &Material {
+        &self.materials[self.objects[index].material]
+    }
+    /// True iff some object transmits (`kt > 0`): otherwise no T ray can ever be spawned.
+    #[must_use]
+    pub fn has_transparent(&self) -> bool {
+        (0..self.objects.len()).any(|i| self.material_of(i).transmits())
+    }
+    /// True iff some object reflects (`ks > 0`).
+    #[must_use]
+    pub fn has_reflective(&self) -> bool {
+        (0..self.objects.len()).any(|i| self.material_of(i).reflects())
+    }
+    /// How an object is called in traces: its `name`, else its index.
+    #[must_use]
+    pub fn object_label(&self, index: usize) -> String {
+        match &self.objects[index].name {
+            Some(n) => n.clone(),
+            None => format!("objects[{index}]"),
+        }
+    }
+}
+
+/// A scene of either dimension; the camera's vectors decide which.
+#[derive(Clone, Debug)]
+pub enum AnyScene {
+    /// A 2D scene.
+    Flat(Scene<DVec2>),
+    /// A 3D scene.
+    Space(Scene<DVec3>),
+}

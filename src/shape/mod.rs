@@ -1,0 +1,127 @@
+//! Primitives (algorithm.md §3 "Outward normals", §9, §11 "Roots", "Triangles"): each gives every
+//! root along a ray (for the trace), the nearest hit with its outward normal, its bounds and its
+//! scale (for the spawn offset). Spheres, planes and boxes are one code for 2D and 3D; the flat
+//! primitives differ by dimension and sit behind [`Dim::Facet`].
+
+pub mod aabox;
+pub mod plane;
+pub mod polygon;
+pub mod sphere;
+pub mod triangle;
+
+use crate::geom::ray::Ray;
+use crate::geom::Vector;
+use glam::{DVec2, DVec3};
+
+/// A dimension: its vector type and the flat primitive it knows (3D triangles, 2D polygons).
+pub trait Dim: Vector {
+    /// The flat primitive of this dimension: a watertight triangle in 3D, a polygon or segment in 2D.
+    type Facet: Facet<Self>;
+    /// `"2D"` or `"3D"`.
+    const NAME: &'static str;
+}
+
+impl Dim for DVec3 {
+    type Facet = triangle::Triangle;
+    const NAME: &'static str = "3D";
+}
+
+impl Dim for DVec2 {
+    type Facet = polygon::Polygon;
+    const NAME: &'static str = "2D";
+}
+
+/// Where a ray meets a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceHit<V> {
+    /// Distance along the (unit) ray.
+    pub t: f64,
+    /// The hit point I, re-projected onto the surface.
+    pub point: V,
+    /// The outward unit normal N at I (§3).
+    pub normal: V,
+}
+
+/// A flat primitive: the dimension-specific part of [`Shape`].
+pub trait Facet<V>: Clone + std::fmt::Debug + Send + Sync + 'static {
+    /// The nearest hit with `t > 0`, with the outward normal.
+    fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>>;
+    /// Every root along the ray's line, ascending, whatever its sign.
+    fn roots(&self, ray: &Ray<V>) -> Vec<f64>;
+    /// The axis-aligned bounds `(min, max)`.
+    fn bounds(&self) -> (V, V);
+    /// The largest |coordinate| of its vertices (the object scale of the spawn offset, §11).
+    fn scale(&self) -> f64;
+    /// A short name for messages and `check`: `triangle`, `segment`, `polygon`.
+    fn kind(&self) -> &'static str;
+}
+
+/// A primitive of a scene, in 2D or 3D.
+#[derive(Clone, Debug)]
+pub enum Shape<V: Dim> {
+    /// A sphere (a circle in 2D).
+    Sphere(sphere::Sphere<V>),
+    /// A plane (a line in 2D); unbounded.
+    Plane(plane::Plane<V>),
+    /// An axis-aligned box (a rectangle in 2D).
+    Box(aabox::AaBox<V>),
+    /// A triangle in 3D; a triangle, segment or polygon in 2D.
+    Facet(V::Facet),
+}
+
+impl<V: Dim> Shape<V> {
+    /// The nearest hit with `t > 0`.
+    #[inline]
+    pub fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
+        match self {
+            Self::Sphere(s) => s.hit(ray),
+            Self::Plane(p) => p.hit(ray),
+            Self::Box(b) => b.hit(ray),
+            Self::Facet(f) => f.hit(ray),
+        }
+    }
+    /// Every root along the ray's line, ascending, whatever its sign (the `object_test` event).
+    #[must_use]
+    pub fn roots(&self, ray: &Ray<V>) -> Vec<f64> {
+        match self {
+            Self::Sphere(s) => s.roots(ray),
+            Self::Plane(p) => p.roots(ray),
+            Self::Box(b) => b.roots(ray),
+            Self::Facet(f) => f.roots(ray),
+        }
+    }
+    /// The axis-aligned bounds, or `None` for an unbounded plane.
+    #[must_use]
+    pub fn bounds(&self) -> Option<(V, V)> {
+        match self {
+            Self::Sphere(s) => Some((s.center - V::splat(s.radius), s.center + V::splat(s.radius))),
+            Self::Plane(_) => None,
+            Self::Box(b) => Some((b.min, b.max)),
+            Self::Facet(f) => Some(f.bounds()),
+        }
+    }
+    /// The object scale of the spawn offset, §11: sphere `‖C‖∞ + r`, plane `‖point‖∞`, box and
+    /// flat primitives the largest |coordinate| of their vertices.
+    #[must_use]
+    pub fn scale(&self) -> f64 {
+        match self {
+            Self::Sphere(s) => s.center.max_abs() + s.radius,
+            Self::Plane(p) => p.point.max_abs(),
+            Self::Box(b) => b.min.max_abs().max(b.max.max_abs()),
+            Self::Facet(f) => f.scale(),
+        }
+    }
+    /// The type name as the scene file writes it (`circle` and `line` are the 2D names).
+    #[must_use]
+    pub fn kind(&self) -> &'static str {
+        match (self, V::DIM) {
+            (Self::Sphere(_), 2) => "circle",
+            (Self::Sphere(_), _) => "sphere",
+            (Self::Plane(_), 2) => "line",
+            (Self::Plane(_), _) => "plane",
+            (Self::Box(_), 2) => "rectangle",
+            (Self::Box(_), _) => "box",
+            (Self::Facet(f), _) => f.kind(),
+        }
+    }
+}

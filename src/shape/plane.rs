@@ -1,0 +1,60 @@
+//! A plane in 3D, a line in 2D (algorithm.md §3): `(X − P)·N = 0` with the given unit normal as
+//! the outward side. Unbounded, so never placed inside an acceleration structure.
+
+use super::SurfaceHit;
+use crate::geom::ray::Ray;
+use crate::geom::Vector;
+
+/// The plane through `point` with unit `normal`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane<V> {
+    /// A point P of the plane.
+    pub point: V,
+    /// The unit normal N (the outward side).
+    pub normal: V,
+}
+
+impl<V: Vector> Plane<V> {
+    /// The root `t = (P − O)·N / (D·N)`, when finite; a ray parallel to the plane (in it or
+    /// not, `D·N = ±0`) has none.
+    #[inline]
+    fn root(&self, ray: &Ray<V>) -> Option<f64> {
+        let denom = ray.dir.dot(self.normal);
+        let t = (self.point - ray.origin).dot(self.normal) / denom;
+        // Written so that NaN and ±∞ fail (numerics C1, C2).
+        t.is_finite().then_some(t)
+    }
+    /// The hit with `t > 0`; I re-projected by subtracting its signed distance to the plane.
+    #[inline]
+    pub fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
+        let t = self.root(ray).filter(|t| *t > 0.0)?;
+        let raw = ray.at(t);
+        let point = raw - self.normal * (raw - self.point).dot(self.normal);
+        Some(SurfaceHit { t, point, normal: self.normal })
+    }
+    /// The one root, if any.
+    #[must_use]
+    pub fn roots(&self, ray: &Ray<V>) -> Vec<f64> {
+        self.root(ray).into_iter().collect()
+    }
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    #[test]
+    fn c1_c2_parallel_rays_miss_without_nan() {
+        let p = Plane { point: DVec3::ZERO, normal: DVec3::Y };
+        for (o, d) in
+            [(DVec3::Y, DVec3::X), (DVec3::ZERO, DVec3::X), (DVec3::Y, DVec3::new(-1.0, -0.0, -0.0))]
+        {
+            let ray = Ray::new(o, d);
+            assert!(p.hit(&ray).is_none());
+            assert!(p.roots(&ray).is_empty());
+        }
+    }
+}

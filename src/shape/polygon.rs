@@ -1,0 +1,221 @@
+//! Flat primitives of 2D scenes (algorithm.md §3): segments, triangles and simple polygons, all
+//! as lists of edges. Watertight like the 3D triangle: each vertex's side of the ray's line,
+//! `f(P) = D × (P − O)`, is computed once per vertex, so two edges sharing a vertex agree on it.
+//! Outward normal of an edge `d = b − a`: `(d_y, −d_x)/|d|`; for a polygon or triangle the
+//! outward one whatever the winding (by the sign of its area); a segment keeps `(d_y, −d_x)`.
+
+use super::{Facet, SurfaceHit};
+use crate::geom::ray::Ray;
+use crate::geom::{diff_of_products, Vector};
+use glam::DVec2;
+
+/// A segment (open, 2 vertices) or a closed simple polygon (3 or more vertices).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polygon {
+    /// The vertices in file order.
+    pub vertices: Vec<DVec2>,
+    /// Closed (a triangle or polygon) or open (a segment).
+    pub closed: bool,
+    /// The outward unit normal of each edge `vertices[k] → vertices[k + 1]`.
+    pub normals: Vec<DVec2>,
+    kind: &'static str,
+}
+
+/// Twice the signed area (positive for counter-clockwise).
+fn twice_area(vertices: &[DVec2]) -> f64 {
+    let n = vertices.len();
+    (0..n).map(|k| vertices[k].perp_dot(vertices[(k + 1) % n])).sum()
+}
+
+/// Whether the closed segments `p1p2` and `q1q2` share a point.
+fn segments_touch(p1: DVec2, p2: DVec2, q1: DVec2, q2: DVec2) -> bool {
+    let orient = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
+    let on = |a: DVec2, b: DVec2, c: DVec2| {
+        c.x >= a.x.min(b.x) && c.x <= a.x.max(b.x) && c.y >= a.y.min(b.y) && c.y <= a.y.max(b.y)
+    };
+    let (d1, d2) = (orient(q1, q2, p1), orient(q1, q2, p2));
+    let (d3, d4) = (orient(p1, p2, q1), orient(p1, p2, q2));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    (d1 == 0.0 && on(q1, q2, p1))
+        || (d2 == 0.0 && on(q1, q2, p2))
+        || (d3 == 0.0 && on(p1, p2, q1))
+        || (d4 == 0.0 && on(p1, p2, q2))
+}
+
+/// Why a flat 2D primitive cannot be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PolygonError {
+    /// A segment of zero length, or an edge of zero length.
+    ZeroLength,
+    /// A triangle or polygon of zero area.
+    ZeroArea,
+    /// Two non-adjacent edges of the polygon cross or touch.
+    NotSimple,
+}
+
+impl Polygon {
+    /// The segment from `a` to `b`, normal `(d_y, −d_x)/|d|`.
+    ///
+    /// # Errors
+    /// [`PolygonError::ZeroLength`] when `a == b`.
+    pub fn segment(a: DVec2, b: DVec2) -> Result<Self, PolygonError> {
+        let d = b - a;
+        let normal = DVec2::new(d.y, -d.x).try_unit().ok_or(PolygonError::ZeroLength)?;
+        Ok(Self { vertices: vec![a, b], closed: false, normals: vec![normal], kind: "segment" })
+    }
+
+    /// A closed polygon (a triangle when it has 3 vertices), either winding.
+    ///
+    /// # Errors
+    /// [`PolygonError`] for a zero-length edge, a zero area or crossing edges.
+    pub fn closed(vertices: Vec<DVec2>) -> Result<Self, PolygonError> {
+        let n = vertices.len();
+        let area = twice_area(&vertices);
+        if !(area.abs() > 0.0) {
+            return Err(PolygonError::ZeroArea);
+        }
+        for i in 0..n {
+            for j in i + 2..n {
+                if i == 0 && j == n - 1 {
+                    continue;
+                }
+                let (p1, p2) = (vertices[i], vertices[(i + 1) % n]);
+                let (q1, q2) = (vertices[j], vertices[(j + 1) % n]);
+                if segments_touch(p1, p2, q1, q2) {
+                    return Err(PolygonError::NotSimple);
+                }
+            }
+        }
+        // Clockwise polygons flip the edge normal so that it points outwards.
+        let sign = if area > 0.0 { 1.0 } else { -1.0 };
+        let mut normals = Vec::with_capacity(n);
+        for k in 0..n {
+            let d = vertices[(k + 1) % n] - vertices[k];
+            normals.push(DVec2::new(d.y, -d.x).try_unit().ok_or(PolygonError::ZeroLength)? * sign);
+        }
+        let kind = if n == 3 { "triangle" } else { "polygon" };
+        Ok(Self { vertices, closed: true, normals, kind })
+    }
+
+    fn edge_count(&self) -> usize {
+        if self.closed {
+            self.vertices.len()
+        } else {
+            1
+        }
+    }
+
+    /// Every crossing of the ray's line with an edge: `(t, edge)`, in edge order.
+    fn crossings(&self, ray: &Ray<DVec2>, mut each: impl FnMut(f64, usize)) {
+        let d = ray.dir;
+        // f(P) = D × (P − O), one value per vertex, shared by the two edges that meet there.
+        let side = |p: DVec2| {
+            let q = p - ray.origin;
+            diff_of_products(d.x, q.y, d.y, q.x)
+        };
+        let along = |p: DVec2| (p - ray.origin).dot(d);
+        let n = self.vertices.len();
+        let mut f_a = side(self.vertices[0]);
+        for k in 0..self.edge_count() {
+            let (a, b) = (self.vertices[k], self.vertices[(k + 1) % n]);
+            let f_b = side(b);
+            let crosses = (f_a <= 0.0 && f_b >= 0.0) || (f_a >= 0.0 && f_b <= 0.0);
+            // An edge lying on the line (f_a = f_b = 0) is edge-on: invisible.
+            #[allow(clippy::float_cmp)]
+            let edge_on = f_a == f_b;
+            if crosses && !edge_on {
+                // The point where f = 0, measured along D.
+                let t = (along(a) * f_b - along(b) * f_a) / (f_b - f_a);
+                if t.is_finite() {
+                    each(t, k);
+                }
+            }
+            f_a = f_b;
+        }
+    }
+}
+
+impl Facet<DVec2> for Polygon {
+    fn hit(&self, ray: &Ray<DVec2>) -> Option<SurfaceHit<DVec2>> {
+        let mut best: Option<(f64, usize)> = None;
+        self.crossings(ray, |t, k| {
+            // Strict: the first edge wins a tie (a ray through a vertex).
+            if t > 0.0 && best.is_none_or(|(bt, _)| t < bt) {
+                best = Some((t, k));
+            }
+        });
+        let (t, k) = best?;
+        // Re-project onto the edge's line.
+        let a = self.vertices[k];
+        let normal = self.normals[k];
+        let raw = ray.at(t);
+        let point = raw - normal * (raw - a).dot(normal);
+        Some(SurfaceHit { t, point, normal })
+    }
+    fn roots(&self, ray: &Ray<DVec2>) -> Vec<f64> {
+        let mut out = Vec::new();
+        self.crossings(ray, |t, _| out.push(t));
+        out.sort_by(f64::total_cmp);
+        out.dedup();
+        out
+    }
+    fn bounds(&self) -> (DVec2, DVec2) {
+        let first = self.vertices[0];
+        self.vertices.iter().fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p)))
+    }
+    fn scale(&self) -> f64 {
+        self.vertices.iter().fold(0.0, |m, p| m.max(p.max_abs()))
+    }
+    fn kind(&self) -> &'static str {
+        self.kind
+    }
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn segment_normal_convention() {
+        let s = Polygon::segment(DVec2::ZERO, DVec2::new(1.0, 0.0)).unwrap();
+        assert_eq!(s.normals[0], DVec2::new(0.0, -1.0));
+    }
+
+    #[test]
+    fn polygon_normals_point_outward_whatever_the_winding() {
+        let ccw = vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
+        let mut cw = ccw.clone();
+        cw.reverse();
+        for vs in [ccw, cw] {
+            let p = Polygon::closed(vs).unwrap();
+            let h = p.hit(&Ray::new(DVec2::new(0.5, 3.0), DVec2::NEG_Y)).unwrap();
+            assert_eq!(h.normal, DVec2::Y);
+            assert_eq!(h.t, 2.0);
+        }
+    }
+
+    #[test]
+    fn through_a_shared_vertex_is_hit() {
+        let p = Polygon::closed(vec![DVec2::ZERO, DVec2::new(2.0, 0.0), DVec2::new(1.0, 1.0)]).unwrap();
+        let d = DVec2::new(1.0, 1.0).normalize();
+        let h = p.hit(&Ray::new(DVec2::new(0.0, 0.0) - d, d));
+        assert!(h.is_some());
+    }
+
+    #[test]
+    fn degenerate_and_self_crossing_polygons_are_rejected() {
+        assert_eq!(
+            Polygon::closed(vec![DVec2::ZERO, DVec2::X, DVec2::new(2.0, 0.0)]),
+            Err(PolygonError::ZeroArea)
+        );
+        let bow = vec![DVec2::ZERO, DVec2::splat(2.0), DVec2::new(2.0, 0.0), DVec2::Y];
+        assert_eq!(Polygon::closed(bow), Err(PolygonError::NotSimple));
+        assert_eq!(Polygon::segment(DVec2::X, DVec2::X), Err(PolygonError::ZeroLength));
+    }
+}

@@ -1,0 +1,32 @@
+//! A sphere in 3D, a circle in 2D (algorithm.md §9 "Sphere", §11 "Roots"): one function on
+//! `geom::quadratic`; the normal is `(I − C)/r` and the hit point is re-projected onto the surface.
+
+use super::SurfaceHit;
+use crate::geom::quadratic::sphere_roots;
+use crate::geom::ray::Ray;
+use crate::geom::Vector;
+
+/// A sphere (circle) with centre C and radius r > 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere<V> {
+    /// The centre C.
+    pub center: V,
+    /// The radius r > 0.
+    pub radius: f64,
+}
+
+impl<V: Vector> Sphere<V> {
+    /// The least root `t > 0` of `|O + t·D − C|² = r²`; I re-projected as `C + r·(I − C)/|I − C|`.
+    #[inline]
+    pub fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
+        let t = sphere_roots(ray, self.center, self.radius).nearest_positive()?;
+        let raw = ray.at(t);
+        let normal = (raw - self.center).try_unit()?;
+        Some(SurfaceHit { t, point: self.center + normal * self.radius, normal })
+    }
+    /// Every real root, ascending; a tangent gives one.
+    #[must_use]
+    pub fn roots(&self, ray: &Ray<V>) -> Vec<f64> {
+        sphere_roots(ray, self.center, self.radius).to_vec()
+    }
+}

@@ -1,0 +1,142 @@
+//! The command line: exit codes and one-line errors naming the field or argument (issue 3, item 8).
+
+use std::process::Command;
+
+fn whitted(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn scene_file(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("whitted-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+fn fixture(name: &str) -> String {
+    format!("{}/tests/data/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn bad_input_exits_2_with_the_field_named() {
+    let cases: &[(&str, &str)] = &[
+        ("{\"camera\": [}", "invalid JSON at line 1, column"),
+        (
+            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "objets": []}"#,
+            "objets: unknown field `objets`; did you mean `objects`?",
+        ),
+        (
+            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "objects": [{"type":"sphere","center":[0,0,0],"radius":-1}]}"#,
+            "objects[0].radius: must be > 0, got -1",
+        ),
+        (
+            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "max_depth": -1}"#,
+            "max_depth: must be an integer in [0, 64], got -1",
+        ),
+        (
+            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "objects": [{"type":"sphere","center":[0,0,0],"radius":1e400}]}"#,
+            "invalid JSON",
+        ),
+        (
+            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "objects": [{"type":"sphere","center":"x","radius":1}]}"#,
+            "objects[0].center: must be an array of 3 numbers, got a string",
+        ),
+    ];
+    for (i, (text, expected)) in cases.iter().enumerate() {
+        let path = scene_file(&format!("bad{i}.json"), text);
+        for cmd in ["check", "render"] {
+            let (code, _, err) =
+                whitted(&[cmd, &path, "-o", "/dev/null"][..if cmd == "check" { 2 } else { 4 }]);
+            assert_eq!(code, 2, "{cmd} {text}: {err}");
+            assert!(err.contains(expected), "{cmd}: expected `{expected}` in {err}");
+            assert!(!err.contains("panicked"));
+        }
+    }
+}
+
+#[test]
+fn missing_file_and_bad_arguments_exit_2() {
+    let (code, _, err) = whitted(&["check", "/nonexistent/scene.json"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("cannot read the scene"));
+    let glass = fixture("glass.json");
+    for (args, expected) in [
+        (vec!["trace", &glass, "--pixel", "8,0"], "outside the image"),
+        (vec!["trace", &glass, "--pixel", "1;2"], "--pixel"),
+        (vec!["trace", &glass, "--ray", "0,0,5"], "--ray"),
+        (vec!["trace", &glass, "--ray", "0,0:0,1"], "--ray: the origin must have 3 numbers"),
+        (vec!["render", &glass, "--size", "0x3"], "--size"),
+    ] {
+        let (code, _, err) = whitted(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(expected), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn trace_json_and_narration() {
+    let glass = fixture("glass.json");
+    let (code, out, err) = whitted(&["trace", &glass, "--pixel", "4,3", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for key in ["pixel", "uv", "color", "stats", "tree", "events"] {
+        assert!(doc.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(doc["pixel"], serde_json::json!([4, 3]));
+    let (code, out, _) = whitted(&["trace", &glass, "--pixel", "4,3"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("u = l + (r − l)·(i + 0.5)/Nx"));
+    assert!(out.contains("1. Pixel (i, j) = (4, 3)"));
+    let (code, out, _) = whitted(&["trace", &glass, "--pixel", "4,3", "--lang", "ro"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("Raza primară"), "{out}");
+    assert!(out.contains("rândul de jos"));
+    let (code, out, _) = whitted(&["trace", &fixture("lens_2d.json"), "--pixel", "3", "--json"]);
+    assert_eq!(code, 0);
+    let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(doc["pixel"], serde_json::json!([3]));
+    assert_eq!(doc["uv"].as_array().unwrap().len(), 1);
+}
+
+#[test]
+fn render_json_lists_the_statistics() {
+    let out_png = std::env::temp_dir().join(format!("whitted-cli-{}-glass.png", std::process::id()));
+    let (code, out, err) = whitted(&[
+        "render",
+        &fixture("glass.json"),
+        "-o",
+        &out_png.display().to_string(),
+        "--json",
+        "--threads",
+        "1",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for key in
+        ["pixels", "samples", "rays", "tests", "load_seconds", "build_seconds", "seconds", "threads", "accel"]
+    {
+        assert!(doc.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(doc["pixels"], 48);
+    assert_eq!(doc["threads"], 1);
+    assert!(err.contains("48 pixels"));
+    let png = std::fs::read(&out_png).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+}
+
+#[test]
+fn check_says_what_the_scene_models() {
+    let (code, out, _) = whitted(&["check", &fixture("glass.json")]);
+    assert_eq!(code, 0);
+    assert!(out.contains("3D"));
+    assert!(out.contains("transmitted: yes, from glass"));
+    let (code, out, _) = whitted(&["check", &fixture("corridor.json")]);
+    assert_eq!(code, 0);
+    assert!(out.contains("transmitted: no: no object has kt > 0"), "{out}");
+}

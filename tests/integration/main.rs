@@ -1,0 +1,6 @@
+//! The one integration-test binary (design.md habit 7): scenes, traces, numerics and the CLI.
+#![allow(clippy::float_cmp)] // The tests pin exact IEEE results on purpose (numerics.md).
+
+mod cli;
+mod support;
+mod traces;

@@ -1,0 +1,80 @@
+//! Helpers shared by the integration tests: load a scene from text, trace a pixel or a ray with
+//! `EventLog`, and build the trace document.
+
+use serde_json::Value;
+use whitted::accel::{Accel, AccelKind};
+use whitted::doc::{trace_document, TraceTarget};
+use whitted::geom::ray::Ray;
+use whitted::record::EventLog;
+use whitted::scene::load::load_str;
+use whitted::scene::{AnyScene, Scene};
+use whitted::shape::Dim;
+use whitted::trace::Tracer;
+
+/// A valid 3D scene from JSON text (panics with the errors otherwise).
+pub fn scene3(text: &str) -> Scene<glam::DVec3> {
+    match load_str(text) {
+        Ok(AnyScene::Space(s)) => s,
+        Ok(AnyScene::Flat(_)) => panic!("expected a 3D scene"),
+        Err(e) => panic!("invalid scene: {e:?}"),
+    }
+}
+
+/// A valid 2D scene from JSON text.
+pub fn scene2(text: &str) -> Scene<glam::DVec2> {
+    match load_str(text) {
+        Ok(AnyScene::Flat(s)) => s,
+        Ok(AnyScene::Space(_)) => panic!("expected a 2D scene"),
+        Err(e) => panic!("invalid scene: {e:?}"),
+    }
+}
+
+/// Reads a fixture scene from `tests/data/scenes`.
+pub fn fixture(name: &str) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/scenes").join(name);
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// Traces pixel `(i, j)` and returns the trace document.
+pub fn trace_pixel<V: Dim>(scene: &Scene<V>, i: usize, j: usize) -> Value {
+    let cam = &scene.camera;
+    let (u, v) = cam.pixel_center(i, j);
+    let uv = if V::DIM == 2 { vec![u] } else { vec![u, v] };
+    let pixel = if V::DIM == 2 { vec![i] } else { vec![i, j] };
+    trace(scene, &cam.primary_ray(u, v), TraceTarget { pixel: Some(pixel), uv: Some(uv) })
+}
+
+/// Traces a ray given by hand and returns the trace document.
+pub fn trace_ray<V: Dim>(scene: &Scene<V>, ray: &Ray<V>) -> Value {
+    trace(scene, ray, TraceTarget { pixel: None, uv: None })
+}
+
+fn trace<V: Dim>(scene: &Scene<V>, ray: &Ray<V>, target: TraceTarget) -> Value {
+    let accel = Accel::build(scene, AccelKind::None);
+    let mut tracer = Tracer::new(scene, &accel, EventLog::new());
+    let uv = target.uv.clone().unwrap_or_default();
+    let color = tracer.trace_primary(ray, &uv);
+    trace_document(scene, &tracer.recorder, &tracer.stats, &target, color)
+}
+
+/// The events of a document of one kind.
+pub fn events<'a>(doc: &'a Value, kind: &str) -> Vec<&'a Value> {
+    doc["events"].as_array().unwrap().iter().filter(|e| e["kind"] == kind).collect()
+}
+
+/// A float field.
+pub fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+/// Asserts that no float in the document is NaN (serde_json would have written null) and that
+/// every non-finite value is one of the documented strings.
+pub fn assert_finite(doc: &Value) {
+    match doc {
+        Value::Number(n) => assert!(n.as_f64().is_some_and(f64::is_finite)),
+        Value::String(s) if s.contains("inf") => assert!(s == "inf" || s == "-inf"),
+        Value::Array(a) => a.iter().for_each(assert_finite),
+        Value::Object(m) => m.values().for_each(assert_finite),
+        _ => {}
+    }
+}
