@@ -17,7 +17,7 @@ use whitted::trace::Tracer;
 /// Renders every pixel centre once on this thread; `fresh` makes the recorder of each pixel.
 fn render_with<V: Dim, R: Recorder<V>>(
     scene: &Scene<V>,
-    accel: &Accel,
+    accel: &Accel<V>,
     mut fresh: impl FnMut() -> R,
 ) -> (f64, u64) {
     let cam = &scene.camera;

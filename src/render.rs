@@ -33,7 +33,7 @@ pub fn strip_height(nx: usize) -> usize {
 #[must_use]
 pub fn render_centers<V: Dim>(
     scene: &Scene<V>,
-    accel: &Accel,
+    accel: &Accel<V>,
     max_depth: u32,
     strip_rows: Option<usize>,
 ) -> Rendered {

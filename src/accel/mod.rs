@@ -30,15 +30,16 @@ impl AccelKind {
 
 /// A built acceleration structure over a scene's objects.
 #[derive(Clone, Debug)]
-pub struct Accel {
+pub struct Accel<V: Dim> {
     kind: AccelKind,
+    _dim: std::marker::PhantomData<V>,
 }
 
-impl Accel {
+impl<V: Dim> Accel<V> {
     /// Builds the structure of `kind` over `scene` (after the scene is complete and valid).
     #[must_use]
-    pub fn build<V: Dim>(_scene: &Scene<V>, kind: AccelKind) -> Self {
-        Self { kind }
+    pub fn build(_scene: &Scene<V>, kind: AccelKind) -> Self {
+        Self { kind, _dim: std::marker::PhantomData }
     }
     /// Which structure this is.
     #[must_use]
@@ -47,7 +48,7 @@ impl Accel {
     }
     /// The nearest hit with `t > 0`; equal t goes to the smaller object index.
     #[inline]
-    pub fn nearest<V: Dim, R: Recorder<V>>(
+    pub fn nearest<R: Recorder<V>>(
         &self,
         scene: &Scene<V>,
         ray: &Ray<V>,
@@ -61,7 +62,7 @@ impl Accel {
     /// Reports each distinct object with a hit at `0 < t < d_L` to `on` (with its t), until `on`
     /// returns false (an opaque occluder ends the search).
     #[inline]
-    pub fn occluders<V: Dim, R: Recorder<V>>(
+    pub fn occluders<R: Recorder<V>>(
         &self,
         scene: &Scene<V>,
         ray: &Ray<V>,

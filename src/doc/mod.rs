@@ -207,6 +207,30 @@ pub fn event<V: Dim>(
             put("n2", float(*n2));
         }
         Event::DepthLimit { level } => put("level", json!(level)),
+        Event::BoundTest { volume, object, intervals, t_in, t_out, hit } => {
+            put("volume", json!(volume));
+            put("object", object.map_or(Value::Null, |o| namer.object(o)));
+            put(
+                "intervals",
+                Value::Array(intervals.iter().map(|[a, b]| json!([float(*a), float(*b)])).collect()),
+            );
+            put("t_in", float(*t_in));
+            put("t_out", float(*t_out));
+            put("hit", json!(hit));
+        }
+        Event::NodeVisit { structure, node, depth, t_in, t_out } => {
+            put("structure", json!(structure));
+            put("node", json!(node));
+            put("depth", json!(depth));
+            put("t_in", float(*t_in));
+            put("t_out", float(*t_out));
+        }
+        Event::VoxelStep { cell, t_max, t_delta, objects } => {
+            put("cell", json!(cell));
+            put("t_max", Value::Array(t_max.iter().map(|x| float(*x)).collect()));
+            put("t_delta", Value::Array(t_delta.iter().map(|x| float(*x)).collect()));
+            put("objects", Value::Array(objects.iter().map(|o| namer.object(*o)).collect()));
+        }
         Event::Sample { uv, level, color: c, reused } => {
             put("u", float(uv[0]));
             if uv.len() > 1 {

@@ -281,6 +281,35 @@ impl<'a, V: Dim> Writer<'a, V> {
                         self.t("Depth limit: no secondary rays", "Limita de adâncime: fără raze secundare");
                     self.step(indent + 1, title, &[format!("n = {level} > max_depth = {}", self.max_depth)]);
                 }
+                Event::BoundTest { volume, t_in, t_out, hit, .. } => {
+                    let title = format!(
+                        "{} ({volume})",
+                        self.t("Bounding-volume test", "Test cu volumul încadrator")
+                    );
+                    let verdict = if *hit {
+                        self.t("hit", "intersectat")
+                    } else {
+                        self.t("missed: skipped", "ratat: obiectele sunt sărite")
+                    };
+                    self.step(
+                        indent + 1,
+                        &title,
+                        &[format!("max tᵢ = {}, min tₑ = {} → {verdict}", num(*t_in), num(*t_out))],
+                    );
+                }
+                Event::NodeVisit { structure, node, depth, t_in, t_out } => {
+                    let title = format!(
+                        "{} {structure} {node} ({} {depth})",
+                        self.t("Visit node", "Vizitează nodul"),
+                        self.t("depth", "adâncimea")
+                    );
+                    self.step(indent + 1, &title, &[format!("t ∈ [{}, {}]", num(*t_in), num(*t_out))]);
+                }
+                Event::VoxelStep { cell, t_max, .. } => {
+                    let title = format!("{} {cell:?}", self.t("Grid cell", "Celula grilei"));
+                    let t: Vec<String> = t_max.iter().map(|x| num(*x)).collect();
+                    self.step(indent + 1, &title, &[format!("tMax = ({})", t.join(", "))]);
+                }
                 Event::PrimaryRay { .. } | Event::Sample { .. } => {}
             }
         }

@@ -170,6 +170,45 @@ pub enum Event<V> {
         /// The node's level.
         level: u32,
     },
+    /// A ray against a bounding volume (§9): per axis or slab the interval `[t_in, t_out]`.
+    BoundTest {
+        /// `sphere`, `aabb` or `kdop`.
+        volume: &'static str,
+        /// The object it bounds (per-object bounds), if any.
+        object: Option<ObjectRef>,
+        /// `[t_near, t_far]` per axis or slab (a sphere: its two roots, or none).
+        intervals: Vec<[f64; 2]>,
+        /// max of the `t_near`.
+        t_in: f64,
+        /// min of the `t_far`.
+        t_out: f64,
+        /// Whether the ray meets the volume (closed: `t_in ≤ t_out`, `t_out ≥ 0`).
+        hit: bool,
+    },
+    /// A hierarchy node visited.
+    NodeVisit {
+        /// `bvh` or `octree`.
+        structure: &'static str,
+        /// The node's index in the structure.
+        node: usize,
+        /// Its depth (root = 0).
+        depth: u32,
+        /// Where the ray enters its volume.
+        t_in: f64,
+        /// Where it leaves.
+        t_out: f64,
+    },
+    /// A grid cell stepped into by the 3D DDA (Amanatides–Woo).
+    VoxelStep {
+        /// The cell's integer coordinates.
+        cell: Vec<i64>,
+        /// tMax per axis: the t of the next crossing of each axis.
+        t_max: Vec<f64>,
+        /// tDelta per axis: the t between crossings of each axis.
+        t_delta: Vec<f64>,
+        /// The objects tested in this cell (after the mailbox).
+        objects: Vec<ObjectRef>,
+    },
     /// An anti-aliasing sample.
     Sample {
         /// `[u, v]` (`[u]` in 2D).
@@ -198,6 +237,9 @@ impl<V> Event<V> {
             Self::TotalInternalReflection { .. } => "total_internal_reflection",
             Self::DepthLimit { .. } => "depth_limit",
             Self::Sample { .. } => "sample",
+            Self::BoundTest { .. } => "bound_test",
+            Self::NodeVisit { .. } => "node_visit",
+            Self::VoxelStep { .. } => "voxel_step",
         }
     }
 }

@@ -21,7 +21,7 @@ pub struct Tracer<'s, V: Dim, R: Recorder<V>> {
     /// The scene.
     pub scene: &'s Scene<V>,
     /// The structure that finds hits.
-    pub accel: &'s Accel,
+    pub accel: &'s Accel<V>,
     /// Children are spawned by a node at level n iff `n ≤ max_depth` (the scene's, or `--depth`).
     pub max_depth: u32,
     /// Where events go.
@@ -45,7 +45,7 @@ pub(crate) struct Shading<'a, V> {
 
 impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
     /// A tracer with the scene's own `max_depth`.
-    pub fn new(scene: &'s Scene<V>, accel: &'s Accel, recorder: R) -> Self {
+    pub fn new(scene: &'s Scene<V>, accel: &'s Accel<V>, recorder: R) -> Self {
         Self { scene, accel, max_depth: scene.max_depth, recorder, stats: Stats::default() }
     }
 
