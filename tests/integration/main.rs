@@ -2,6 +2,7 @@
 #![allow(clippy::float_cmp)] // The tests pin exact IEEE results on purpose (numerics.md).
 
 mod cli;
+mod numerics;
 mod properties;
 mod support;
 mod tidy;
