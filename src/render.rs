@@ -1,10 +1,22 @@
-//! The whole image (algorithm.md §6 "for each pixel"): one primary ray through each pixel centre,
-//! rows in parallel (rayon), traced with `NoRecorder` only, so rendering never pays for a trace.
-//! A 2D scene renders its one row and repeats it down a strip `max(1, Nx/8)` rows tall.
+//! The whole image (algorithm.md §6 "for each pixel", §8 "more primary rays"): the pixels of the
+//! chosen [`Sampling`] mode, rows in parallel (rayon), traced with `NoRecorder` only, so rendering
+//! never pays for a trace. A 2D scene renders its one row and repeats it down a strip
+//! `max(1, Nx/8)` rows tall.
+//!
+//! With corners or adaptive sampling the image is rendered in bands of pixel rows: the rows of a
+//! band run in parallel and share the lattice rows between them (`sample::shared`); the band's top
+//! lattice row is carried into the next band, so every sample is traced exactly once, and memory
+//! holds one band's lattice rows, never the whole refined lattice. Each sample's colour depends
+//! only on its lattice point and each pixel sums its squares in a fixed order, so the image and the
+//! counts are the same for any number of threads.
 
 use crate::accel::Accel;
 use crate::image::Image;
 use crate::record::NoRecorder;
+use crate::sample::corners::Lattice;
+use crate::sample::shared::{render_row, Edges, Line, Scratch};
+use crate::sample::Sampling;
+use crate::scene::material::Rgb;
 use crate::scene::Scene;
 use crate::shape::Dim;
 use crate::trace::stats::Stats;
@@ -16,10 +28,47 @@ use rayon::prelude::*;
 pub struct Rendered {
     /// The image.
     pub image: Image,
-    /// Rays and tests, summed over threads.
+    /// Rays and tests, summed over threads (`rays.primary` = the samples traced).
     pub stats: Stats,
     /// Pixels computed (a 2D strip counts its one row).
     pub pixels: u64,
+    /// If asked for: per computed pixel, `[j·Nx + i]` with j from the bottom (a 2D scene: its one
+    /// row, Nx entries), the number of distinct primary-ray samples whose colour entered the pixel.
+    /// A sample shared by several pixels (a corner, a point on an edge) counts once for **every**
+    /// pixel that read it, whoever traced it; a sample on the edge that a pixel did not need does
+    /// not count for it. So the sum over pixels exceeds `rays.primary` where samples are shared:
+    /// 1 per pixel with `center`, 4 with `corners`, 4 to `(2^K + 1)²` with `adaptive`.
+    pub rays_per_pixel: Option<Vec<u32>>,
+}
+
+/// How to render.
+#[derive(Clone, Copy)]
+pub struct RenderConfig<'a> {
+    /// The sampling mode.
+    pub sampling: Sampling,
+    /// Children are spawned by a node at level n iff `n ≤ max_depth` (the scene's, or `--depth`).
+    pub max_depth: u32,
+    /// The rows of a 2D scene's strip (default [`strip_height`]).
+    pub strip_rows: Option<usize>,
+    /// Whether to count the samples of each pixel ([`Rendered::rays_per_pixel`]).
+    pub rays_per_pixel: bool,
+    /// Called with the number of pixel rows finished, from any thread (a progress bar).
+    pub progress: Option<&'a (dyn Fn(u64) + Sync)>,
+}
+
+impl RenderConfig<'_> {
+    /// The lecture's render: one ray through each pixel centre, the given depth, no counts, no
+    /// progress.
+    #[must_use]
+    pub fn centers(max_depth: u32) -> Self {
+        Self {
+            sampling: Sampling::Center,
+            max_depth,
+            strip_rows: None,
+            rays_per_pixel: false,
+            progress: None,
+        }
+    }
 }
 
 /// Height of the strip a 2D scene renders to: `max(1, Nx/8)` (product.md).
@@ -37,27 +86,34 @@ pub fn render_centers<V: Dim>(
     max_depth: u32,
     strip_rows: Option<usize>,
 ) -> Rendered {
+    render(scene, accel, &RenderConfig { strip_rows, ..RenderConfig::centers(max_depth) })
+}
+
+/// One rendered pixel row.
+struct Row {
+    pixels: Vec<Rgb>,
+    used: Option<Vec<u32>>,
+    stats: Stats,
+}
+
+/// Renders the scene's image with `config`'s sampling in the current rayon pool.
+#[must_use]
+pub fn render<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<'_>) -> Rendered {
     let cam = &scene.camera;
-    let rows: Vec<(Vec<crate::scene::material::Rgb>, Stats)> = (0..cam.ny)
-        .into_par_iter()
-        .map(|j| {
-            let mut tracer = Tracer::new(scene, accel, NoRecorder);
-            tracer.max_depth = max_depth;
-            let row = (0..cam.nx)
-                .map(|i| {
-                    let (u, v) = cam.pixel_center(i, j);
-                    tracer.trace_primary(&cam.primary_ray(u, v), &[])
-                })
-                .collect();
-            (row, tracer.stats)
-        })
-        .collect();
+    let rows = match config.sampling.rule() {
+        None => center_rows(scene, accel, config),
+        Some(rule) => lattice_rows(scene, accel, config, rule),
+    };
     let mut stats = Stats::default();
-    let height = if V::DIM == 2 { strip_rows.unwrap_or_else(|| strip_height(cam.nx)) } else { cam.ny };
+    let height = if V::DIM == 2 { config.strip_rows.unwrap_or_else(|| strip_height(cam.nx)) } else { cam.ny };
     let mut image = Image::new(cam.nx, height);
-    for (j, (row, s)) in rows.into_iter().enumerate() {
-        stats += s;
-        image.pixels[j * cam.nx..(j + 1) * cam.nx].copy_from_slice(&row);
+    let mut counts = config.rays_per_pixel.then(|| Vec::with_capacity(cam.nx * cam.ny));
+    for (j, row) in rows.into_iter().enumerate() {
+        stats += row.stats;
+        image.pixels[j * cam.nx..(j + 1) * cam.nx].copy_from_slice(&row.pixels);
+        if let (Some(counts), Some(used)) = (counts.as_mut(), row.used) {
+            counts.extend(used);
+        }
     }
     if V::DIM == 2 {
         let first: Vec<_> = image.pixels[..cam.nx].to_vec();
@@ -65,5 +121,106 @@ pub fn render_centers<V: Dim>(
             image.pixels[j * cam.nx..(j + 1) * cam.nx].copy_from_slice(&first);
         }
     }
-    Rendered { image, stats, pixels: (cam.nx * cam.ny) as u64 }
+    Rendered { image, stats, pixels: (cam.nx * cam.ny) as u64, rays_per_pixel: counts }
+}
+
+/// §2: one ray through each pixel centre, `u = l + (r − l)·(i + 0.5)/Nx`; rows in parallel.
+fn center_rows<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<'_>) -> Vec<Row> {
+    let cam = &scene.camera;
+    (0..cam.ny)
+        .into_par_iter()
+        .map_init(
+            || tracer(scene, accel, config.max_depth),
+            |tracer, j| {
+                let pixels = (0..cam.nx)
+                    .map(|i| {
+                        let (u, v) = cam.pixel_center(i, j);
+                        tracer.trace_primary(&cam.primary_ray(u, v), &[])
+                    })
+                    .collect();
+                if let Some(progress) = config.progress {
+                    progress(1);
+                }
+                let used = config.rays_per_pixel.then(|| vec![1; cam.nx]);
+                Row { pixels, used, stats: std::mem::take(&mut tracer.stats) }
+            },
+        )
+        .collect()
+}
+
+fn tracer<'s, V: Dim>(scene: &'s Scene<V>, accel: &'s Accel<V>, max_depth: u32) -> Tracer<'s, V, NoRecorder> {
+    let mut tracer = Tracer::new(scene, accel, NoRecorder);
+    tracer.max_depth = max_depth;
+    tracer
+}
+
+/// About how much memory the shared lattice rows of one band may take.
+const BAND_BYTES: usize = 64 << 20;
+
+/// Pixel rows per band: as many as fit [`BAND_BYTES`] of lattice rows, between 2 and 64 (plenty
+/// to keep every thread busy between the bands' joins at the usual levels; a 1920-pixel-wide
+/// image at K = 8 has 491 521 points a lattice row and gets 2-row bands).
+fn band_rows(lattice: Lattice) -> usize {
+    let line_bytes = lattice.row_len() * std::mem::size_of::<std::sync::OnceLock<Rgb>>();
+    (BAND_BYTES / line_bytes.max(1)).clamp(2, 64).min(lattice.ny)
+}
+
+/// §8: corners and adaptive sampling on the shared lattice, band after band of rows.
+fn lattice_rows<V: Dim>(
+    scene: &Scene<V>,
+    accel: &Accel<V>,
+    config: &RenderConfig<'_>,
+    rule: (f64, u32),
+) -> Vec<Row> {
+    let lattice = Lattice::new(&scene.camera, rule.1);
+    if lattice.dims() == 1 {
+        // A 2D scene: one row of intervals, nothing shared with other rows.
+        let mut tracer = tracer(scene, accel, config.max_depth);
+        return vec![lattice_row(&mut tracer, &mut Scratch::new(lattice), lattice, rule, config, 0, None)];
+    }
+    let band = band_rows(lattice);
+    let mut lines: Vec<Line> = (0..=band).map(|_| Line::new(lattice.row_len())).collect();
+    let mut rows = Vec::with_capacity(lattice.ny);
+    let mut j0 = 0;
+    while j0 < lattice.ny {
+        let n = band.min(lattice.ny - j0);
+        let lines_ref = &lines;
+        let band_rows: Vec<Row> = (0..n)
+            .into_par_iter()
+            .map_init(
+                || (tracer(scene, accel, config.max_depth), Scratch::new(lattice)),
+                |(tracer, scratch), k| {
+                    let edges = Edges { bottom: &lines_ref[k], top: &lines_ref[k + 1] };
+                    lattice_row(tracer, scratch, lattice, rule, config, j0 + k, Some(edges))
+                },
+            )
+            .collect();
+        rows.extend(band_rows);
+        // The band's top lattice row is the next band's bottom one.
+        lines.swap(0, n);
+        for line in &mut lines[1..] {
+            line.clear();
+        }
+        j0 += n;
+    }
+    rows
+}
+
+/// One pixel row of the lattice modes.
+fn lattice_row<V: Dim>(
+    tracer: &mut Tracer<'_, V, NoRecorder>,
+    scratch: &mut Scratch,
+    lattice: Lattice,
+    rule: (f64, u32),
+    config: &RenderConfig<'_>,
+    j: usize,
+    edges: Option<Edges<'_>>,
+) -> Row {
+    let mut pixels = vec![Rgb::BLACK; lattice.nx];
+    let mut used = config.rays_per_pixel.then(|| vec![0; lattice.nx]);
+    render_row(tracer, lattice, rule, j, edges, scratch, &mut pixels, used.as_deref_mut());
+    if let Some(progress) = config.progress {
+        progress(1);
+    }
+    Row { pixels, used, stats: std::mem::take(&mut tracer.stats) }
 }
