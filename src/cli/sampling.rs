@@ -25,10 +25,10 @@ pub struct SamplingArgs {
     aa: AaArg,
     /// adaptive: a square splits while max over R, G, B of (max − min of its corners) ≥ X, on
     /// linear unclamped colours; X ≥ 0, or `inf` (never split: the same as corners).
-    #[arg(long, value_name = "X", value_parser = parse::threshold, default_value = "0.1")]
+    #[arg(long, value_name = "X", value_parser = parse::threshold, default_value = "0.1", allow_hyphen_values = true)]
     threshold: f64,
     /// adaptive: at most K subdivisions, K ≤ 8 (0 is corners; K = 2 means up to 5×5 samples a pixel).
-    #[arg(long = "max-level", value_name = "K", default_value = "2",
+    #[arg(long = "max-level", value_name = "K", default_value = "2", allow_hyphen_values = true,
           value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_LEVEL)))]
     max_level: u32,
 }

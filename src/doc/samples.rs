@@ -18,7 +18,8 @@
 //! - `events`: each carries `sample` (an index into `samples`); every time a square reads a corner,
 //!   a `sample` event (`u`, `v`, `level`, `color`, `reused`) with `reused` = the sample had already
 //!   been traced for another square of this pixel (its first read comes right after its ray's
-//!   events).
+//!   events); `ray` numbers the nodes of the samples' trees in pre-order, one tree after another
+//!   in the order of `samples`.
 //!
 //! The pixel is traced alone: corners it shares with neighbouring pixels are traced here too.
 
