@@ -3,10 +3,11 @@
 //! never pays for a trace. A 2D scene renders its one row and repeats it down a strip
 //! `max(1, Nx/8)` rows tall.
 //!
-//! With corners or adaptive sampling the image is rendered in bands of pixel rows: the rows of a
-//! band run in parallel and share the lattice rows between them (`sample::shared`); the band's top
-//! lattice row is carried into the next band, so every sample is traced exactly once, and memory
-//! holds one band's lattice rows, never the whole refined lattice. Each sample's colour depends
+//! With corners or adaptive sampling the image is rendered in bands of pixel rows: the corners of
+//! the band's edge rows are traced first, then the pixel rows run in parallel and share the finer
+//! points of the edge rows between them (`sample::shared`); the band's top edge row is carried
+//! into the next band, so every sample is traced exactly once, and memory holds one band's edge
+//! rows, never the whole refined lattice. Each sample's colour depends
 //! only on its lattice point and each pixel sums its squares in a fixed order, so the image and the
 //! counts are the same for any number of threads.
 
@@ -14,7 +15,7 @@ use crate::accel::Accel;
 use crate::image::Image;
 use crate::record::NoRecorder;
 use crate::sample::corners::Lattice;
-use crate::sample::shared::{render_row, Edges, Line, Scratch};
+use crate::sample::shared::{render_row, EdgeRow, Edges, Scratch};
 use crate::sample::Sampling;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
@@ -165,7 +166,8 @@ fn band_rows(lattice: Lattice) -> usize {
     (BAND_BYTES / line_bytes.max(1)).clamp(2, 64).min(lattice.ny)
 }
 
-/// §8: corners and adaptive sampling on the shared lattice, band after band of rows.
+/// §8: corners and adaptive sampling on the shared lattice, band after band of pixel rows: first
+/// the corners of the band's edge rows (in parallel over rows), then its pixel rows (in parallel).
 fn lattice_rows<V: Dim>(
     scene: &Scene<V>,
     accel: &Accel<V>,
@@ -173,35 +175,54 @@ fn lattice_rows<V: Dim>(
     rule: (f64, u32),
 ) -> Vec<Row> {
     let lattice = Lattice::new(&scene.camera, rule.1);
+    let new_tracer = || tracer(scene, accel, config.max_depth);
     if lattice.dims() == 1 {
-        // A 2D scene: one row of intervals, nothing shared with other rows.
-        let mut tracer = tracer(scene, accel, config.max_depth);
-        return vec![lattice_row(&mut tracer, &mut Scratch::new(lattice), lattice, rule, config, 0, None)];
+        // A 2D scene: one line of intervals; its corners are its pixels' ends.
+        let mut tracer = new_tracer();
+        let mut edge = EdgeRow::new(lattice, false);
+        edge.trace_corners(&mut tracer, lattice, 0);
+        let edges = Edges { bottom: &edge, top: &edge };
+        return vec![lattice_row(&mut tracer, &mut Scratch::new(lattice), lattice, rule, config, 0, edges)];
     }
     let band = band_rows(lattice);
-    let mut lines: Vec<Line> = (0..=band).map(|_| Line::new(lattice.row_len())).collect();
+    let mut edge_rows: Vec<EdgeRow> = (0..=band).map(|_| EdgeRow::new(lattice, true)).collect();
     let mut rows = Vec::with_capacity(lattice.ny);
+    let mut corner_stats = Stats::default();
     let mut j0 = 0;
     while j0 < lattice.ny {
         let n = band.min(lattice.ny - j0);
-        let lines_ref = &lines;
+        // The first band traces its bottom edge row too; later ones carry it from the band below.
+        let first = usize::from(j0 > 0);
+        let traced: Vec<Stats> = edge_rows[first..=n]
+            .par_iter_mut()
+            .enumerate()
+            .map_init(new_tracer, |tracer, (k, row)| {
+                row.trace_corners(tracer, lattice, j0 + first + k);
+                std::mem::take(&mut tracer.stats)
+            })
+            .collect();
+        for s in traced {
+            corner_stats += s;
+        }
+        let edge_ref = &edge_rows;
         let band_rows: Vec<Row> = (0..n)
             .into_par_iter()
             .map_init(
-                || (tracer(scene, accel, config.max_depth), Scratch::new(lattice)),
+                || (new_tracer(), Scratch::new(lattice)),
                 |(tracer, scratch), k| {
-                    let edges = Edges { bottom: &lines_ref[k], top: &lines_ref[k + 1] };
-                    lattice_row(tracer, scratch, lattice, rule, config, j0 + k, Some(edges))
+                    let edges = Edges { bottom: &edge_ref[k], top: &edge_ref[k + 1] };
+                    lattice_row(tracer, scratch, lattice, rule, config, j0 + k, edges)
                 },
             )
             .collect();
         rows.extend(band_rows);
-        // The band's top lattice row is the next band's bottom one.
-        lines.swap(0, n);
-        for line in &mut lines[1..] {
-            line.clear();
-        }
+        // The band's top edge row is the next band's bottom one.
+        edge_rows.swap(0, n);
         j0 += n;
+    }
+    // The corners' rays belong to no one row: count them with the first.
+    if let Some(row) = rows.first_mut() {
+        row.stats += corner_stats;
     }
     rows
 }
@@ -214,7 +235,7 @@ fn lattice_row<V: Dim>(
     rule: (f64, u32),
     config: &RenderConfig<'_>,
     j: usize,
-    edges: Option<Edges<'_>>,
+    edges: Edges<'_>,
 ) -> Row {
     let mut pixels = vec![Rgb::BLACK; lattice.nx];
     let mut used = config.rays_per_pixel.then(|| vec![0; lattice.nx]);

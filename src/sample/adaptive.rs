@@ -33,6 +33,9 @@ pub struct Square {
 
 /// Observes the squares in pre-order (for the trace document); `render` uses [`NoSquares`].
 pub trait SquareSink {
+    /// False for [`NoSquares`]: then a level-K square's spread, which decides nothing, is not
+    /// computed.
+    const RECORDS: bool;
     /// A square was decided; returns a handle for [`SquareSink::close`].
     fn open(&mut self, square: &Square) -> usize;
     /// The square's colour is known.
@@ -44,6 +47,7 @@ pub trait SquareSink {
 pub struct NoSquares;
 
 impl SquareSink for NoSquares {
+    const RECORDS: bool = false;
     #[inline(always)]
     fn open(&mut self, _square: &Square) -> usize {
         0
@@ -92,10 +96,10 @@ struct Rule {
 }
 
 impl Rule {
-    fn square(
+    fn square<S: SquareSink>(
         self,
         source: &mut impl SampleSource,
-        sink: &mut impl SquareSink,
+        sink: &mut S,
         a: u32,
         b: u32,
         side: u32,
@@ -111,8 +115,9 @@ impl Rule {
             corners[3] = source.color(a + side, b + side);
         }
         let corners = &corners[..n];
-        let spread = Rgb::spread(corners);
-        let split = splits(spread, level, self.threshold, self.max_level);
+        let decides = level < self.max_level;
+        let spread = if decides || S::RECORDS { Rgb::spread(corners) } else { 0.0 };
+        let split = decides && splits(spread, level, self.threshold, self.max_level);
         let handle = sink.open(&Square { a, b, side, level, spread, split });
         let color = if split {
             let half = side / 2;

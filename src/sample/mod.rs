@@ -257,6 +257,7 @@ struct Recorded {
 }
 
 impl SquareSink for Recorded {
+    const RECORDS: bool = true;
     fn open(&mut self, square: &Square) -> usize {
         let (x, y) = self.lattice.global(self.i, self.j, square.a, square.b);
         let (a, b, side) = (square.a, square.b, square.side);
