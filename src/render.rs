@@ -90,32 +90,25 @@ pub fn render_centers<V: Dim>(
     render(scene, accel, &RenderConfig { strip_rows, ..RenderConfig::centers(max_depth) })
 }
 
-/// One rendered pixel row.
-struct Row {
-    pixels: Vec<Rgb>,
-    used: Option<Vec<u32>>,
-    stats: Stats,
-}
-
 /// Renders the scene's image with `config`'s sampling in the current rayon pool.
 #[must_use]
 pub fn render<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<'_>) -> Rendered {
     let cam = &scene.camera;
-    let rows = match config.sampling.rule() {
-        None => center_rows(scene, accel, config),
-        Some(rule) => lattice_rows(scene, accel, config, rule),
-    };
-    let mut stats = Stats::default();
     let height = if V::DIM == 2 { config.strip_rows.unwrap_or_else(|| strip_height(cam.nx)) } else { cam.ny };
     let mut image = Image::new(cam.nx, height);
-    let mut counts = config.rays_per_pixel.then(|| Vec::with_capacity(cam.nx * cam.ny));
-    for (j, row) in rows.into_iter().enumerate() {
-        stats += row.stats;
-        image.pixels[j * cam.nx..(j + 1) * cam.nx].copy_from_slice(&row.pixels);
-        if let (Some(counts), Some(used)) = (counts.as_mut(), row.used) {
-            counts.extend(used);
+    // Rows are written in place: the computed rows are the first Ny of the image.
+    let computed = &mut image.pixels[..cam.nx * cam.ny];
+    let (stats, counts) = match config.sampling.rule() {
+        None => {
+            let stats = center_rows(scene, accel, config, computed);
+            (stats, config.rays_per_pixel.then(|| vec![1; cam.nx * cam.ny]))
         }
-    }
+        Some(rule) => {
+            let mut counts = vec![0; cam.nx * cam.ny];
+            let stats = lattice_rows(scene, accel, config, rule, computed, &mut counts);
+            (stats, config.rays_per_pixel.then_some(counts))
+        }
+    };
     if V::DIM == 2 {
         let first: Vec<_> = image.pixels[..cam.nx].to_vec();
         for j in 1..height {
@@ -125,28 +118,41 @@ pub fn render<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<
     Rendered { image, stats, pixels: (cam.nx * cam.ny) as u64, rays_per_pixel: counts }
 }
 
+/// Sums the statistics of the rows (integer counts: the order does not matter).
+fn total(rows: Vec<Stats>) -> Stats {
+    let mut sum = Stats::default();
+    for s in rows {
+        sum += s;
+    }
+    sum
+}
+
 /// §2: one ray through each pixel centre, `u = l + (r − l)·(i + 0.5)/Nx`; rows in parallel.
-fn center_rows<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<'_>) -> Vec<Row> {
+fn center_rows<V: Dim>(
+    scene: &Scene<V>,
+    accel: &Accel<V>,
+    config: &RenderConfig<'_>,
+    pixels: &mut [Rgb],
+) -> Stats {
     let cam = &scene.camera;
-    (0..cam.ny)
-        .into_par_iter()
+    let rows: Vec<Stats> = pixels
+        .par_chunks_mut(cam.nx)
+        .enumerate()
         .map_init(
             || tracer(scene, accel, config.max_depth),
-            |tracer, j| {
-                let pixels = (0..cam.nx)
-                    .map(|i| {
-                        let (u, v) = cam.pixel_center(i, j);
-                        tracer.trace_primary(&cam.primary_ray(u, v), &[])
-                    })
-                    .collect();
+            |tracer, (j, row)| {
+                for (i, pixel) in row.iter_mut().enumerate() {
+                    let (u, v) = cam.pixel_center(i, j);
+                    *pixel = tracer.trace_primary(&cam.primary_ray(u, v), &[]);
+                }
                 if let Some(progress) = config.progress {
                     progress(1);
                 }
-                let used = config.rays_per_pixel.then(|| vec![1; cam.nx]);
-                Row { pixels, used, stats: std::mem::take(&mut tracer.stats) }
+                std::mem::take(&mut tracer.stats)
             },
         )
-        .collect()
+        .collect();
+    total(rows)
 }
 
 fn tracer<'s, V: Dim>(scene: &'s Scene<V>, accel: &'s Accel<V>, max_depth: u32) -> Tracer<'s, V, NoRecorder> {
@@ -173,8 +179,11 @@ fn lattice_rows<V: Dim>(
     accel: &Accel<V>,
     config: &RenderConfig<'_>,
     rule: (f64, u32),
-) -> Vec<Row> {
+    pixels: &mut [Rgb],
+    counts: &mut [u32],
+) -> Stats {
     let lattice = Lattice::new(&scene.camera, rule.1);
+    let nx = lattice.nx;
     let new_tracer = || tracer(scene, accel, config.max_depth);
     if lattice.dims() == 1 {
         // A 2D scene: one line of intervals; its corners are its pixels' ends.
@@ -182,12 +191,13 @@ fn lattice_rows<V: Dim>(
         let mut edge = EdgeRow::new(lattice, false);
         edge.trace_corners(&mut tracer, lattice, 0);
         let edges = Edges { bottom: &edge, top: &edge };
-        return vec![lattice_row(&mut tracer, &mut Scratch::new(lattice), lattice, rule, config, 0, edges)];
+        let mut scratch = Scratch::new(lattice);
+        lattice_row(&mut tracer, &mut scratch, lattice, rule, config, 0, edges, (pixels, counts));
+        return tracer.stats;
     }
     let band = band_rows(lattice);
     let mut edge_rows: Vec<EdgeRow> = (0..=band).map(|_| EdgeRow::new(lattice, true)).collect();
-    let mut rows = Vec::with_capacity(lattice.ny);
-    let mut corner_stats = Stats::default();
+    let mut stats = Vec::new();
     let mut j0 = 0;
     while j0 < lattice.ny {
         let n = band.min(lattice.ny - j0);
@@ -201,33 +211,32 @@ fn lattice_rows<V: Dim>(
                 std::mem::take(&mut tracer.stats)
             })
             .collect();
-        for s in traced {
-            corner_stats += s;
-        }
+        stats.extend(traced);
         let edge_ref = &edge_rows;
-        let band_rows: Vec<Row> = (0..n)
-            .into_par_iter()
+        let band_pixels = pixels[j0 * nx..(j0 + n) * nx].par_chunks_mut(nx);
+        let band_counts = counts[j0 * nx..(j0 + n) * nx].par_chunks_mut(nx);
+        let rows: Vec<Stats> = band_pixels
+            .zip(band_counts)
+            .enumerate()
             .map_init(
                 || (new_tracer(), Scratch::new(lattice)),
-                |(tracer, scratch), k| {
+                |(tracer, scratch), (k, row)| {
                     let edges = Edges { bottom: &edge_ref[k], top: &edge_ref[k + 1] };
-                    lattice_row(tracer, scratch, lattice, rule, config, j0 + k, edges)
+                    lattice_row(tracer, scratch, lattice, rule, config, j0 + k, edges, row);
+                    std::mem::take(&mut tracer.stats)
                 },
             )
             .collect();
-        rows.extend(band_rows);
+        stats.extend(rows);
         // The band's top edge row is the next band's bottom one.
         edge_rows.swap(0, n);
         j0 += n;
     }
-    // The corners' rays belong to no one row: count them with the first.
-    if let Some(row) = rows.first_mut() {
-        row.stats += corner_stats;
-    }
-    rows
+    total(stats)
 }
 
-/// One pixel row of the lattice modes.
+/// One pixel row of the lattice modes, into its pixels and per-pixel counts.
+#[allow(clippy::too_many_arguments)]
 fn lattice_row<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     scratch: &mut Scratch,
@@ -236,12 +245,10 @@ fn lattice_row<V: Dim>(
     config: &RenderConfig<'_>,
     j: usize,
     edges: Edges<'_>,
-) -> Row {
-    let mut pixels = vec![Rgb::BLACK; lattice.nx];
-    let mut used = config.rays_per_pixel.then(|| vec![0; lattice.nx]);
-    render_row(tracer, lattice, rule, j, edges, scratch, &mut pixels, used.as_deref_mut());
+    (pixels, counts): (&mut [Rgb], &mut [u32]),
+) {
+    render_row(tracer, lattice, rule, j, edges, scratch, pixels, counts);
     if let Some(progress) = config.progress {
         progress(1);
     }
-    Row { pixels, used, stats: std::mem::take(&mut tracer.stats) }
 }

@@ -23,24 +23,39 @@ use crate::record::NoRecorder;
 use crate::scene::material::Rgb;
 use crate::shape::Dim;
 use crate::trace::Tracer;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
 
 /// The points of one lattice row, `Nx·2^K + 1` of them, each traced at most once by whichever
 /// thread asks first (the corners are not kept here: see [`EdgeRow`]).
 #[derive(Debug)]
-pub struct Line(Vec<OnceLock<Rgb>>);
+pub struct Line {
+    cells: Vec<OnceLock<Rgb>>,
+    /// Whether any point was traced (a line nobody split across needs no clearing).
+    touched: AtomicBool,
+}
 
 impl Line {
     /// An empty line of `len` points.
     #[must_use]
     pub fn new(len: usize) -> Self {
-        Self((0..len).map(|_| OnceLock::new()).collect())
+        Self { cells: (0..len).map(|_| OnceLock::new()).collect(), touched: AtomicBool::new(false) }
     }
     /// Forgets every colour (the line is reused for another lattice row).
     pub fn clear(&mut self) {
-        for cell in &mut self.0 {
-            cell.take();
+        if *self.touched.get_mut() {
+            for cell in &mut self.cells {
+                cell.take();
+            }
+            *self.touched.get_mut() = false;
         }
+    }
+    /// The colour of point `x`, traced by `trace` if no thread has traced it yet.
+    fn get_or_trace(&self, x: usize, trace: impl FnOnce() -> Rgb) -> Rgb {
+        *self.cells[x].get_or_init(|| {
+            self.touched.store(true, Ordering::Relaxed);
+            trace()
+        })
     }
 }
 
@@ -145,8 +160,7 @@ pub struct Edges<'l> {
 }
 
 /// Renders pixel row `j` with the subdivision rule `(threshold, K)` between its traced edge rows:
-/// writes each pixel's colour to `pixels` and, if given, the number of distinct samples it read
-/// to `used`.
+/// writes each pixel's colour to `pixels` and the number of distinct samples it read to `used`.
 #[allow(clippy::too_many_arguments)]
 pub fn render_row<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
@@ -156,7 +170,7 @@ pub fn render_row<V: Dim>(
     edges: Edges<'_>,
     scratch: &mut Scratch,
     pixels: &mut [Rgb],
-    mut used: Option<&mut [u32]>,
+    used: &mut [u32],
 ) {
     let dims = lattice.dims();
     scratch.left.fill(None);
@@ -179,9 +193,7 @@ pub fn render_row<V: Dim>(
             scratch.carry_right_edge(dims);
             count
         };
-        if let Some(used) = used.as_deref_mut() {
-            used[i] = count;
-        }
+        used[i] = count;
     }
 }
 
@@ -222,9 +234,9 @@ impl<V: Dim> SampleSource for RowSource<'_, '_, '_, V> {
                 let (x, y) = lattice.global(self.i, self.j, a, b);
                 // x ≤ Nx·2^K: the index of a point of the line.
                 #[allow(clippy::cast_possible_truncation)]
-                let cell = &line.0[x as usize];
+                let index = x as usize;
                 let tracer = &mut *self.tracer;
-                *cell.get_or_init(|| trace_point(tracer, lattice, x, y))
+                line.get_or_trace(index, || trace_point(tracer, lattice, x, y))
             }
             // The left edge, already read by the pixel to the left.
             None if a == 0 && self.scratch.left[b as usize].is_some() => {
