@@ -12,6 +12,10 @@ use crate::scene::material::Rgb;
 pub trait SampleSource {
     /// The colour of the sample at `(a, b)`, traced once whatever the number of calls.
     fn color(&mut self, a: u32, b: u32) -> Rgb;
+    /// A square reads `(a, b)` again, whose colour its parent already holds (the trace records
+    /// it as reused; rendering does nothing).
+    #[inline(always)]
+    fn reuse(&mut self, _a: u32, _b: u32, _color: Rgb) {}
 }
 
 /// A square of the subdivision, as the recursion decided it.
@@ -83,8 +87,7 @@ pub fn subdivide(
     threshold: f64,
     max_level: u32,
 ) -> Rgb {
-    let rule = Rule { dims, threshold, max_level };
-    rule.square(source, sink, 0, 0, 1 << max_level, 0)
+    Rule { dims, threshold, max_level }.pixel(source, sink)
 }
 
 /// The fixed parameters of one subdivision.
@@ -95,42 +98,80 @@ struct Rule {
     max_level: u32,
 }
 
+/// The corners of a square, in the order lower-left, lower-right, upper-left, upper-right, as
+/// offsets in half sides (2D: the first two).
+const CORNERS: [(u32, u32); 4] = [(0, 0), (1, 0), (0, 1), (1, 1)];
+
 impl Rule {
+    /// Corners per square: 4, or 2 on a 2D scene's line.
+    fn n(self) -> usize {
+        if self.dims == 1 {
+            2
+        } else {
+            4
+        }
+    }
+
+    /// The pixel: reads its corners, then subdivides.
+    fn pixel<S: SquareSink>(self, source: &mut impl SampleSource, sink: &mut S) -> Rgb {
+        let side = 1 << self.max_level;
+        let mut corners = [Rgb::BLACK; 4];
+        for (k, (dx, dy)) in CORNERS[..self.n()].iter().enumerate() {
+            corners[k] = source.color(dx * side, dy * side);
+        }
+        self.square(source, sink, (0, 0), side, 0, corners)
+    }
+
+    /// One square whose corners are known: decide, then either the mean of its corners or the
+    /// mean of its children. A split square's 3×3 points (2D: 3) hold its corners and, as the
+    /// children read them in order, the 5 (2D: 1) new ones, so a child gets what a sibling read
+    /// without asking the source again (which still sees it: [`SampleSource::reuse`]).
     fn square<S: SquareSink>(
         self,
         source: &mut impl SampleSource,
         sink: &mut S,
-        a: u32,
-        b: u32,
+        (a, b): (u32, u32),
         side: u32,
         level: u32,
+        corners: [Rgb; 4],
     ) -> Rgb {
-        // Corners: lower-left, lower-right (then upper-left, upper-right).
-        let mut corners = [Rgb::BLACK; 4];
-        let n = if self.dims == 1 { 2 } else { 4 };
-        corners[0] = source.color(a, b);
-        corners[1] = source.color(a + side, b);
-        if n == 4 {
-            corners[2] = source.color(a, b + side);
-            corners[3] = source.color(a + side, b + side);
-        }
-        let corners = &corners[..n];
+        let n = self.n();
+        let known = &corners[..n];
         let decides = level < self.max_level;
-        let spread = if decides || S::RECORDS { Rgb::spread(corners) } else { 0.0 };
+        let spread = if decides || S::RECORDS { Rgb::spread(known) } else { 0.0 };
         let split = decides && splits(spread, level, self.threshold, self.max_level);
         let handle = sink.open(&Square { a, b, side, level, spread, split });
         let color = if split {
             let half = side / 2;
+            let mut points: [[Option<Rgb>; 3]; 3] = [[None; 3]; 3];
+            for (k, (dx, dy)) in CORNERS[..n].iter().enumerate() {
+                points[2 * *dy as usize][2 * *dx as usize] = Some(corners[k]);
+            }
             let mut children = [Rgb::BLACK; 4];
-            children[0] = self.square(source, sink, a, b, half, level + 1);
-            children[1] = self.square(source, sink, a + half, b, half, level + 1);
-            if n == 4 {
-                children[2] = self.square(source, sink, a, b + half, half, level + 1);
-                children[3] = self.square(source, sink, a + half, b + half, half, level + 1);
+            for (child, (cx, cy)) in CORNERS[..n].iter().enumerate() {
+                let mut own = [Rgb::BLACK; 4];
+                for (k, (dx, dy)) in CORNERS[..n].iter().enumerate() {
+                    let (gx, gy) = (cx + dx, cy + dy);
+                    let (x, y) = (a + gx * half, b + gy * half);
+                    let slot = &mut points[gy as usize][gx as usize];
+                    own[k] = match *slot {
+                        Some(c) => {
+                            source.reuse(x, y, c);
+                            c
+                        }
+                        None => {
+                            let c = source.color(x, y);
+                            *slot = Some(c);
+                            c
+                        }
+                    };
+                }
+                children[child] =
+                    self.square(source, sink, (a + cx * half, b + cy * half), half, level + 1, own);
             }
             corner_mean(&children[..n])
         } else {
-            corner_mean(corners)
+            corner_mean(known)
         };
         sink.close(handle, color);
         color

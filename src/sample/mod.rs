@@ -208,41 +208,42 @@ struct LoggedSource<'t, 's, V: Dim> {
 
 impl<V: Dim> SampleSource for LoggedSource<'_, '_, V> {
     fn color(&mut self, a: u32, b: u32) -> Rgb {
-        let (index, reused) = match self.seen.get(&(a, b)) {
-            Some(&k) => {
-                self.samples[k].reused = true;
-                (k, true)
-            }
-            None => {
-                let k = self.samples.len();
-                let (x, y) = self.lattice.global(self.i, self.j, a, b);
-                let (u, v) = self.lattice.uv(&self.tracer.scene.camera, x, y);
-                let dims = self.lattice.dims();
-                let uv = if dims == 1 { vec![u] } else { vec![u, v] };
-                let lattice = if dims == 1 { vec![x] } else { vec![x, y] };
-                self.tracer.recorder.current_sample = Some(k);
-                let root = self.tracer.recorder.nodes.len();
-                let ray = self.tracer.scene.camera.primary_ray(u, v);
-                let color = self.tracer.trace_primary(&ray, &uv);
-                let level = sample_level(a, b, self.lattice.max_level);
-                self.samples.push(SampleRecord {
-                    label: label(k),
-                    lattice,
-                    uv,
-                    level,
-                    color,
-                    reused: false,
-                    root,
-                });
-                self.seen.insert((a, b), k);
-                (k, false)
-            }
-        };
-        let s = &self.samples[index];
-        let (uv, level, color) = (s.uv.clone(), s.level, s.color);
-        self.tracer.recorder.current_sample = Some(index);
-        self.tracer.recorder.event(|| Event::Sample { uv, level, color, reused });
+        if let Some(&k) = self.seen.get(&(a, b)) {
+            let color = self.samples[k].color;
+            self.reuse(a, b, color);
+            return color;
+        }
+        let k = self.samples.len();
+        let (x, y) = self.lattice.global(self.i, self.j, a, b);
+        let (u, v) = self.lattice.uv(&self.tracer.scene.camera, x, y);
+        let dims = self.lattice.dims();
+        let uv = if dims == 1 { vec![u] } else { vec![u, v] };
+        let lattice = if dims == 1 { vec![x] } else { vec![x, y] };
+        self.tracer.recorder.current_sample = Some(k);
+        let root = self.tracer.recorder.nodes.len();
+        let ray = self.tracer.scene.camera.primary_ray(u, v);
+        let color = self.tracer.trace_primary(&ray, &uv);
+        let level = sample_level(a, b, self.lattice.max_level);
+        self.samples.push(SampleRecord {
+            label: label(k),
+            lattice,
+            uv: uv.clone(),
+            level,
+            color,
+            reused: false,
+            root,
+        });
+        self.seen.insert((a, b), k);
+        self.tracer.recorder.event(|| Event::Sample { uv, level, color, reused: false });
         color
+    }
+    fn reuse(&mut self, a: u32, b: u32, color: Rgb) {
+        let k = self.seen[&(a, b)];
+        let s = &mut self.samples[k];
+        s.reused = true;
+        let (uv, level) = (s.uv.clone(), s.level);
+        self.tracer.recorder.current_sample = Some(k);
+        self.tracer.recorder.event(|| Event::Sample { uv, level, color, reused: true });
     }
 }
 
