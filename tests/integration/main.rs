@@ -4,6 +4,7 @@
 mod cli;
 mod numerics;
 mod properties;
+mod sampling;
 mod support;
 mod tidy;
 mod traces;
