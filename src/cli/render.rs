@@ -1,12 +1,13 @@
 //! `whitted render`: load → build the acceleration structure → render → PNG → the one-line
 //! summary (rays by kind, tests, time) on stderr, `--json` statistics on stdout.
 
+use super::accel::AccelArgs;
 use super::{default_output, load_scene, parse, print_out, write_file, Failure};
 use clap::Args;
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
-use whitted::accel::{Accel, AccelKind};
+use whitted::accel::{Accel, AccelOptions};
 use whitted::render::{render_centers, Rendered};
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
@@ -31,6 +32,8 @@ pub struct RenderArgs {
     /// Print the run's statistics as one JSON object on stdout.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    accel: AccelArgs,
 }
 
 /// Applies `--size` to a scene's camera: the window stays, the pixel count changes.
@@ -63,14 +66,19 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         b.build().map_err(|e| Failure::other(format!("cannot start the worker threads: {e}")))?
     };
     let threads = pool.current_num_threads();
+    let dim = match &scene {
+        AnyScene::Flat(_) => 2,
+        AnyScene::Space(_) => 3,
+    };
+    let options = args.accel.options(dim).map_err(Failure::input)?;
     let outcome = match scene {
         AnyScene::Flat(mut s) => {
             let rows = resize(&mut s, args.size);
-            pool.install(|| render_scene(&s, args, rows))
+            pool.install(|| render_scene(&s, args, &options, rows))
         }
         AnyScene::Space(mut s) => {
             let rows = resize(&mut s, args.size);
-            pool.install(|| render_scene(&s, args, rows))
+            pool.install(|| render_scene(&s, args, &options, rows))
         }
     };
     let output = args.output.clone().unwrap_or_else(|| default_output(&args.scene, "png"));
@@ -80,7 +88,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let rays = stats.rays;
     let mrays = rays.total() as f64 / outcome.seconds.max(1e-9) / 1e6;
     eprintln!(
-        "whitted: {}x{} → {} | {} pixels, {} samples | rays: {} primary, {} reflected, {} transmitted, {} shadow | tests: {} object | {:.3} s trace, {:.2} Mrays/s, {} threads",
+        "whitted: {}x{} → {} | {} pixels, {} samples | rays: {} primary, {} reflected, {} transmitted, {} shadow | tests: {} object, {} bound, {} node, {} voxel | {} | {:.3} s trace, {:.2} Mrays/s, {} threads",
         outcome.rendered.image.width,
         outcome.rendered.image.height,
         output.display(),
@@ -91,6 +99,10 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         rays.transmitted,
         rays.shadow,
         stats.tests.object,
+        stats.tests.bound,
+        stats.tests.node,
+        stats.tests.voxel,
+        outcome.accel,
         outcome.seconds,
         mrays,
         threads,
@@ -123,9 +135,14 @@ struct Outcome {
     accel: &'static str,
 }
 
-fn render_scene<V: Dim>(scene: &Scene<V>, args: &RenderArgs, strip_rows: Option<usize>) -> Outcome {
+fn render_scene<V: Dim>(
+    scene: &Scene<V>,
+    args: &RenderArgs,
+    options: &AccelOptions,
+    strip_rows: Option<usize>,
+) -> Outcome {
     let build = Instant::now();
-    let accel = Accel::build(scene, AccelKind::None);
+    let accel = Accel::build_with(scene, options);
     let build_seconds = build.elapsed().as_secs_f64();
     let max_depth = args.depth.unwrap_or(scene.max_depth);
     let trace = Instant::now();

@@ -1,10 +1,11 @@
 //! `whitted trace`: one pixel (or one ray) traced with `EventLog`; `--json` prints the trace
 //! document, otherwise the numbered narration (`doc::narrate`) in English or Romanian.
 
+use super::accel::AccelArgs;
 use super::{load_scene, parse, print_out, Failure};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
-use whitted::accel::{Accel, AccelKind};
+use whitted::accel::Accel;
 use whitted::doc::narrate::{narrate, Lang};
 use whitted::doc::{trace_document, TraceTarget};
 use whitted::geom::ray::Ray;
@@ -42,6 +43,8 @@ pub struct TraceArgs {
     /// The narration's language.
     #[arg(long, value_enum, default_value = "en")]
     lang: LangArg,
+    #[command(flatten)]
+    accel: AccelArgs,
 }
 
 /// Runs `whitted trace`.
@@ -93,7 +96,8 @@ fn target<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(Ray<V>, TraceTa
 
 fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure> {
     let (ray, target) = target(scene, args)?;
-    let accel = Accel::build(scene, AccelKind::None);
+    let options = args.accel.options(V::DIM).map_err(Failure::input)?;
+    let accel = Accel::build_with(scene, &options);
     let mut tracer = Tracer::new(scene, &accel, EventLog::new());
     if let Some(d) = args.depth {
         tracer.max_depth = d;
