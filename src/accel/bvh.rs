@@ -35,8 +35,12 @@ pub const MAX_LEAF: usize = 4;
 pub const C_TRAV: f64 = 0.5;
 /// From this depth on, splits are at the median.
 pub const BALANCE_DEPTH: u32 = 40;
-/// The traversal stack (one pending node per level at most).
-const STACK: usize = BALANCE_DEPTH as usize + 40;
+
+thread_local! {
+    /// The traversal stack of this thread's walks: pending `(node, depth, t_in)`, reused so that
+    /// a walk neither allocates nor clears a large array.
+    static STACK: std::cell::RefCell<Vec<(u32, u32, f64)>> = const { std::cell::RefCell::new(Vec::new()) };
+}
 
 /// A node: a leaf over `prims[start .. start + count]`, or (count 0) an inner node whose
 /// children are the next node and node `start`.
@@ -124,38 +128,37 @@ impl<V: Dim> Bvh<V> {
         if !root.hit {
             return;
         }
-        let mut stack = [(0usize, 0u32, 0.0f64); STACK];
-        stack[0] = (0, 0, root.t_in);
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let (i, depth, t_in) = stack[top];
-            if beyond(t_in, visitor.bound()) {
-                continue;
-            }
-            let node = self.nodes[i];
-            if node.count > 0 {
-                let start = node.start as usize;
-                for p in &self.prims[start..start + node.count as usize] {
-                    if visitor.visit(*p, stats, rec) {
-                        return;
+        STACK.with(|cell| {
+            let mut stack = cell.borrow_mut();
+            stack.clear();
+            stack.push((0, 0, root.t_in));
+            while let Some((i, depth, t_in)) = stack.pop() {
+                if beyond(t_in, visitor.bound()) {
+                    continue;
+                }
+                let node = self.nodes[i as usize];
+                if node.count > 0 {
+                    let start = node.start as usize;
+                    for p in &self.prims[start..start + node.count as usize] {
+                        if visitor.visit(*p, stats, rec) {
+                            return;
+                        }
+                    }
+                    continue;
+                }
+                let (left, right) = (i + 1, node.start);
+                let hl = self.test_node(left as usize, depth + 1, &r, stats, rec);
+                let hr = self.test_node(right as usize, depth + 1, &r, stats, rec);
+                // Push the farther first, so the nearer is popped first (a tie keeps left first).
+                let (near, far, h_near, h_far) =
+                    if hr.t_in < hl.t_in { (right, left, hr, hl) } else { (left, right, hl, hr) };
+                for (child, h) in [(far, h_far), (near, h_near)] {
+                    if h.hit && !beyond(h.t_in, visitor.bound()) {
+                        stack.push((child, depth + 1, h.t_in));
                     }
                 }
-                continue;
             }
-            let (left, right) = (i + 1, node.start as usize);
-            let hl = self.test_node(left, depth + 1, &r, stats, rec);
-            let hr = self.test_node(right, depth + 1, &r, stats, rec);
-            // Push the farther first, so the nearer is popped first (a tie keeps left first).
-            let (near, far, h_near, h_far) =
-                if hr.t_in < hl.t_in { (right, left, hr, hl) } else { (left, right, hl, hr) };
-            for (child, h) in [(far, h_far), (near, h_near)] {
-                if h.hit && !beyond(h.t_in, visitor.bound()) {
-                    stack[top] = (child, depth + 1, h.t_in);
-                    top += 1;
-                }
-            }
-        }
+        });
     }
 }
 

@@ -208,9 +208,9 @@ impl<V: Dim> Accel<V> {
         stats: &mut Stats,
         rec: &mut R,
     ) -> Option<(ObjectRef, SurfaceHit<V>)> {
-        let mut visitor = Nearest { scene, ray, best: None };
+        let mut visitor = Nearest::new(scene, ray);
         self.search(scene, ray, &mut visitor, stats, rec);
-        visitor.best.map(|(prim, hit)| (object_ref(scene, prim), hit))
+        visitor.found()
     }
 
     /// Reports each distinct object with a hit at `0 < t < d_L` to `on`, until `on` returns
@@ -252,6 +252,19 @@ pub struct Nearest<'a, V: Dim> {
     scene: &'a Scene<V>,
     ray: &'a Ray<V>,
     best: Option<(Prim, SurfaceHit<V>)>,
+}
+
+impl<'a, V: Dim> Nearest<'a, V> {
+    /// The question for `ray`, nothing found yet.
+    #[must_use]
+    pub fn new(scene: &'a Scene<V>, ray: &'a Ray<V>) -> Self {
+        Self { scene, ray, best: None }
+    }
+    /// The nearest hit found, named as traces name it.
+    #[must_use]
+    pub fn found(self) -> Option<(ObjectRef, SurfaceHit<V>)> {
+        self.best.map(|(prim, hit)| (object_ref(self.scene, prim), hit))
+    }
 }
 
 impl<V: Dim> Visitor<V> for Nearest<'_, V> {

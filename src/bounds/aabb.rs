@@ -93,7 +93,7 @@ impl<V: Vector> Aabb<V> {
         BoundHit { t_in: c.t_in, t_out: c.t_out, hit: culling_hit(c.t_in, c.t_out) }
     }
     /// The same decision by reciprocals, for traversals (no per-axis intervals).
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn cull(&self, ray: &RecipRay<V>) -> BoundHit {
         let (t_in, t_out) = ray.box_interval(self.min, self.max);

@@ -60,6 +60,9 @@ pub struct RecipRay<V> {
     pub dir: V,
     /// `1/D` per axis (±∞ where a component is ±0; never used there, see [`slab_interval`]).
     pub inv_dir: V,
+    /// No component of D is zero: no slab is parallel, and [`RecipRay::box_interval`] takes
+    /// the same formulas without the parallel branch.
+    pub oblique: bool,
 }
 
 impl<V: Vector> RecipRay<V> {
@@ -70,13 +73,26 @@ impl<V: Vector> RecipRay<V> {
         for axis in 0..V::DIM {
             inv_dir[axis] = 1.0 / ray.dir[axis];
         }
-        Self { origin: ray.origin, dir: ray.dir, inv_dir }
+        let oblique = (0..V::DIM).all(|a| ray.dir[a] != 0.0 && inv_dir[a].is_finite());
+        Self { origin: ray.origin, dir: ray.dir, inv_dir, oblique }
     }
     /// `[max t_near, min t_far]` of the box `[min, max]`, slab by slab, by reciprocals.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn box_interval(&self, min: V, max: V) -> (f64, f64) {
         let (mut t_in, mut t_out) = (f64::NEG_INFINITY, f64::INFINITY);
+        if self.oblique {
+            // slab_interval_recip without its parallel branch, written with plain comparisons
+            // (no NaN can arise: every 1/d is finite and non-zero).
+            for axis in 0..V::DIM {
+                let t1 = (min[axis] - self.origin[axis]) * self.inv_dir[axis];
+                let t2 = (max[axis] - self.origin[axis]) * self.inv_dir[axis];
+                let (near, far) = if t1 <= t2 { (t1, t2) } else { (t2, t1) };
+                t_in = if near > t_in { near } else { t_in };
+                t_out = if far < t_out { far } else { t_out };
+            }
+            return (t_in, t_out);
+        }
         for axis in 0..V::DIM {
             let s = slab_interval_recip(
                 self.origin[axis],
