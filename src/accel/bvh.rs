@@ -36,24 +36,37 @@ pub const C_TRAV: f64 = 0.5;
 /// From this depth on, splits are at the median.
 pub const BALANCE_DEPTH: u32 = 40;
 
-thread_local! {
-    /// The traversal stack of this thread's walks: pending `(node, depth, t_in)`, reused so that
-    /// a walk neither allocates nor clears a large array.
-    static STACK: std::cell::RefCell<Vec<(u32, u32, f64)>> = const { std::cell::RefCell::new(Vec::new()) };
-}
-
-/// A node: a leaf over `prims[start .. start + count]`, or (count 0) an inner node whose
-/// children are the next node and node `start`.
+/// A node of the tree as built: a leaf over `prims[start .. start + count]`, or (count 0) an
+/// inner node whose children are the next node and node `start`. Node numbers in `node_visit`
+/// events are indices in this depth-first order (the root is 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Node<V> {
+struct Built<V> {
     bounds: Aabb<V>,
     start: u32,
     count: u32,
 }
 
-/// A built BVH: nodes in depth-first order (the root is node 0), primitives in leaf order.
+/// A child as the traversal sees it: a leaf over `prims[start .. start + count]` (count > 0)
+/// or the inner node `nodes[start]` (count 0); `id` is its number in depth-first order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Link {
+    start: u32,
+    count: u32,
+    id: u32,
+}
+
+/// An inner node with both children's boxes side by side, so one read gives both tests.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Node<V> {
+    boxes: [Aabb<V>; 2],
+    links: [Link; 2],
+}
+
+/// A built BVH: the root's box and link, inner nodes, primitives in leaf order.
 #[derive(Clone, Debug)]
 pub struct Bvh<V> {
+    root_box: Aabb<V>,
+    root: Link,
     nodes: Vec<Node<V>>,
     prims: Vec<Prim>,
 }
@@ -63,7 +76,13 @@ struct Builder<V> {
     boxes: Vec<Aabb<V>>,
     centroids: Vec<V>,
     order: Vec<u32>,
-    nodes: Vec<Node<V>>,
+    nodes: Vec<Built<V>>,
+}
+
+thread_local! {
+    /// The traversal stack of this thread's walks: pending `(link, depth, t_in)`, reused so that
+    /// a walk neither allocates nor clears a large array.
+    static STACK: std::cell::RefCell<Vec<(Link, u32, f64)>> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
 impl<V: Dim> Bvh<V> {
@@ -78,37 +97,71 @@ impl<V: Dim> Bvh<V> {
     #[must_use]
     pub fn from_boxes(prims: Vec<Prim>, boxes: Vec<Aabb<V>>) -> Self {
         let n = prims.len();
+        let empty = Link { start: 0, count: 0, id: 0 };
         if n == 0 {
-            return Self { nodes: Vec::new(), prims };
+            return Self { root_box: Aabb::empty(), root: empty, nodes: Vec::new(), prims };
         }
-        let centroids = boxes.iter().map(Aabb::centroid).collect();
-        let order = (0..u32::try_from(n).expect("fewer than 2^32 primitives")).collect();
-        let mut b = Builder { boxes, centroids, order, nodes: Vec::with_capacity(n) };
-        b.node(0, n, 0);
-        let Builder { order, nodes, .. } = b;
+        let (order, built) = {
+            let centroids = boxes.iter().map(Aabb::centroid).collect();
+            let order = (0..to_u32(n)).collect();
+            let mut b = Builder { boxes, centroids, order, nodes: Vec::with_capacity(n) };
+            b.node(0, n, 0);
+            (b.order, b.nodes)
+        };
         let prims = order.iter().map(|&i| prims[i as usize]).collect();
-        Self { nodes, prims }
+        // Inner nodes get consecutive indices in depth-first order.
+        let mut inner_index = vec![0u32; built.len()];
+        let mut count = 0;
+        for (i, b) in built.iter().enumerate() {
+            if b.count == 0 {
+                inner_index[i] = count;
+                count += 1;
+            }
+        }
+        let link = |j: usize| {
+            let b = built[j];
+            let start = if b.count > 0 { b.start } else { inner_index[j] };
+            Link { start, count: b.count, id: to_u32(j) }
+        };
+        let nodes = (0..built.len())
+            .filter(|&i| built[i].count == 0)
+            .map(|i| {
+                let (l, r) = (i + 1, built[i].start as usize);
+                Node { boxes: [built[l].bounds, built[r].bounds], links: [link(l), link(r)] }
+            })
+            .collect();
+        Self { root_box: built[0].bounds, root: link(0), nodes, prims }
     }
 
-    /// Number of nodes.
+    /// Number of nodes (leaves and inner nodes).
     #[must_use]
     pub fn node_count(&self) -> usize {
-        self.nodes.len()
+        if self.prims.is_empty() {
+            0
+        } else {
+            2 * self.nodes.len() + 1
+        }
     }
 
-    /// One node's box against the ray: counted, recorded.
-    #[inline]
-    fn test_node<R: Recorder<V>>(
-        &self,
-        i: usize,
+    /// One child's box against the ray: counted, recorded.
+    #[inline(always)]
+    fn test_box<R: Recorder<V>>(
+        bounds: &Aabb<V>,
+        id: u32,
         depth: u32,
         ray: &RecipRay<V>,
         stats: &mut Stats,
         rec: &mut R,
     ) -> BoundHit {
         stats.tests.node += 1;
-        let h = self.nodes[i].bounds.cull(ray);
-        rec.event(|| Event::NodeVisit { structure: "bvh", node: i, depth, t_in: h.t_in, t_out: h.t_out });
+        let h = bounds.cull(ray);
+        rec.event(|| Event::NodeVisit {
+            structure: "bvh",
+            node: id as usize,
+            depth,
+            t_in: h.t_in,
+            t_out: h.t_out,
+        });
         h
     }
 
@@ -120,38 +173,38 @@ impl<V: Dim> Bvh<V> {
         stats: &mut Stats,
         rec: &mut R,
     ) {
-        if self.nodes.is_empty() {
+        if self.prims.is_empty() {
             return;
         }
         let r = RecipRay::new(ray);
-        let root = self.test_node(0, 0, &r, stats, rec);
+        let root = Self::test_box(&self.root_box, 0, 0, &r, stats, rec);
         if !root.hit {
             return;
         }
         STACK.with(|cell| {
             let mut stack = cell.borrow_mut();
             stack.clear();
-            stack.push((0, 0, root.t_in));
-            while let Some((i, depth, t_in)) = stack.pop() {
+            stack.push((self.root, 0, root.t_in));
+            while let Some((link, depth, t_in)) = stack.pop() {
                 if beyond(t_in, visitor.bound()) {
                     continue;
                 }
-                let node = self.nodes[i as usize];
-                if node.count > 0 {
-                    let start = node.start as usize;
-                    for p in &self.prims[start..start + node.count as usize] {
+                if link.count > 0 {
+                    let start = link.start as usize;
+                    for p in &self.prims[start..start + link.count as usize] {
                         if visitor.visit(*p, stats, rec) {
                             return;
                         }
                     }
                     continue;
                 }
-                let (left, right) = (i + 1, node.start);
-                let hl = self.test_node(left as usize, depth + 1, &r, stats, rec);
-                let hr = self.test_node(right as usize, depth + 1, &r, stats, rec);
+                let node = &self.nodes[link.start as usize];
+                let [l, rr] = node.links;
+                let hl = Self::test_box(&node.boxes[0], l.id, depth + 1, &r, stats, rec);
+                let hr = Self::test_box(&node.boxes[1], rr.id, depth + 1, &r, stats, rec);
                 // Push the farther first, so the nearer is popped first (a tie keeps left first).
                 let (near, far, h_near, h_far) =
-                    if hr.t_in < hl.t_in { (right, left, hr, hl) } else { (left, right, hl, hr) };
+                    if hr.t_in < hl.t_in { (rr, l, hr, hl) } else { (l, rr, hl, hr) };
                 for (child, h) in [(far, h_far), (near, h_near)] {
                     if h.hit && !beyond(h.t_in, visitor.bound()) {
                         stack.push((child, depth + 1, h.t_in));
@@ -168,7 +221,7 @@ impl<V: Vector> Builder<V> {
     fn node(&mut self, lo: usize, hi: usize, depth: u32) {
         let index = self.nodes.len();
         let bounds = self.order[lo..hi].iter().fold(Aabb::empty(), |b, &i| b.union(&self.boxes[i as usize]));
-        let leaf = Node { bounds, start: to_u32(lo), count: to_u32(hi - lo) };
+        let leaf = Built { bounds, start: to_u32(lo), count: to_u32(hi - lo) };
         self.nodes.push(leaf);
         let count = hi - lo;
         if count == 1 {
@@ -180,7 +233,7 @@ impl<V: Vector> Builder<V> {
         self.node(lo, mid, depth + 1);
         let right = self.nodes.len();
         self.node(mid, hi, depth + 1);
-        self.nodes[index] = Node { bounds, start: to_u32(right), count: 0 };
+        self.nodes[index] = Built { bounds, start: to_u32(right), count: 0 };
     }
 
     /// Where to split `order[lo..hi]` (reordering it), or `None` for a leaf.
@@ -310,12 +363,14 @@ mod tests {
         seen.sort_unstable();
         assert_eq!(seen, (0..1000).collect::<Vec<_>>());
         // Every leaf is small and every child box lies inside its parent's.
+        let mut parents = vec![a.root_box; a.nodes.len()];
         for (i, n) in a.nodes.iter().enumerate() {
-            if n.count > 0 {
-                assert!(n.count as usize <= MAX_LEAF);
-            } else {
-                for c in [i + 1, n.start as usize] {
-                    assert_eq!(n.bounds.union(&a.nodes[c].bounds), n.bounds);
+            for (b, l) in n.boxes.iter().zip(n.links) {
+                assert_eq!(parents[i].union(b), parents[i]);
+                if l.count > 0 {
+                    assert!(l.count as usize <= MAX_LEAF);
+                } else {
+                    parents[l.start as usize] = *b;
                 }
             }
         }
@@ -326,6 +381,6 @@ mod tests {
         let prims: Vec<Prim> = (0..100).map(|i| Prim { object: i, part: 0 }).collect();
         let boxes = vec![Aabb::new(DVec3::ZERO, DVec3::ONE); 100];
         let t = Bvh::from_boxes(prims, boxes);
-        assert!(t.nodes.iter().all(|n| n.count as usize <= MAX_LEAF));
+        assert!(t.nodes.iter().flat_map(|n| n.links).all(|l| l.count as usize <= MAX_LEAF));
     }
 }

@@ -6,7 +6,8 @@
 //! primitive, at depth [`MAX_DEPTH`] = 8, or when splitting would separate nothing (every child
 //! that holds primitives would hold all of the node's: overlapping objects can never be
 //! separated); and, so that overlapping objects cannot fill memory, once the tree has
-//! [`NODES_PER_PRIM`]·N + 4096 nodes.
+//! [`NODES_PER_PRIM`]·N + 4096 nodes (the tree is built breadth first, so the budget ends the
+//! deepest level evenly).
 //!
 //! **Traversal**: from the root, a node whose box the ray misses is skipped with its subtree;
 //! the children a ray enters are visited in the order it enters them (by `t_in`, ties by child
@@ -74,12 +75,24 @@ impl<V: Dim> Octree<V> {
         let all: Vec<u32> = (0..u32::try_from(boxes.len()).expect("fewer than 2^32 primitives")).collect();
         let budget = NODES_PER_PRIM * boxes.len() + 4096;
         tree.nodes.push(Node { bounds: root, kind: Kind::Leaf { start: 0, count: 0 } });
-        tree.fill(0, &all, boxes, 0, budget);
+        // Breadth first, so that a budget that runs out stops the deepest level everywhere
+        // rather than whole late branches.
+        let mut queue = std::collections::VecDeque::from([(0usize, all, 0u32)]);
+        while let Some((index, list, depth)) = queue.pop_front() {
+            queue.extend(tree.fill(index, &list, boxes, depth, budget));
+        }
         tree
     }
 
-    /// Makes node `index` a leaf over `list` or splits it.
-    fn fill(&mut self, index: usize, list: &[u32], boxes: &[Aabb<V>], depth: u32, budget: usize) {
+    /// Makes node `index` a leaf over `list`, or splits it and returns its children's work.
+    fn fill(
+        &mut self,
+        index: usize,
+        list: &[u32],
+        boxes: &[Aabb<V>],
+        depth: u32,
+        budget: usize,
+    ) -> Vec<(usize, Vec<u32>, u32)> {
         let bounds = self.nodes[index].bounds;
         let children = 1usize << V::DIM;
         let mut split = list.len() > 1 && depth < MAX_DEPTH && self.nodes.len() + children <= budget;
@@ -99,7 +112,7 @@ impl<V: Dim> Octree<V> {
             self.items.extend_from_slice(list);
             let count = u32::try_from(list.len()).expect("fewer than 2^32 entries");
             self.nodes[index].kind = Kind::Leaf { start, count };
-            return;
+            return Vec::new();
         }
         let first = self.nodes.len();
         for k in 0..children {
@@ -107,9 +120,7 @@ impl<V: Dim> Octree<V> {
         }
         self.nodes[index].kind =
             Kind::Inner { first_child: u32::try_from(first).expect("fewer than 2^32 nodes") };
-        for (k, l) in lists.iter().enumerate() {
-            self.fill(first + k, l, boxes, depth + 1, budget);
-        }
+        lists.into_iter().enumerate().map(|(k, l)| (first + k, l, depth + 1)).collect()
     }
 
     /// Number of nodes.
