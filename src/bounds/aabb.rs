@@ -36,10 +36,21 @@ impl<V: Vector> Aabb<V> {
     pub fn is_empty(&self) -> bool {
         (0..V::DIM).any(|a| !(self.min[a] <= self.max[a]))
     }
-    /// The smallest box holding both (min and max are exact: no rounding).
+    /// The smallest box holding both (min and max are exact: no rounding). Written with plain
+    /// comparisons: a valid scene has no NaN, and the builders call this millions of times.
+    #[inline]
     #[must_use]
     pub fn union(&self, other: &Self) -> Self {
-        Self { min: self.min.min_by_axis(other.min), max: self.max.max_by_axis(other.max) }
+        let (mut min, mut max) = (self.min, self.max);
+        for a in 0..V::DIM {
+            if other.min[a] < min[a] {
+                min[a] = other.min[a];
+            }
+            if other.max[a] > max[a] {
+                max[a] = other.max[a];
+            }
+        }
+        Self { min, max }
     }
     /// `max − min` per axis (0 for an empty box).
     #[must_use]
