@@ -55,6 +55,9 @@ pub struct RenderConfig<'a> {
     pub rays_per_pixel: bool,
     /// Called with the number of pixel rows finished, from any thread (a progress bar).
     pub progress: Option<&'a (dyn Fn(u64) + Sync)>,
+    /// About how many bytes the edge rows of one band of pixel rows may take (corners and
+    /// adaptive sampling; default [`BAND_MEMORY`]): what bounds the memory of a deep `--max-level`.
+    pub band_memory: usize,
 }
 
 impl RenderConfig<'_> {
@@ -68,6 +71,7 @@ impl RenderConfig<'_> {
             strip_rows: None,
             rays_per_pixel: false,
             progress: None,
+            band_memory: BAND_MEMORY,
         }
     }
 }
@@ -161,15 +165,21 @@ fn tracer<'s, V: Dim>(scene: &'s Scene<V>, accel: &'s Accel<V>, max_depth: u32) 
     tracer
 }
 
-/// About how much memory the shared lattice rows of one band may take.
-const BAND_BYTES: usize = 64 << 20;
+/// The default of [`RenderConfig::band_memory`]: 64 MiB.
+pub const BAND_MEMORY: usize = 64 << 20;
 
-/// Pixel rows per band: as many as fit [`BAND_BYTES`] of lattice rows, between 2 and 64 (plenty
-/// to keep every thread busy between the bands' joins at the usual levels; a 1920-pixel-wide
-/// image at K = 8 has 491 521 points a lattice row and gets 2-row bands).
-fn band_rows(lattice: Lattice) -> usize {
-    let line_bytes = lattice.row_len() * std::mem::size_of::<std::sync::OnceLock<Rgb>>();
-    (BAND_BYTES / line_bytes.max(1)).clamp(2, 64).min(lattice.ny)
+/// Pixel rows per band: as many as fit `budget` bytes of edge rows (each `Nx + 1` corner colours
+/// and, for K > 0, `Nx·2^K + 1` shared cells), between 2 and 1024. With the default budget a
+/// 640-pixel-wide image at K = 2 renders in one band of up to 1024 rows (21 MB of edge rows at
+/// 480 rows); a 1920-pixel-wide one at K = 8, 491 521 cells a row, in bands of 4 rows.
+fn band_rows(lattice: Lattice, budget: usize) -> usize {
+    let corners = (lattice.nx + 1) * std::mem::size_of::<Rgb>();
+    let cells = if lattice.max_level > 0 {
+        lattice.row_len() * std::mem::size_of::<std::sync::OnceLock<Rgb>>()
+    } else {
+        0
+    };
+    (budget / (corners + cells)).clamp(2, 1024).min(lattice.ny)
 }
 
 /// §8: corners and adaptive sampling on the shared lattice, band after band of pixel rows: first
@@ -195,7 +205,7 @@ fn lattice_rows<V: Dim>(
         lattice_row(&mut tracer, &mut scratch, lattice, rule, config, 0, edges, (pixels, counts));
         return tracer.stats;
     }
-    let band = band_rows(lattice);
+    let band = band_rows(lattice, config.band_memory);
     let mut edge_rows: Vec<EdgeRow> = (0..=band).map(|_| EdgeRow::new(lattice, true)).collect();
     let mut stats = Vec::new();
     let mut j0 = 0;
