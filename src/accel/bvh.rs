@@ -57,11 +57,36 @@ struct Link {
     id: u32,
 }
 
-/// An inner node with both children's boxes side by side, so one read gives both tests.
+/// An inner node with both children's boxes side by side, so one read gives both tests: per
+/// axis `lo[axis] = [left, right]`, `hi[axis]` likewise (unused axes in 2D are 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Node<V> {
-    boxes: [Aabb<V>; 2],
+struct Node {
+    lo: [[f64; 2]; 3],
+    hi: [[f64; 2]; 3],
     links: [Link; 2],
+}
+
+impl Node {
+    fn new<V: Vector>(boxes: [Aabb<V>; 2], links: [Link; 2]) -> Self {
+        let (mut lo, mut hi) = ([[0.0; 2]; 3], [[0.0; 2]; 3]);
+        for axis in 0..V::DIM {
+            for c in 0..2 {
+                lo[axis][c] = boxes[c].min[axis];
+                hi[axis][c] = boxes[c].max[axis];
+            }
+        }
+        Self { lo, hi, links }
+    }
+    /// Child `c`'s box.
+    #[cfg(test)]
+    fn child_box<V: Vector>(&self, c: usize) -> Aabb<V> {
+        let (mut min, mut max) = (V::ZERO, V::ZERO);
+        for axis in 0..V::DIM {
+            min[axis] = self.lo[axis][c];
+            max[axis] = self.hi[axis][c];
+        }
+        Aabb::new(min, max)
+    }
 }
 
 /// A built BVH: the root's box and link, inner nodes, primitives in leaf order.
@@ -69,7 +94,7 @@ struct Node<V> {
 pub struct Bvh<V> {
     root_box: Aabb<V>,
     root: Link,
-    nodes: Vec<Node<V>>,
+    nodes: Vec<Node>,
     prims: Vec<Prim>,
 }
 
@@ -199,7 +224,7 @@ impl<V: Dim> Bvh<V> {
             .filter(|&i| built[i].count == 0)
             .map(|i| {
                 let (l, r) = (i + 1, built[i].start as usize);
-                Node { boxes: [built[l].bounds, built[r].bounds], links: [link(l), link(r)] }
+                Node::new([built[l].bounds, built[r].bounds], [link(l), link(r)])
             })
             .collect();
         Self { root_box: built[0].bounds, root: link(0), nodes, prims }
@@ -286,8 +311,7 @@ impl<V: Dim> Bvh<V> {
                 }
                 let node = &self.nodes[link.start as usize];
                 let [l, rr] = node.links;
-                let [bl, br] = &node.boxes;
-                let [il, ir] = r.box_pair_interval([bl.min, br.min], [bl.max, br.max]);
+                let [il, ir] = r.box_pair_interval(&node.lo, &node.hi);
                 let hl = Self::record(il, l.id, depth + 1, stats, rec);
                 let hr = Self::record(ir, rr.id, depth + 1, stats, rec);
                 // Push the farther first, so the nearer is popped first (a tie keeps left first).
@@ -470,12 +494,13 @@ mod tests {
         // Every leaf is small and every child box lies inside its parent's.
         let mut parents = vec![a.root_box; a.nodes.len()];
         for (i, n) in a.nodes.iter().enumerate() {
-            for (b, l) in n.boxes.iter().zip(n.links) {
-                assert_eq!(parents[i].union(b), parents[i]);
+            for (c, l) in n.links.iter().enumerate() {
+                let b: Aabb<DVec3> = n.child_box(c);
+                assert_eq!(parents[i].union(&b), parents[i]);
                 if l.count > 0 {
                     assert!(l.count as usize <= MAX_LEAF);
                 } else {
-                    parents[l.start as usize] = *b;
+                    parents[l.start as usize] = b;
                 }
             }
         }
