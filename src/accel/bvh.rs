@@ -389,12 +389,11 @@ impl<V: Vector> Builder<'_, V> {
         let parent = bounds.surface();
         // Large groups are binned along their longest axis only, small ones along every axis.
         let longest = cbox.longest_axis();
-        let maps: Vec<Option<(f64, f64)>> = (0..V::DIM)
-            .map(|axis| {
-                let used = hi - lo <= ALL_AXES_BELOW || axis == longest;
-                (used && cbox.extent()[axis] > 0.0).then(|| bin_map(cbox, axis))
-            })
-            .collect();
+        let mut maps: [Option<(f64, f64)>; 3] = [None; 3];
+        for (axis, map) in maps.iter_mut().enumerate().take(V::DIM) {
+            let used = hi - lo <= ALL_AXES_BELOW || axis == longest;
+            *map = (used && cbox.extent()[axis] > 0.0).then(|| bin_map(cbox, axis));
+        }
         let mut counts = [[0usize; BINS]; 3];
         let mut boxes = [[Aabb::empty(); BINS]; 3];
         for it in &self.items[lo..hi] {
