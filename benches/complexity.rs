@@ -96,7 +96,7 @@ fn machine() -> String {
 
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
-    let (width, runs) = if quick { (32, 1) } else { (64, 3) };
+    let (width, runs) = if quick { (32, 1) } else { (64, 5) };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("one worker thread");
     let mut rows = Vec::new();
     for n in SIZES {

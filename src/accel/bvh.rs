@@ -13,10 +13,10 @@
 //! levels of large trees build their two subtrees in parallel; the result does not depend on it.
 //!
 //! **Traversal**: front to back. Both children's boxes are tested (`node_visit` events, one
-//! node test each; an inner node stores them side by side, axis by axis, so both are tested in
-//! one pass); the nearer is visited first, the farther kept on a stack with its entry `t_in`; a
-//! node is skipped when its entry lies beyond the best hit so far ([`super::beyond`]), so the walk
-//! stops as soon as the nearest hit is closer than the next node.
+//! node test each; an inner node stores them side by side, so both are tested in one pass); the
+//! nearer is visited first, the farther kept on a stack with its entry `t_in`; a node is skipped
+//! when its entry lies beyond the best hit so far ([`super::beyond`]), so the walk stops as soon
+//! as the nearest hit is closer than the next node.
 
 use super::{beyond, prim_bounds, Prim, Visitor};
 use crate::bounds::aabb::Aabb;
@@ -60,36 +60,11 @@ struct Link {
     id: u32,
 }
 
-/// An inner node with both children's boxes side by side, so one read gives both tests: per
-/// axis `lo[axis] = [left, right]`, `hi[axis]` likewise (unused axes in 2D are 0).
+/// An inner node with both children's boxes side by side, so one read gives both tests.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Node {
-    lo: [[f64; 2]; 3],
-    hi: [[f64; 2]; 3],
+struct Node<V> {
+    boxes: [Aabb<V>; 2],
     links: [Link; 2],
-}
-
-impl Node {
-    fn new<V: Vector>(boxes: [Aabb<V>; 2], links: [Link; 2]) -> Self {
-        let (mut lo, mut hi) = ([[0.0; 2]; 3], [[0.0; 2]; 3]);
-        for axis in 0..V::DIM {
-            for c in 0..2 {
-                lo[axis][c] = boxes[c].min[axis];
-                hi[axis][c] = boxes[c].max[axis];
-            }
-        }
-        Self { lo, hi, links }
-    }
-    /// Child `c`'s box.
-    #[cfg(test)]
-    fn child_box<V: Vector>(&self, c: usize) -> Aabb<V> {
-        let (mut min, mut max) = (V::ZERO, V::ZERO);
-        for axis in 0..V::DIM {
-            min[axis] = self.lo[axis][c];
-            max[axis] = self.hi[axis][c];
-        }
-        Aabb::new(min, max)
-    }
 }
 
 /// A built BVH: the root's box and link, inner nodes, primitives in leaf order.
@@ -97,7 +72,7 @@ impl Node {
 pub struct Bvh<V> {
     root_box: Aabb<V>,
     root: Link,
-    nodes: Vec<Node>,
+    nodes: Vec<Node<V>>,
     prims: Vec<Prim>,
 }
 
@@ -227,7 +202,7 @@ impl<V: Dim> Bvh<V> {
             .filter(|&i| built[i].count == 0)
             .map(|i| {
                 let (l, r) = (i + 1, built[i].start as usize);
-                Node::new([built[l].bounds, built[r].bounds], [link(l), link(r)])
+                Node { boxes: [built[l].bounds, built[r].bounds], links: [link(l), link(r)] }
             })
             .collect();
         Self { root_box: built[0].bounds, root: link(0), nodes, prims }
@@ -314,7 +289,8 @@ impl<V: Dim> Bvh<V> {
                 }
                 let node = &self.nodes[link.start as usize];
                 let [l, rr] = node.links;
-                let [il, ir] = r.box_pair_interval(&node.lo, &node.hi);
+                let [bl, br] = &node.boxes;
+                let [il, ir] = r.box_pair_interval([bl.min, br.min], [bl.max, br.max]);
                 let hl = Self::record(il, l.id, depth + 1, stats, rec);
                 let hr = Self::record(ir, rr.id, depth + 1, stats, rec);
                 // Push the farther first, so the nearer is popped first (a tie keeps left first).
@@ -496,13 +472,12 @@ mod tests {
         // Every leaf is small and every child box lies inside its parent's.
         let mut parents = vec![a.root_box; a.nodes.len()];
         for (i, n) in a.nodes.iter().enumerate() {
-            for (c, l) in n.links.iter().enumerate() {
-                let b: Aabb<DVec3> = n.child_box(c);
-                assert_eq!(parents[i].union(&b), parents[i]);
+            for (b, l) in n.boxes.iter().zip(n.links) {
+                assert_eq!(parents[i].union(b), parents[i]);
                 if l.count > 0 {
                     assert!(l.count as usize <= MAX_LEAF);
                 } else {
-                    parents[l.start as usize] = b;
+                    parents[l.start as usize] = *b;
                 }
             }
         }

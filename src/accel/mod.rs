@@ -24,7 +24,7 @@ use crate::geom::ray::Ray;
 use crate::record::event::{Event, ObjectRef};
 use crate::record::Recorder;
 use crate::scene::Scene;
-use crate::shape::{Dim, Facet, Parts, Shape, SurfaceHit};
+use crate::shape::{Dim, Facet, Shape, SurfaceHit};
 use crate::trace::stats::Stats;
 use std::cell::RefCell;
 
@@ -227,7 +227,7 @@ impl<V: Dim> Accel<V> {
         rec: &mut R,
         mut on: impl FnMut(ObjectRef) -> bool,
     ) {
-        let mut visitor = Shadow { scene, ray, d_l, transparent: Vec::new(), opaque: None, prepared: None };
+        let mut visitor = Shadow { scene, ray, d_l, transparent: Vec::new(), opaque: None };
         self.search(scene, ray, &mut visitor, stats, rec);
         let Shadow { mut transparent, opaque, .. } = visitor;
         transparent.sort_unstable();
@@ -252,17 +252,13 @@ pub struct Nearest<'a, V: Dim> {
     scene: &'a Scene<V>,
     ray: &'a Ray<V>,
     best: Option<(Prim, SurfaceHit<V>)>,
-    prepared: Prepared<V>,
 }
-
-/// The ray's precomputed part of a mesh triangle test, made on the first triangle met.
-pub type Prepared<V> = Option<<<V as Dim>::Mesh as Parts<V>>::Prepared>;
 
 impl<'a, V: Dim> Nearest<'a, V> {
     /// The question for `ray`, nothing found yet.
     #[must_use]
     pub fn new(scene: &'a Scene<V>, ray: &'a Ray<V>) -> Self {
-        Self { scene, ray, best: None, prepared: None }
+        Self { scene, ray, best: None }
     }
     /// The nearest hit found, named as traces name it.
     #[must_use]
@@ -278,7 +274,7 @@ impl<V: Dim> Visitor<V> for Nearest<'_, V> {
     }
     #[inline]
     fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool {
-        if let Some(hit) = test_prim(self.scene, prim, self.ray, &mut self.prepared, stats, rec) {
+        if let Some(hit) = test_prim(self.scene, prim, self.ray, stats, rec) {
             // §6: equal t goes to the smaller object, then the smaller triangle.
             #[allow(clippy::float_cmp)] // An exact tie is exactly what the rule is about.
             let closer = |(p, b): &(Prim, SurfaceHit<V>)| hit.t < b.t || (hit.t == b.t && prim < *p);
@@ -299,7 +295,6 @@ pub struct Shadow<'a, V: Dim> {
     transparent: Vec<Prim>,
     /// The opaque occluder that ended the search.
     opaque: Option<Prim>,
-    prepared: Prepared<V>,
 }
 
 impl<V: Dim> Visitor<V> for Shadow<'_, V> {
@@ -313,7 +308,7 @@ impl<V: Dim> Visitor<V> for Shadow<'_, V> {
         if self.transparent.iter().any(|p| p.object == prim.object) {
             return false;
         }
-        let Some(hit) = test_prim(self.scene, prim, self.ray, &mut self.prepared, stats, rec) else {
+        let Some(hit) = test_prim(self.scene, prim, self.ray, stats, rec) else {
             return false;
         };
         if !(hit.t < self.d_l) {
@@ -335,25 +330,18 @@ pub fn object_ref<V: Dim>(scene: &Scene<V>, prim: Prim) -> ObjectRef {
     ObjectRef { index: prim.object(), triangle: scene.objects[prim.object()].shape.part_id(prim.part()) }
 }
 
-/// One ray–primitive test, counted and recorded (`object_test` with every root). A mesh
-/// triangle uses the ray's `prepared` shear, made on the first triangle the ray meets.
+/// One ray–primitive test, counted and recorded (`object_test` with every root).
 #[inline]
 pub fn test_prim<V: Dim, R: Recorder<V>>(
     scene: &Scene<V>,
     prim: Prim,
     ray: &Ray<V>,
-    prepared: &mut Prepared<V>,
     stats: &mut Stats,
     rec: &mut R,
 ) -> Option<SurfaceHit<V>> {
     stats.tests.object += 1;
     let shape = &scene.objects[prim.object()].shape;
-    let hit = match shape {
-        Shape::Mesh(m) => {
-            m.hit_prepared(prim.part(), ray, prepared.get_or_insert_with(|| V::Mesh::prepare(ray)))
-        }
-        _ => shape.part_hit(prim.part(), ray),
-    };
+    let hit = shape.part_hit(prim.part(), ray);
     rec.event(|| Event::ObjectTest {
         object: object_ref(scene, prim),
         roots: shape.part_roots(prim.part(), ray),

@@ -109,35 +109,24 @@ impl<V: Vector> RecipRay<V> {
 }
 
 impl<V: Vector> RecipRay<V> {
-    /// [`RecipRay::box_interval`] of two boxes at once (a BVH node's children), given per axis
-    /// as `lo[axis] = [child 0, child 1]` and `hi[axis]` likewise. For an oblique ray the near
-    /// plane of every slab is chosen once by the sign of `1/d` (rounding is monotonic, so
-    /// `(lo − o)/d ≤ (hi − o)/d` keeps its order), which leaves two lanes of plain arithmetic;
-    /// the results are those of two calls of `box_interval`, bit for bit.
+    /// [`RecipRay::box_interval`] of two boxes at once (a BVH node's children). For an oblique
+    /// ray the near plane of every slab is chosen once by the sign of `1/d` (rounding is
+    /// monotonic, so `(lo − o)/d ≤ (hi − o)/d` keeps its order), which leaves two lanes of plain
+    /// arithmetic; the results are those of two calls of `box_interval`, bit for bit.
     #[inline(always)]
     #[must_use]
-    pub fn box_pair_interval(&self, lo: &[[f64; 2]; 3], hi: &[[f64; 2]; 3]) -> [(f64, f64); 2] {
+    pub fn box_pair_interval(&self, min: [V; 2], max: [V; 2]) -> [(f64, f64); 2] {
         if !self.oblique {
-            let corner = |side: &[[f64; 2]; 3], c: usize| {
-                let mut v = V::ZERO;
-                for axis in 0..V::DIM {
-                    v[axis] = side[axis][c];
-                }
-                v
-            };
-            return [
-                self.box_interval(corner(lo, 0), corner(hi, 0)),
-                self.box_interval(corner(lo, 1), corner(hi, 1)),
-            ];
+            return [self.box_interval(min[0], max[0]), self.box_interval(min[1], max[1])];
         }
         let mut t_in = [f64::NEG_INFINITY; 2];
         let mut t_out = [f64::INFINITY; 2];
         for axis in 0..V::DIM {
             let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
-            let (near, far) = if inv >= 0.0 { (lo[axis], hi[axis]) } else { (hi[axis], lo[axis]) };
+            let (near, far) = if inv >= 0.0 { (min, max) } else { (max, min) };
             for c in 0..2 {
-                let tn = (near[c] - o) * inv;
-                let tf = (far[c] - o) * inv;
+                let tn = (near[c][axis] - o) * inv;
+                let tf = (far[c][axis] - o) * inv;
                 t_in[c] = if tn > t_in[c] { tn } else { t_in[c] };
                 t_out[c] = if tf < t_out[c] { tf } else { t_out[c] };
             }

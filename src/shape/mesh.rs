@@ -5,7 +5,7 @@
 //! by the acceleration structures one by one and named by their index in the OBJ.
 //! Degenerate (zero-area) triangles are skipped when the mesh is built and never hit.
 
-use super::triangle::{crossing, crossing_sheared, Shear};
+use super::triangle::crossing;
 use super::{Parts, SurfaceHit};
 use crate::geom::ray::Ray;
 use crate::geom::Vector;
@@ -162,22 +162,14 @@ fn nth_vertex_line(text: &str, n: usize) -> Option<usize> {
 }
 
 impl Parts<DVec3> for Mesh {
-    type Prepared = Shear;
-    fn prepare(ray: &Ray<DVec3>) -> Shear {
-        Shear::new(ray.dir)
-    }
     fn count(&self) -> usize {
         self.faces.len()
     }
     /// The Woop–Benthin–Wald hit of triangle k with `t > 0`; N = normalize((b − a) × (c − a)).
     #[inline]
     fn hit(&self, k: usize, ray: &Ray<DVec3>) -> Option<SurfaceHit<DVec3>> {
-        self.hit_prepared(k, ray, &Shear::new(ray.dir))
-    }
-    #[inline]
-    fn hit_prepared(&self, k: usize, ray: &Ray<DVec3>, shear: &Shear) -> Option<SurfaceHit<DVec3>> {
         let [a, b, c] = self.triangle(k);
-        let x = crossing_sheared(&[a, b, c], ray.origin, shear)?;
+        let x = crossing(&[a, b, c], ray)?;
         if !(x.t > 0.0) {
             return None;
         }
@@ -211,12 +203,7 @@ impl Parts<DVec3> for Mesh {
 pub enum NoMesh {}
 
 impl Parts<DVec2> for NoMesh {
-    type Prepared = ();
-    fn prepare(_: &Ray<DVec2>) {}
     fn count(&self) -> usize {
-        match *self {}
-    }
-    fn hit_prepared(&self, _: usize, _: &Ray<DVec2>, (): &()) -> Option<SurfaceHit<DVec2>> {
         match *self {}
     }
     fn hit(&self, _: usize, _: &Ray<DVec2>) -> Option<SurfaceHit<DVec2>> {

@@ -65,12 +65,6 @@ pub trait Facet<V>: Clone + std::fmt::Debug + Send + Sync + 'static {
 
 /// An object made of many parts (a mesh's triangles), each tested on its own.
 pub trait Parts<V>: Clone + std::fmt::Debug + Send + Sync + 'static {
-    /// What a ray computes once for all the parts it meets (a triangle test's shear).
-    type Prepared: Copy;
-    /// The ray's part of every test.
-    fn prepare(ray: &Ray<V>) -> Self::Prepared;
-    /// [`Parts::hit`] with the ray prepared (the same result).
-    fn hit_prepared(&self, k: usize, ray: &Ray<V>, prepared: &Self::Prepared) -> Option<SurfaceHit<V>>;
     /// How many parts.
     fn count(&self) -> usize;
     /// The nearest hit of part `k` with `t > 0`.

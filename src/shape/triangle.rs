@@ -40,46 +40,23 @@ impl Triangle {
     }
 }
 
-/// What the Woop–Benthin–Wald test takes from the ray alone, computed once per ray for a mesh:
-/// the axis permutation (z where |D| is largest) and the shear constants.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Shear {
-    kx: usize,
-    ky: usize,
-    kz: usize,
-    sx: f64,
-    sy: f64,
-    sz: f64,
-}
-
-impl Shear {
-    /// The permutation and shear of direction `d`: `S = (d_x/d_z, d_y/d_z, 1/d_z)` in the
-    /// permuted axes.
-    #[must_use]
-    pub fn new(d: DVec3) -> Self {
-        // Permute so that z is the axis where |D| is largest; swap x and y to keep the winding.
-        let kz = d.abs().max_position();
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        Self { kx, ky, kz, sx: d[kx] / d[kz], sy: d[ky] / d[kz], sz: 1.0 / d[kz] }
-    }
-}
-
 /// The Woop–Benthin–Wald test of the triangle `vertices`; `None` if the line misses or is
 /// edge-on. Shared by scene triangles and mesh triangles.
 #[inline]
 pub(crate) fn crossing(vertices: &[DVec3; 3], ray: &Ray<DVec3>) -> Option<Crossing> {
-    crossing_sheared(vertices, ray.origin, &Shear::new(ray.dir))
-}
-
-/// [`crossing`] with the ray's shear computed beforehand (the same arithmetic, bit for bit).
-#[inline]
-pub(crate) fn crossing_sheared(vertices: &[DVec3; 3], origin: DVec3, shear: &Shear) -> Option<Crossing> {
-    let Shear { kx, ky, kz, sx, sy, sz } = *shear;
-    let [a, b, c] = vertices.map(|p| p - origin);
+    let d = ray.dir;
+    // Permute so that z is the axis where |D| is largest; swap x and y to keep the winding.
+    let kz = d.abs().max_position();
+    let mut kx = (kz + 1) % 3;
+    let mut ky = (kx + 1) % 3;
+    if d[kz] < 0.0 {
+        std::mem::swap(&mut kx, &mut ky);
+    }
+    // Shear constants.
+    let sx = d[kx] / d[kz];
+    let sy = d[ky] / d[kz];
+    let sz = 1.0 / d[kz];
+    let [a, b, c] = vertices.map(|p| p - ray.origin);
     let sheared = |p: DVec3| (p[kx] - sx * p[kz], p[ky] - sy * p[kz]);
     let (ax, ay) = sheared(a);
     let (bx, by) = sheared(b);
