@@ -14,7 +14,7 @@ use glam::DVec2;
 use std::fmt::Write;
 use std::time::Instant;
 use whitted::accel::{Accel, AccelKind};
-use whitted::figure::drawing::{Align, Drawing, Sample, Style, TextOpts, View};
+use whitted::figure::drawing::{Align, Dash, Drawing, Sample, Style, TextOpts, View};
 use whitted::figure::style::{self, Rgba, TextSize};
 use whitted::render::render_centers;
 use whitted::scene::load::load_str;
@@ -96,7 +96,7 @@ fn machine() -> String {
 
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
-    let (width, runs) = if quick { (32, 1) } else { (64, 3) };
+    let (width, runs) = if quick { (32, 1) } else { (64, 5) };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("one worker thread");
     let mut rows = Vec::new();
     for n in SIZES {
@@ -235,7 +235,10 @@ fn plot(rows: &[Row], title: &str, ylabel: &str, value: impl Fn(&Row) -> f64) ->
             .filter(|r| r.kind == *kind)
             .map(|r| at((r.n as f64).log10(), value(r).max(1e-9).log10()))
             .collect();
+        // `bounds` does as many tests as `none` (bound tests instead of object tests): dashed,
+        // so that the line beneath shows.
         let s = Style::solid(color, style::RAY_WIDTH);
+        let s = if *kind == AccelKind::Bounds { s.dashed(Dash { on: 24.0, off: 18.0 }) } else { s };
         d.line(&format!("accel:{}", kind.name()), pts.clone(), s);
         for p in pts {
             d.dot(&format!("accel:{}", kind.name()), p, color);

@@ -3,17 +3,20 @@
 //!
 //! **Build** (deterministic: the same scene gives the same tree on any machine and any number
 //! of threads): top-down, binned surface-area heuristic. At each node the primitives' centroids
-//! are sorted into [`BINS`] equal bins along each axis; the split between bins minimising
+//! are sorted into [`BINS`] equal bins along each axis (along the longest axis only for groups
+//! of more than [`ALL_AXES_BELOW`]); the split between bins minimising
 //! `C_trav + (S(L)·N_L + S(R)·N_R)/S(P)` (S: surface area in 3D, perimeter in 2D; one object
 //! test costs 1, a node visit [`C_TRAV`]) wins, ties to the lower axis and bin. A node becomes a
 //! leaf when it holds one primitive, or at most [`MAX_LEAF`] and no split beats testing them
-//! all. Below depth [`BALANCE_DEPTH`], or when every centroid coincides, the split is at the
-//! median (by centroid, then by index), which bounds the depth by `BALANCE_DEPTH + 33`.
+//! all. From depth [`BALANCE_DEPTH`] on, or when every centroid coincides, the split is at the
+//! median (by centroid, then by index), which bounds the depth by `BALANCE_DEPTH + 33`. The top
+//! levels of large trees build their two subtrees in parallel; the result does not depend on it.
 //!
 //! **Traversal**: front to back. Both children's boxes are tested (`node_visit` events, one
-//! node test each); the nearer is visited first, the farther kept on a stack with its entry
-//! `t_in`; a node is skipped when its entry lies beyond the best hit so far ([`super::beyond`]),
-//! so the walk stops as soon as the nearest hit is closer than the next node.
+//! node test each; an inner node stores them side by side, so both are tested in one pass); the
+//! nearer is visited first, the farther kept on a stack with its entry `t_in`; a node is skipped
+//! when its entry lies beyond the best hit so far ([`super::beyond`]), so the walk stops as soon
+//! as the nearest hit is closer than the next node.
 
 use super::{beyond, prim_bounds, Prim, Visitor};
 use crate::bounds::aabb::Aabb;
@@ -32,7 +35,7 @@ pub const BINS: usize = 12;
 /// The most primitives a leaf holds when the SAH prefers not to split.
 pub const MAX_LEAF: usize = 4;
 /// Groups of more primitives than this are binned along their longest axis only.
-pub const ALL_AXES_BELOW: usize = 4096;
+pub const ALL_AXES_BELOW: usize = 64;
 /// The cost of visiting a node, in object tests.
 pub const C_TRAV: f64 = 0.5;
 /// From this depth on, splits are at the median.
@@ -365,12 +368,11 @@ impl<V: Vector> Builder<'_, V> {
         let parent = bounds.surface();
         // Large groups are binned along their longest axis only, small ones along every axis.
         let longest = cbox.longest_axis();
-        let maps: Vec<Option<(f64, f64)>> = (0..V::DIM)
-            .map(|axis| {
-                let used = hi - lo <= ALL_AXES_BELOW || axis == longest;
-                (used && cbox.extent()[axis] > 0.0).then(|| bin_map(cbox, axis))
-            })
-            .collect();
+        let mut maps: [Option<(f64, f64)>; 3] = [None; 3];
+        for (axis, map) in maps.iter_mut().enumerate().take(V::DIM) {
+            let used = hi - lo <= ALL_AXES_BELOW || axis == longest;
+            *map = (used && cbox.extent()[axis] > 0.0).then(|| bin_map(cbox, axis));
+        }
         let mut counts = [[0usize; BINS]; 3];
         let mut boxes = [[Aabb::empty(); BINS]; 3];
         for it in &self.items[lo..hi] {

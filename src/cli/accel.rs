@@ -43,8 +43,12 @@ pub struct AccelArgs {
     /// The grid's cells per axis, NX,NY,NZ (NX,NY in 2D), for --accel grid (default: about 4
     /// cells per object).
     #[arg(long, value_parser = cells)]
-    grid: Option<Vec<usize>>,
+    grid: Option<Cells>,
 }
+
+/// The cells per axis of `--grid` (a newtype, so that clap takes it as one value).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Cells(Vec<usize>);
 
 impl AccelArgs {
     /// The options, checked against the scene's dimension.
@@ -52,7 +56,7 @@ impl AccelArgs {
     /// # Errors
     /// A message when `--grid` has the wrong number of axes.
     pub fn options(&self, dim: usize) -> Result<AccelOptions, String> {
-        if let Some(g) = &self.grid {
+        if let Some(Cells(g)) = &self.grid {
             if g.len() != dim {
                 return Err(format!("--grid: a {dim}D scene needs {dim} cell counts, got {}", g.len()));
             }
@@ -69,12 +73,12 @@ impl AccelArgs {
             BoundsArg::Aabb => VolumeKind::Aabb,
             BoundsArg::Kdop => VolumeKind::Kdop,
         };
-        Ok(AccelOptions { kind, volume, grid: self.grid.clone() })
+        Ok(AccelOptions { kind, volume, grid: self.grid.clone().map(|Cells(g)| g) })
     }
 }
 
 /// Parses `NX,NY[,NZ]`: each at least 1, at most 2^24 cells in all.
-fn cells(s: &str) -> Result<Vec<usize>, String> {
+fn cells(s: &str) -> Result<Cells, String> {
     let n: Vec<usize> = s
         .split(',')
         .map(|x| x.trim().parse::<usize>().map_err(|_| format!("`{x}` is not a cell count")))
@@ -89,7 +93,7 @@ fn cells(s: &str) -> Result<Vec<usize>, String> {
     if total.is_none_or(|t| t > whitted::accel::grid::MAX_CELLS) {
         return Err(format!("at most {} cells in all", whitted::accel::grid::MAX_CELLS));
     }
-    Ok(n)
+    Ok(Cells(n))
 }
 
 #[cfg(test)]
@@ -98,8 +102,8 @@ mod tests {
 
     #[test]
     fn grid_cells_parse() {
-        assert_eq!(cells("4,4,4"), Ok(vec![4, 4, 4]));
-        assert_eq!(cells("8,2"), Ok(vec![8, 2]));
+        assert_eq!(cells("4,4,4"), Ok(Cells(vec![4, 4, 4])));
+        assert_eq!(cells("8,2"), Ok(Cells(vec![8, 2])));
         assert!(cells("0,1,1").is_err());
         assert!(cells("4").is_err());
         assert!(cells("4096,4096,4096").is_err());

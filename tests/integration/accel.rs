@@ -691,3 +691,57 @@ fn traces_are_the_same_tree_whatever_the_structure() {
     }
     let _ = scene2;
 }
+
+// ---------------------------------------------------------------------------------------------
+// The command line
+
+fn whitted(args: &[&str]) -> (i32, String, String) {
+    let out =
+        std::process::Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn accel_options_on_the_command_line() {
+    let scene = format!("{}/tests/data/scenes/grid_pitfall.json", env!("CARGO_MANIFEST_DIR"));
+    let (code, out, err) =
+        whitted(&["trace", &scene, "--pixel", "0,0", "--accel", "grid", "--grid", "4,4,4", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(doc["tree"]["hit"]["object"], "B");
+    assert!(doc["stats"]["tests"]["voxel"].as_u64().unwrap() >= 2);
+    let (code, _, err) = whitted(&["trace", &scene, "--pixel", "0,0", "--accel", "grid", "--grid", "4,4"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--grid: a 3D scene needs 3 cell counts, got 2"), "{err}");
+    for (accel, field) in [("bounds", "bound"), ("bvh", "node"), ("octree", "node"), ("none", "object")] {
+        let (code, out, err) =
+            whitted(&["render", &scene, "-o", "/dev/null", "--accel", accel, "--bounds", "kdop", "--json"]);
+        assert_eq!(code, 0, "{err}");
+        let stats: Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(stats["accel"], accel);
+        assert!(stats["tests"][field].as_u64().unwrap() > 0, "{accel}: {stats}");
+        assert!(stats["build_seconds"].is_f64() && stats["load_seconds"].is_f64());
+    }
+}
+
+#[test]
+fn a_mesh_scene_loads_its_obj_relative_to_the_scene_file() {
+    let dir = std::env::temp_dir().join(format!("whitted-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    std::fs::write(dir.join("sub/t.obj"), grid_obj(4)).unwrap();
+    let text = r#"{"camera": {"eye": [0, 4, 5], "center": [0, 0, 0], "window": {"l": -0.6, "r": 0.6, "b": -0.5, "t": 0.5}, "resolution": [8, 6]},
+        "lights": [{"position": [-3, 5, 2]}], "objects": [{"type": "mesh", "obj": "sub/t.obj", "name": "m"}]}"#;
+    std::fs::write(dir.join("m.json"), text).unwrap();
+    let path = dir.join("m.json").display().to_string();
+    let (code, out, err) = whitted(&["check", &path]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("mesh m: 32 triangles, 0 degenerate skipped"), "{out}");
+    std::fs::write(dir.join("sub/t.obj"), "v 0 0 0\nv 1 0 0\nf 1 2 3\n").unwrap();
+    let (code, _, err) = whitted(&["render", &path, "-o", "/dev/null"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("objects[0].obj: sub/t.obj line 3:"), "{err}");
+}
