@@ -3,6 +3,7 @@
 #![allow(clippy::print_stdout)]
 
 mod check;
+mod figure;
 mod parse;
 mod render;
 mod trace;
@@ -30,6 +31,8 @@ enum Command {
     Trace(trace::TraceArgs),
     /// Validate a scene and say what it models; every error at once (exit code 2).
     Check(check::CheckArgs),
+    /// Draw one diagram of the lecture from a recorded trace, as PNG or SVG (--list names them).
+    Figure(figure::FigureArgs),
 }
 
 /// An error with its exit code: 2 for bad input (scene, arguments), 1 for anything else.
@@ -94,6 +97,7 @@ pub fn main() -> u8 {
         Command::Render(args) => render::run(&args),
         Command::Trace(args) => trace::run(&args),
         Command::Check(args) => check::run(&args),
+        Command::Figure(args) => figure::run(&args),
     };
     match result {
         Ok(()) => 0,

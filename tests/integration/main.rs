@@ -2,5 +2,6 @@
 #![allow(clippy::float_cmp)] // The tests pin exact IEEE results on purpose (numerics.md).
 
 mod cli;
+mod figures;
 mod support;
 mod traces;

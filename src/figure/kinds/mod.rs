@@ -1,0 +1,75 @@
+//! One file per diagram of product.md "Diagrams". Each reads the recorded traces and the scene
+//! through [`Input`] and adds its items to a [`Drawing`]; none traces, intersects or refracts.
+
+pub mod local_model;
+pub mod projections;
+pub mod ray_tree;
+pub mod rays;
+pub mod refraction;
+pub mod shadows;
+pub mod uv_map;
+
+use super::drawing::Drawing;
+use super::labels::{self, Label};
+use super::plane::Planar;
+use super::source::{Traced, Traces};
+use super::{FigureError, FigureKind, Lang};
+use crate::scene::Scene;
+
+/// What a kind reads.
+pub struct Input<'a, V: Planar> {
+    /// The recorded traces (the main one first).
+    pub traces: &'a Traces<V>,
+    /// The scene they were recorded in.
+    pub scene: &'a Scene<V>,
+    /// The labels' language.
+    pub lang: Lang,
+}
+
+impl<V: Planar> Input<'_, V> {
+    /// The main trace.
+    ///
+    /// # Errors
+    /// When there is none.
+    pub fn main(&self) -> Result<&Traced<V>, FigureError> {
+        self.traces.traces.first().ok_or_else(|| FigureError("no trace was recorded".into()))
+    }
+    /// A fixed label in the figure's language.
+    #[must_use]
+    pub fn t(&self, label: Label) -> &'static str {
+        label.text(self.lang)
+    }
+    /// The caption's start: the scene and the traced pixel (and why it was picked).
+    #[must_use]
+    pub fn traced(&self, traced: &Traced<V>) -> String {
+        let target = traced.targets.first().cloned().unwrap_or(super::source::Target::Ray);
+        labels::traced(&self.traces.scene_name, &target, traced.pick, V::DIM, self.lang)
+    }
+}
+
+/// Draws `kind` into `d`.
+///
+/// # Errors
+/// Traces that lack what the kind draws, or a kind whose events this build does not record.
+pub fn draw<V: Planar>(
+    kind: FigureKind,
+    input: &Input<'_, V>,
+    mut d: Drawing,
+) -> Result<Drawing, FigureError> {
+    match kind {
+        FigureKind::UvMap => uv_map::draw(input, &mut d)?,
+        FigureKind::Projections => projections::draw(input, &mut d)?,
+        FigureKind::Rays => rays::draw(input, &mut d)?,
+        FigureKind::Refraction => refraction::draw(input, &mut d)?,
+        FigureKind::LocalModel => local_model::draw(input, &mut d)?,
+        FigureKind::RayTree => ray_tree::draw(input, &mut d)?,
+        FigureKind::Shadows => shadows::draw(input, &mut d)?,
+        other => {
+            return Err(FigureError(format!(
+                "`{}` needs events this build does not record yet",
+                other.name()
+            )))
+        }
+    }
+    Ok(d)
+}
