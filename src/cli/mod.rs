@@ -4,6 +4,7 @@
 
 mod check;
 mod figure;
+mod lessons;
 mod parse;
 mod render;
 mod trace;
@@ -33,6 +34,8 @@ enum Command {
     Check(check::CheckArgs),
     /// Draw one diagram of the lecture from a recorded trace, as PNG or SVG (--list names them).
     Figure(figure::FigureArgs),
+    /// Draw every lesson's figures (lessons/) in both languages, PNG and SVG, with index pages.
+    Lessons(lessons::LessonsArgs),
 }
 
 /// An error with its exit code: 2 for bad input (scene, arguments), 1 for anything else.
@@ -98,6 +101,7 @@ pub fn main() -> u8 {
         Command::Trace(args) => trace::run(&args),
         Command::Check(args) => check::run(&args),
         Command::Figure(args) => figure::run(&args),
+        Command::Lessons(args) => lessons::run(&args),
     };
     match result {
         Ok(()) => 0,

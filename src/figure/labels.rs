@@ -198,7 +198,9 @@ impl Label {
             Self::ReflectedRay => ("reflected ray R", "rază reflectată R"),
             Self::TransmittedRay => ("transmitted ray T", "rază transmisă T"),
             Self::ShadowRay => ("shadow ray L, reaches the light", "rază de umbră L, ajunge la sursă"),
-            Self::BlockedShadowRay => ("shadow ray L, blocked", "rază de umbră L, blocată"),
+            Self::BlockedShadowRay => {
+                ("shadow ray L, meets an object (s < 1)", "rază de umbră L, întâlnește un obiect (s < 1)")
+            }
             Self::HitPoint => ("hit point I", "punct de intersecție I"),
             Self::OccluderPoint => ("L meets an object", "L întâlnește un obiect"),
             Self::LightSource => ("light source S", "sursă de lumină S"),

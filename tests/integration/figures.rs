@@ -359,3 +359,59 @@ fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
         assert!(err.contains(expected), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn the_lessons_command_writes_both_languages_and_the_pages() {
+    let out = std::env::temp_dir().join(format!("whitted-lessons-{}", std::process::id()));
+    let lessons = format!("{}/lessons", env!("CARGO_MANIFEST_DIR"));
+    let args = [
+        "lessons",
+        "--lessons",
+        &lessons,
+        "--only",
+        "pixel-uv",
+        "--size",
+        "480x270",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let (code, stdout, err) = whitted(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("1 lessons"), "{stdout}");
+    for lang in ["en", "ro"] {
+        for ext in ["png", "svg"] {
+            assert!(out.join(lang).join(format!("pixel-uv-1-uv-map.{ext}")).exists(), "{lang} {ext}");
+        }
+    }
+    let en = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let ro = std::fs::read_to_string(out.join("ro").join("index.html")).unwrap();
+    assert!(en.contains("src=\"en/pixel-uv-1-uv-map.png\"") && en.contains("whitted figure uv-map"));
+    assert!(ro.contains("src=\"pixel-uv-1-uv-map.png\"") && ro.contains("--lang ro"));
+    assert!(ro.contains("Calculul coordonatelor (u, v)"));
+    let (code, _, err) =
+        whitted(&["lessons", "--lessons", &lessons, "--only", "nothing", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("no lesson is named `nothing`"));
+}
+
+#[test]
+fn every_lesson_file_reads() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "json") {
+            let lesson = whitted::lesson::parse(&std::fs::read_to_string(&path).unwrap())
+                .unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+            for spec in &lesson.figures {
+                let scene = std::fs::read_to_string(dir.join(&spec.scene)).unwrap();
+                assert!(load_str(&scene).is_ok(), "{}: {}", path.display(), spec.scene);
+            }
+            names.push(lesson.name);
+        }
+    }
+    let count = names.len();
+    names.sort();
+    names.dedup();
+    assert_eq!(names.len(), count, "lesson names are unique");
+}

@@ -9,7 +9,7 @@ pub mod refraction;
 pub mod shadows;
 pub mod uv_map;
 
-use super::drawing::Drawing;
+use super::drawing::{Drawing, LegendPlace};
 use super::labels::{self, Label};
 use super::plane::Planar;
 use super::source::{Traced, Traces};
@@ -47,29 +47,36 @@ impl<V: Planar> Input<'_, V> {
     }
 }
 
-/// Draws `kind` into `d`.
+/// Draws `kind` into `d`. A legend that finds no free corner goes beside the picture, which
+/// then has a narrower plot area: the kind is drawn a second time with the legend placed beside
+/// from the start, so that its view is fitted to that narrower area (and not merely shrunk).
 ///
 /// # Errors
 /// Traces that lack what the kind draws, or a kind whose events this build does not record.
-pub fn draw<V: Planar>(
-    kind: FigureKind,
-    input: &Input<'_, V>,
-    mut d: Drawing,
-) -> Result<Drawing, FigureError> {
-    match kind {
-        FigureKind::UvMap => uv_map::draw(input, &mut d)?,
-        FigureKind::Projections => projections::draw(input, &mut d)?,
-        FigureKind::Rays => rays::draw(input, &mut d)?,
-        FigureKind::Refraction => refraction::draw(input, &mut d)?,
-        FigureKind::LocalModel => local_model::draw(input, &mut d)?,
-        FigureKind::RayTree => ray_tree::draw(input, &mut d)?,
-        FigureKind::Shadows => shadows::draw(input, &mut d)?,
-        other => {
-            return Err(FigureError(format!(
-                "`{}` needs events this build does not record yet",
-                other.name()
-            )))
-        }
+pub fn draw<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: Drawing) -> Result<Drawing, FigureError> {
+    let mut first = d.clone();
+    draw_once(kind, input, &mut first)?;
+    let frame = first.frame();
+    let beside = frame.legend.is_some_and(|l| l.rect.min.x >= frame.plot.max.x);
+    if first.legend_place == LegendPlace::Auto && beside {
+        let mut second = d;
+        second.legend_place = LegendPlace::Outside;
+        draw_once(kind, input, &mut second)?;
+        return Ok(second);
     }
-    Ok(d)
+    Ok(first)
+}
+
+/// Draws `kind` into `d` once.
+fn draw_once<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    match kind {
+        FigureKind::UvMap => uv_map::draw(input, d),
+        FigureKind::Projections => projections::draw(input, d),
+        FigureKind::Rays => rays::draw(input, d),
+        FigureKind::Refraction => refraction::draw(input, d),
+        FigureKind::LocalModel => local_model::draw(input, d),
+        FigureKind::RayTree => ray_tree::draw(input, d),
+        FigureKind::Shadows => shadows::draw(input, d),
+        other => Err(FigureError(format!("`{}` needs events this build does not record yet", other.name()))),
+    }
 }

@@ -142,7 +142,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         plane_note(V::DIM, Label::PlaneOfRow, None, lang),
     ));
     legend_role(d, RayRole::Primary, lang);
-    legend_points(d, lang, true, false, true);
+    legend_points(d, lang, true, false, false);
     d.legend_entry(input.t(Label::ViewWindow), window_style(), Sample::Line);
     // Room above the panels for their headings.
     d.fit_view(&[lo, hi + shift + DVec2::new(0.0, 2.5 * pad)], 0.0);

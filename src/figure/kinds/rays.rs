@@ -100,7 +100,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     if shadows.iter().any(|s| s.block.is_some()) {
         legend_role(d, RayRole::BlockedShadow, lang);
     }
-    legend_points(d, lang, first.is_some(), !scene.lights.is_empty(), window.is_some());
+    // Hit points and the observer are named on the drawing (I_k, O); the lights need a word.
+    legend_points(d, lang, false, !scene.lights.is_empty(), false);
     if first.is_some() {
         legend_normal(d, lang);
     }

@@ -103,13 +103,14 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for (k, (traced, c)) in cases.iter().enumerate() {
         let names = Names::of(&traced.log);
         let hit = names.hit_name(c.node).unwrap_or_default();
-        let what = if c.k.is_some() { format!(" · {}", input.t(Label::Tir)) } else { String::new() };
-        let sep = if k == 0 { "" } else { " — " };
-        caption.push_str(&format!(
-            "{sep}{}{what}: {hit} ({})",
-            input.traced(traced),
-            object_name(input.scene, crate::record::event::ObjectRef { index: c.object, triangle: None })
-        ));
+        let what = if c.k.is_some() { format!("{}: ", input.t(Label::Tir)) } else { String::new() };
+        // The trace is named once, unless the second case comes from another one.
+        let same = k > 0 && std::ptr::eq(*traced, cases[0].0);
+        let source = if same { String::new() } else { format!("{}: ", input.traced(traced)) };
+        let sep = if k == 0 { "" } else { "; " };
+        let object =
+            object_name(input.scene, crate::record::event::ObjectRef { index: c.object, triangle: None });
+        caption.push_str(&format!("{sep}{source}{what}{hit} ({object})"));
     }
     caption.push_str(&format!(" · {}", input.t(Label::PlaneOfIncidence)));
     d.set_caption(&caption);
@@ -126,20 +127,20 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     legend_normal(d, lang);
     d.legend_entry(input.t(Label::Inside), style::outline(style::BLACK), Sample::Swatch(style::OBJECT_FILL));
 
-    // Panels 3.4 apart; one panel keeps a text column on its right, two put their text below.
-    let panel_w = 3.4;
-    let two = cases.len() == 2;
-    let text_at = if two {
-        d.fit_view(&[DVec2::new(-1.6, -2.6), DVec2::new(-1.6 + 2.0 * panel_w, 1.45)], 0.01);
-        None
+    // One case: its numbers in a column on the right. Two: side by side, 4.4 apart, each with
+    // its numbers below (in smaller type, 1.4 units reserved).
+    if let [(traced, c)] = cases.as_slice() {
+        let column = parts::fit_with_column(d, &[DVec2::new(-1.6, -1.45), DVec2::new(1.6, 1.45)], 0.01, 0.48);
+        let lines = panel(input, d, traced, c, DVec2::ZERO);
+        text_column(d, column + DVec2::new(0.15, -0.1), &lines, TextSize::Body, 50.0);
     } else {
-        Some(parts::fit_with_column(d, &[DVec2::new(-1.6, -1.45), DVec2::new(1.6, 1.45)], 0.01, 0.48))
-    };
-    for (k, (traced, c)) in cases.iter().enumerate() {
-        let offset = DVec2::new(panel_w * k as f64, 0.0);
-        let lines = panel(input, d, traced, c, offset);
-        let at = text_at.map_or(offset + DVec2::new(-1.5, -1.55), |t| t + DVec2::new(0.15, -0.1));
-        text_column(d, at, &lines, TextSize::Body, 50.0);
+        let gap = 4.4;
+        d.fit_view(&[DVec2::new(-1.6, -1.45 - 1.45), DVec2::new(1.6 + gap, 1.45)], 0.01);
+        for (k, (traced, c)) in cases.iter().enumerate() {
+            let offset = DVec2::new(gap * k as f64, 0.0);
+            let lines = panel(input, d, traced, c, offset);
+            text_column(d, offset + DVec2::new(-1.55, -1.5), &lines, TextSize::Small, 38.0);
+        }
     }
     Ok(())
 }

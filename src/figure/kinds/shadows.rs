@@ -94,7 +94,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             crate::figure::drawing::Sample::Dot(RayRole::BlockedShadow.color()),
         );
     }
-    legend_points(d, lang, true, true, false);
+    legend_points(d, lang, false, true, false);
     legend_normal(d, lang);
 
     // The view: I, the lights, the occluders, and where the incoming ray came from (clipped).
