@@ -137,6 +137,8 @@ pub enum Label {
     PlaneOfRow,
     /// The inside of an object.
     Inside,
+    /// A light's intensity in the local model's formula.
+    Isrc,
 }
 
 impl Label {
@@ -256,6 +258,7 @@ impl Label {
             Self::Row => ("row", "rândul"),
             Self::Columns => ("columns", "coloanele"),
             Self::Inside => ("inside the object", "interiorul obiectului"),
+            Self::Isrc => ("Isrc", "Isursa"),
             Self::PlaneOfRow => (
                 "each panel drawn in the plane of its row of rays (u and the row's direction)",
                 "fiecare panou desenat în planul rândului său de raze (u și direcția rândului)",

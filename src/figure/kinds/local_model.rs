@@ -112,8 +112,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     // The terms, with the recorded numbers.
     let material = scene.material_of(hit.object.index);
     let (ka, _) = material.colors_at(hit.point);
+    // The light's intensity as the lecture writes it: Isrc, in Romanian Isursa.
+    let src = input.t(Label::Isrc);
     let mut lines = vec![
-        "I_{local} = Ia·Ka + Σ Isrc·fat·s·lum·[kd·(N·L) + ks·(N·H)^n]".to_owned(),
+        format!("I_{{local}} = Ia·Ka + Σ {src}·fat·s·lum·[kd·(N·L) + ks·(N·H)^n]"),
         format!(
             "Ia·Ka = {} · {} = {}",
             rgb_text(scene.ambient),
@@ -139,8 +141,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 num(material.n)
             ));
         }
-        lines.push(format!("Isrc·fat·s·kd·(N·L) = {}", rgb_text(t.diffuse)));
-        lines.push(format!("Isrc·fat·s·ks·(N·H)^n = {}", rgb_text(t.specular)));
+        lines.push(format!("{src}·fat·s·kd·(N·L) = {}", rgb_text(t.diffuse)));
+        lines.push(format!("{src}·fat·s·ks·(N·H)^n = {}", rgb_text(t.specular)));
     }
     if let Some(local) = end.local {
         lines.push(format!("I_{{local}} = {}", rgb_text(local)));
