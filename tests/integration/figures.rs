@@ -415,3 +415,59 @@ fn every_lesson_file_reads() {
     names.dedup();
     assert_eq!(names.len(), count, "lesson names are unique");
 }
+
+/// Every finite coordinate of a display list (a NaN or an infinity is a bug).
+fn assert_finite_items(d: &Drawing, what: &str) {
+    let finite = |p: &DVec2| p.is_finite();
+    for item in &d.items {
+        let ok = match &item.shape {
+            Shape::Line { points } | Shape::Polygon { points, .. } => points.iter().all(finite),
+            Shape::Arrow { from, to, .. } => finite(from) && finite(to),
+            Shape::Circle { center, radius, .. } => finite(center) && radius.is_finite(),
+            Shape::Dot { center, .. } => finite(center),
+            Shape::Rect { min, max, .. } => finite(min) && finite(max),
+            Shape::Text(t) => finite(&t.anchor) && finite(&t.offset),
+        };
+        assert!(ok, "{what}: {}", item_line(item));
+    }
+}
+
+#[test]
+fn every_kind_draws_or_says_why_on_every_scene() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut scenes: Vec<(String, String)> = Vec::new();
+    for dir in ["tests/data/scenes", "lessons/scenes", "scenes"] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            scenes.push((path.display().to_string(), std::fs::read_to_string(&path).unwrap()));
+        }
+    }
+    // Edge cases: nothing in the scene, no light, a ray that leaves at once.
+    let empty3 = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [4,3]}}"#;
+    let dark2 = r#"{"camera": {"eye": [0,5], "center": [0,0], "window": {"l":-1,"r":1}, "resolution": [3]},
+                   "objects": [{"type": "sphere", "center": [0,0], "radius": 1, "material": {"kt": 0.5, "ior": 1.3}}]}"#;
+    scenes.push(("empty3".into(), empty3.into()));
+    scenes.push(("dark2".into(), dark2.into()));
+    for (name, text) in &scenes {
+        let scene = load_str(text).unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        for kind in DRAWN {
+            let made = match &scene {
+                AnyScene::Flat(s) => try_figure(s, kind),
+                AnyScene::Space(s) => try_figure(s, kind),
+            };
+            match made {
+                Ok(d) => assert_finite_items(&d, &format!("{name} {kind:?}")),
+                // Only the kinds that need a refraction, a hit or a shadow ray may refuse.
+                Err(e) => assert!(
+                    matches!(kind, FigureKind::Refraction | FigureKind::LocalModel | FigureKind::Shadows),
+                    "{name} {kind:?}: {e}"
+                ),
+            }
+        }
+    }
+}
+
+fn try_figure<V: Planar>(scene: &Scene<V>, kind: FigureKind) -> Result<Drawing, String> {
+    let traces = record(kind, scene, "s", &Aim::Auto, Tracing::SCENE).map_err(|e| e.0)?;
+    draw(kind, &traces, scene, &Options { lang: Lang::Ro, width: 480, height: 270 }).map_err(|e| e.0)
+}
