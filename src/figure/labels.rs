@@ -199,9 +199,9 @@ impl Label {
             Self::PrimaryRay => ("primary ray P", "rază primară P"),
             Self::ReflectedRay => ("reflected ray R", "rază reflectată R"),
             Self::TransmittedRay => ("transmitted ray T", "rază transmisă T"),
-            Self::ShadowRay => ("shadow ray L, reaches the light", "rază de umbră L, ajunge la sursă"),
+            Self::ShadowRay => ("shadow ray L, free (s = 1)", "rază de umbră L, liberă (s = 1)"),
             Self::BlockedShadowRay => {
-                ("shadow ray L, meets an object (s < 1)", "rază de umbră L, întâlnește un obiect (s < 1)")
+                ("shadow ray L with obstacles (s < 1)", "rază de umbră L cu obstacole (s < 1)")
             }
             Self::HitPoint => ("hit point I", "punct de intersecție I"),
             Self::OccluderPoint => ("L meets an object", "L întâlnește un obiect"),
@@ -280,7 +280,7 @@ pub fn pick_reason(pick: Pick, lang: Lang) -> Option<&'static str> {
             ("its trace has a total internal reflection", "traseul său are o reflexie totală internă")
         }
         Pick::BlockedShadow => {
-            ("a shadow ray of its trace is blocked", "o rază de umbră a traseului este blocată")
+            ("a shadow ray of its trace meets an object", "o rază de umbră a traseului întâlnește un obiect")
         }
         Pick::Rich => ("its trace has the most kinds of rays", "traseul are cele mai multe tipuri de raze"),
         Pick::Lit => {

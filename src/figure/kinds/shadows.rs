@@ -109,10 +109,13 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let incoming =
         if (from - i).length() > 0.6 * span { i + (from - i).normalize() * 0.6 * span } else { from };
     points.push(incoming);
-    let column = parts::fit_with_column(d, &points, 0.08, 0.36);
+    let column = parts::fit_with_column(d, &points, 0.08, 0.4);
     let view = d.view;
+    // Unbounded lines stop where the text column begins, leaving its lower part to the legend.
+    let scene_part =
+        crate::figure::drawing::View::new(view.xmin(), column.x, view.ymin(), view.ymax()).unwrap_or(view);
 
-    let anchors = draw_objects(d, scene, &plane, &view, &occluding, RayRole::BlockedShadow.color());
+    let anchors = draw_objects(d, scene, &plane, &scene_part, &occluding, RayRole::BlockedShadow.color());
     draw_ray(d, parts::role(node.start.kind), incoming, i);
     for s in &shadows {
         let role = if s.occluders.is_empty() { RayRole::Shadow } else { RayRole::BlockedShadow };
