@@ -17,6 +17,7 @@ pub mod image;
 pub mod lesson;
 pub mod record;
 pub mod render;
+pub mod sample;
 pub mod scene;
 pub mod shape;
 pub mod trace;

@@ -1,13 +1,19 @@
-//! `whitted render`: load → build the acceleration structure → render → PNG → the one-line
-//! summary (rays by kind, tests, time) on stderr, `--json` statistics on stdout.
+//! `whitted render`: load → build the acceleration structure → render (with the `--aa` sampling,
+//! a progress bar on stderr when it is a terminal) → PNG → the one-line summary (pixels, samples,
+//! rays by kind, tests, Mrays/s, time) on stderr, `--json` statistics on stdout.
 
+use super::sampling::SamplingArgs;
 use super::{default_output, load_scene, parse, print_out, write_file, Failure};
 use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 use whitted::accel::{Accel, AccelKind};
-use whitted::render::{render_centers, Rendered};
+use whitted::doc::float;
+use whitted::render::{render, RenderConfig, Rendered};
+use whitted::sample::Sampling;
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
 
@@ -31,6 +37,8 @@ pub struct RenderArgs {
     /// Print the run's statistics as one JSON object on stdout.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    sampling: SamplingArgs,
 }
 
 /// Applies `--size` to a scene's camera: the window stays, the pixel count changes.
@@ -52,6 +60,7 @@ pub fn resize<V: Dim>(scene: &mut Scene<V>, size: Option<(usize, Option<usize>)>
 
 /// Runs `whitted render`.
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
+    let sampling = args.sampling.sampling()?;
     let start = Instant::now();
     let scene = load_scene(&args.scene)?;
     let load_seconds = start.elapsed().as_secs_f64();
@@ -66,11 +75,11 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let outcome = match scene {
         AnyScene::Flat(mut s) => {
             let rows = resize(&mut s, args.size);
-            pool.install(|| render_scene(&s, args, rows))
+            pool.install(|| render_scene(&s, args, sampling, rows))
         }
         AnyScene::Space(mut s) => {
             let rows = resize(&mut s, args.size);
-            pool.install(|| render_scene(&s, args, rows))
+            pool.install(|| render_scene(&s, args, sampling, rows))
         }
     };
     let output = args.output.clone().unwrap_or_else(|| default_output(&args.scene, "png"));
@@ -80,12 +89,13 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let rays = stats.rays;
     let mrays = rays.total() as f64 / outcome.seconds.max(1e-9) / 1e6;
     eprintln!(
-        "whitted: {}x{} → {} | {} pixels, {} samples | rays: {} primary, {} reflected, {} transmitted, {} shadow | tests: {} object | {:.3} s trace, {:.2} Mrays/s, {} threads",
+        "whitted: {}x{} → {} | {} pixels, {} samples ({}) | rays: {} primary, {} reflected, {} transmitted, {} shadow | tests: {} object | {:.3} s trace, {:.2} Mrays/s, {} threads",
         outcome.rendered.image.width,
         outcome.rendered.image.height,
         output.display(),
         outcome.rendered.pixels,
         rays.primary,
+        describe(sampling),
         rays.primary,
         rays.reflected,
         rays.transmitted,
@@ -104,6 +114,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             "seconds": outcome.seconds,
             "threads": threads,
             "accel": outcome.accel,
+            "aa": sampling.name(),
             "width": outcome.rendered.image.width,
             "height": outcome.rendered.image.height,
             "output": output.display().to_string(),
@@ -111,6 +122,10 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         let st = whitted::doc::stats(stats);
         doc["rays"] = st["rays"].clone();
         doc["tests"] = st["tests"].clone();
+        if let Sampling::Adaptive { threshold, max_level } = sampling {
+            doc["threshold"] = float(threshold);
+            doc["max_level"] = json!(max_level);
+        }
         print_out(&format!("{doc}\n"));
     }
     Ok(())
@@ -123,13 +138,53 @@ struct Outcome {
     accel: &'static str,
 }
 
-fn render_scene<V: Dim>(scene: &Scene<V>, args: &RenderArgs, strip_rows: Option<usize>) -> Outcome {
+/// The sampling mode as the summary line shows it.
+fn describe(sampling: Sampling) -> String {
+    match sampling {
+        Sampling::Adaptive { threshold, max_level } => {
+            format!("adaptive, threshold {threshold}, max level {max_level}")
+        }
+        other => other.name().to_string(),
+    }
+}
+
+fn render_scene<V: Dim>(
+    scene: &Scene<V>,
+    args: &RenderArgs,
+    sampling: Sampling,
+    strip_rows: Option<usize>,
+) -> Outcome {
     let build = Instant::now();
     let accel = Accel::build(scene, AccelKind::None);
     let build_seconds = build.elapsed().as_secs_f64();
     let max_depth = args.depth.unwrap_or(scene.max_depth);
+    // A progress bar over pixel rows, only for a person watching a terminal.
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let bar = ProgressBar::new(scene.camera.ny as u64);
+        if let Ok(style) =
+            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} rows, eta {eta}")
+        {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar
+    });
+    let tick = |rows: u64| {
+        if let Some(bar) = &bar {
+            bar.inc(rows);
+        }
+    };
+    let config = RenderConfig {
+        sampling,
+        max_depth,
+        strip_rows,
+        rays_per_pixel: false,
+        progress: bar.is_some().then_some(&tick as &(dyn Fn(u64) + Sync)),
+    };
     let trace = Instant::now();
-    let rendered = render_centers(scene, &accel, max_depth, strip_rows);
+    let rendered = render(scene, &accel, &config);
     let seconds = trace.elapsed().as_secs_f64();
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
     Outcome { rendered, build_seconds, seconds, accel: accel.kind().name() }
 }

@@ -1,14 +1,19 @@
 //! `whitted trace`: one pixel (or one ray) traced with `EventLog`; `--json` prints the trace
-//! document, otherwise the numbered narration (`doc::narrate`) in English or Romanian.
+//! document, otherwise the numbered narration (`doc::narrate`) in English or Romanian. With
+//! `--aa corners|adaptive` the pixel's samples are traced instead of its centre (`sample::trace_pixel`,
+//! `doc::samples`).
 
+use super::sampling::SamplingArgs;
 use super::{load_scene, parse, print_out, Failure};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 use whitted::accel::{Accel, AccelKind};
 use whitted::doc::narrate::{narrate, Lang};
+use whitted::doc::samples::{narrate_samples, sampled_document};
 use whitted::doc::{trace_document, TraceTarget};
 use whitted::geom::ray::Ray;
 use whitted::record::EventLog;
+use whitted::sample::{trace_pixel, Sampling};
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
 use whitted::trace::Tracer;
@@ -52,6 +57,9 @@ pub struct TraceArgs {
     /// The narration's language.
     #[arg(long, value_enum, default_value = "en")]
     lang: LangArg,
+    /// With --pixel: corners or adaptive trace the pixel's samples instead of its centre.
+    #[command(flatten)]
+    sampling: SamplingArgs,
 }
 
 /// Runs `whitted trace`.
@@ -107,11 +115,26 @@ pub fn target<V: Dim>(
 }
 
 fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure> {
+    let sampling = args.sampling.sampling()?;
     let (ray, target) = target(scene, args.pixel, args.ray.as_ref())?;
     let accel = Accel::build(scene, AccelKind::None);
     let mut tracer = Tracer::new(scene, &accel, EventLog::new());
     if let Some(d) = args.depth {
         tracer.max_depth = d;
+    }
+    if sampling != Sampling::Center {
+        let Some(pixel) = target.pixel.clone() else {
+            return Err(Failure::input("--aa corners|adaptive samples a pixel: give --pixel, not --ray"));
+        };
+        let traced = trace_pixel(&mut tracer, sampling, pixel[0], pixel.get(1).copied().unwrap_or(0));
+        let text = if args.json {
+            let doc = sampled_document(scene, &tracer.recorder, &tracer.stats, &target, sampling, &traced);
+            serde_json::to_string_pretty(&doc).map_err(|e| Failure::other(e.to_string()))? + "\n"
+        } else {
+            narrate_samples(&target, sampling, &traced, &tracer.stats, args.lang.lang())
+        };
+        print_out(&text);
+        return Ok(());
     }
     let uv = target.uv.clone().unwrap_or_default();
     let color = tracer.trace_primary(&ray, &uv);

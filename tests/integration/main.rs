@@ -5,6 +5,7 @@ mod cli;
 mod figures;
 mod numerics;
 mod properties;
+mod sampling;
 mod support;
 mod tidy;
 mod traces;
