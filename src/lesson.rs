@@ -15,12 +15,14 @@
 //!       "caption": { "en": "…", "ro": "…" } } ] }
 //! ```
 //! `scene` is relative to the lesson file; `pixel` is `[i, j]` (`[i]` in 2D), `ray` is
-//! `{ "origin": [...], "direction": [...] }`; `text`, `pixel`, `ray` and `depth` may be left out.
-//! An unknown field is an error.
+//! `{ "origin": [...], "direction": [...] }`; `aa` is `center`, `corners` or `adaptive` (with
+//! `threshold`, default 0.1, and `max_level`, default 2) for `adaptive` and `heat-map`; `text`,
+//! `pixel`, `ray`, `depth` and `aa` may be left out. An unknown field is an error.
 
 use serde_json::{Map, Value};
 
 use crate::figure::{FigureKind, Lang};
+use crate::sample::Sampling;
 
 /// A text in both languages.
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
@@ -55,6 +57,8 @@ pub struct FigureSpec {
     pub ray: Option<(Vec<f64>, Vec<f64>)>,
     /// Overrides the scene's `max_depth`.
     pub depth: Option<u32>,
+    /// The sampling of `adaptive` and `heat-map` (`aa`, `threshold`, `max_level`).
+    pub sampling: Option<Sampling>,
     /// What the figure shows, in both languages.
     pub caption: Both,
 }
@@ -153,7 +157,8 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
         errors.push(format!("{path}: must be an object"));
         return None;
     };
-    unknown(map, &format!("{path}."), &["kind", "scene", "pixel", "ray", "depth", "caption"], errors);
+    let fields = ["kind", "scene", "pixel", "ray", "depth", "aa", "threshold", "max_level", "caption"];
+    unknown(map, &format!("{path}."), &fields, errors);
     let kind = map.get("kind").and_then(Value::as_str).and_then(FigureKind::from_name);
     if kind.is_none() {
         let names: Vec<&str> = FigureKind::ALL.iter().map(|k| k.name()).collect();
@@ -205,8 +210,29 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
             }
         },
     };
+    let sampling = sampling(map, path, errors);
     let caption = both(map.get("caption"), &format!("{path}.caption"), errors);
-    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, caption })
+    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, caption })
+}
+
+/// `aa` (`center`, `corners`, `adaptive`) with `threshold` (default 0.1) and `max_level` (default 2).
+fn sampling(map: &Map<String, Value>, path: &str, errors: &mut Vec<String>) -> Option<Sampling> {
+    let aa = map.get("aa")?;
+    let threshold = match map.get("threshold") {
+        None => 0.1,
+        Some(t) => t.as_f64().unwrap_or(-1.0),
+    };
+    let max_level = match map.get("max_level") {
+        None => 2,
+        Some(k) => k.as_u64().and_then(|k| u32::try_from(k).ok()).unwrap_or(u32::MAX),
+    };
+    let made = match aa.as_str() {
+        Some("center") => Ok(Sampling::Center),
+        Some("corners") => Ok(Sampling::Corners),
+        Some("adaptive") => Sampling::adaptive(threshold, max_level).map_err(|e| e.to_string()),
+        _ => Err("must be center, corners or adaptive".to_owned()),
+    };
+    made.map_err(|e| errors.push(format!("{path}.aa: {e}"))).ok()
 }
 
 /// What the index page shows for one written figure.
@@ -297,7 +323,8 @@ mod tests {
     use super::*;
 
     const GOOD: &str = r#"{ "name": "rays", "title": { "en": "Rays", "ro": "Raze" },
-        "figures": [ { "kind": "rays", "scene": "s.json", "pixel": [3], "caption": { "en": "a", "ro": "b" } },
+        "figures": [ { "kind": "rays", "scene": "s.json", "pixel": [3], "aa": "adaptive", "max_level": 3,
+                       "caption": { "en": "a", "ro": "b" } },
                      { "kind": "refraction", "scene": "t.json", "ray": { "origin": [0, 0], "direction": [1, 0] },
                        "depth": 2, "caption": { "en": "c", "ro": "d" } } ] }"#;
 
@@ -308,6 +335,8 @@ mod tests {
         assert_eq!(lesson.figures[0].pixel, Some((3, None)));
         assert_eq!(lesson.figures[1].ray, Some((vec![0.0, 0.0], vec![1.0, 0.0])));
         assert_eq!(lesson.figures[1].depth, Some(2));
+        assert_eq!(lesson.figures[0].sampling, Some(Sampling::Adaptive { threshold: 0.1, max_level: 3 }));
+        assert_eq!(lesson.figures[1].sampling, None);
         assert_eq!(lesson.file_stem(1), "rays-2-refraction");
         assert_eq!(lesson.title.get(Lang::Ro), "Raze");
     }

@@ -2,6 +2,7 @@
 //! (`figure::draw`) and write a PNG or an SVG, chosen by the file extension; `--list` names every
 //! kind with one line.
 
+use super::sampling::SamplingArgs;
 use super::trace::{target, LangArg};
 use super::{load_scene, parse, print_out, write_file, Failure};
 use clap::Args;
@@ -40,6 +41,10 @@ pub struct FigureArgs {
     /// Override the scene's max_depth (0 = ray casting).
     #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
     depth: Option<u32>,
+    /// Sampling, for `adaptive` (default: adaptive, threshold 0.1, K = 2) and `heat-map`; the other
+    /// kinds trace the pixel's centre.
+    #[command(flatten)]
+    sampling: SamplingArgs,
     /// Print every kind with one line and exit.
     #[arg(long)]
     list: bool,
@@ -79,7 +84,7 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         kind,
         pixel: args.pixel,
         ray: args.ray.clone(),
-        tracing: Tracing { depth: args.depth, ..Tracing::SCENE },
+        tracing: Tracing { depth: args.depth, sampling: args.sampling.sampling()?, ..Tracing::SCENE },
         opts: Options { lang: args.lang.lang(), width, height },
     };
     let drawing = figure(&load_scene(scene_path)?, &scene_name(scene_path), &request)?;

@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 use whitted::figure::source::Tracing;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::{self, FigureSpec, Lesson, Shown};
+use whitted::sample::Sampling;
 use whitted::scene::AnyScene;
 
 /// Options of `whitted lessons`.
@@ -91,6 +92,13 @@ fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
     if let Some(depth) = spec.depth {
         cmd.push_str(&format!(" --depth {depth}"));
     }
+    match spec.sampling {
+        Some(Sampling::Corners) => cmd.push_str(" --aa corners"),
+        Some(Sampling::Adaptive { threshold, max_level }) => {
+            cmd.push_str(&format!(" --aa adaptive --threshold {threshold} --max-level {max_level}"));
+        }
+        Some(Sampling::Center) | None => {}
+    }
     cmd.push_str(&format!(" --lang {} -o {}", lang_dir(lang), png.display()));
     cmd
 }
@@ -142,7 +150,11 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
                 kind: spec.kind,
                 pixel: spec.pixel,
                 ray: spec.ray.clone(),
-                tracing: Tracing { depth: spec.depth, ..Tracing::SCENE },
+                tracing: Tracing {
+                    depth: spec.depth,
+                    sampling: spec.sampling.unwrap_or(Sampling::Center),
+                    ..Tracing::SCENE
+                },
                 opts: Options { lang, width, height },
             };
             let made = scenes[&scene_path]

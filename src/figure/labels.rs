@@ -139,6 +139,30 @@ pub enum Label {
     Inside,
     /// A light's intensity in the local model's formula.
     Isrc,
+    /// A traced sample (legend of `adaptive`).
+    SampleTraced,
+    /// A sample read again by another square.
+    SampleReused,
+    /// A leaf square's colour.
+    LeafColour,
+    /// "split while" (the rule of `adaptive`).
+    SplitWhen,
+    /// "samples traced".
+    SamplesTraced,
+    /// "reused".
+    Reused,
+    /// "pixel" (its colour).
+    PixelColour,
+    /// "primary rays traced" (heat-map caption).
+    RaysTraced,
+    /// "mean per pixel".
+    MeanPerPixel,
+    /// "rays" after a count in the legend.
+    RaysPerPixel,
+    /// The adaptive threshold.
+    Threshold,
+    /// K = 0: the corners, no subdivision.
+    CornersOnly,
 }
 
 impl Label {
@@ -259,6 +283,20 @@ impl Label {
             Self::Columns => ("columns", "coloanele"),
             Self::Inside => ("inside the object", "interiorul obiectului"),
             Self::Isrc => ("Isrc", "Isursa"),
+            Self::SampleTraced => ("sample: one primary ray", "eșantion: o rază primară"),
+            Self::SampleReused => ("read again by another square", "refolosit de alt pătrat"),
+            Self::LeafColour => ("leaf: the mean of its corners", "frunză: media colțurilor"),
+            Self::SplitWhen => ("a square splits while", "un pătrat se divide cât timp"),
+            Self::SamplesTraced => ("samples traced", "eșantioane trasate"),
+            Self::Reused => ("reused", "refolosite"),
+            Self::PixelColour => ("pixel", "pixelul"),
+            Self::RaysTraced => ("primary rays traced", "raze primare trasate"),
+            Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
+            Self::RaysPerPixel => ("rays", "raze"),
+            Self::Threshold => ("threshold", "pragul"),
+            Self::CornersOnly => {
+                ("K = 0: the 4 corners, no subdivision", "K = 0: cele 4 colțuri, fără subdivizare")
+            }
             Self::PlaneOfRow => (
                 "each panel drawn in the plane of its row of rays (u and the row's direction)",
                 "fiecare panou desenat în planul rândului său de raze (u și direcția rândului)",
@@ -272,6 +310,9 @@ impl Label {
 pub fn pick_reason(pick: Pick, lang: Lang) -> Option<&'static str> {
     let (en, ro) = match pick {
         Pick::Given => return None,
+        Pick::Subdivided => {
+            ("its subdivision mixes the most levels", "subdivizarea sa amestecă cele mai multe niveluri")
+        }
         Pick::Default => ("the centre pixel", "pixelul din centru"),
         Pick::OffCentre => ("off the centre, in the upper right", "în afara centrului, sus în dreapta"),
         Pick::OffCentreRow => ("right of the centre", "la dreapta centrului"),

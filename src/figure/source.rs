@@ -9,6 +9,8 @@ use crate::geom::ray::Ray;
 use crate::geom::Vector;
 use crate::record::event::{Event, RayKind};
 use crate::record::{EventLog, RayNode};
+use crate::render::{render, RenderConfig};
+use crate::sample::{trace_pixel, PixelTrace, Sampling};
 use crate::scene::camera::Projection;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
@@ -49,6 +51,8 @@ pub enum Pick {
     Rich,
     /// The pixel whose primary hit is lit with the clearest N, L, H, V.
     Lit,
+    /// The pixel whose adaptive subdivision mixes the most levels.
+    Subdivided,
 }
 
 /// Where a traced primary ray came from.
@@ -82,6 +86,8 @@ pub struct Traced<V> {
     pub projection: Projection,
     /// How the pixel was chosen.
     pub pick: Pick,
+    /// A pixel traced with samples (`adaptive`): its samples and squares.
+    pub samples: Option<PixelTrace>,
 }
 
 /// Everything a figure reads besides the scene.
@@ -92,20 +98,38 @@ pub struct Traces<V> {
     /// The traces: the main one first; `projections` has the orthographic then the perspective
     /// one; `refraction` may add a second trace that shows a total internal reflection.
     pub traces: Vec<Traced<V>>,
+    /// The primary rays of every pixel of a whole render (`heat-map`).
+    pub counts: Option<Counts>,
+}
+
+/// The primary rays that entered each pixel of a render.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Counts {
+    /// The sampling mode rendered with.
+    pub sampling: Sampling,
+    /// Per pixel, `[j·Nx + i]` with j from the bottom: the distinct samples whose colour entered it.
+    pub per_pixel: Vec<u32>,
+    /// The primary rays traced for the whole image (shared samples once).
+    pub traced: u64,
 }
 
 /// Options of the tracing a figure reads.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tracing {
     /// Overrides the scene's `max_depth`.
     pub depth: Option<u32>,
     /// The structure that finds hits.
     pub accel: AccelKind,
+    /// How pixels become primary rays, for the kinds that show sampling (`adaptive`, `heat-map`);
+    /// the others trace the pixel's centre.
+    pub sampling: Sampling,
 }
 
 impl Tracing {
-    /// The scene's own depth, brute force.
-    pub const SCENE: Self = Self { depth: None, accel: AccelKind::None };
+    /// The scene's own depth, brute force, one ray through each pixel centre.
+    pub const SCENE: Self = Self { depth: None, accel: AccelKind::None, sampling: Sampling::Center };
+    /// The adaptive subdivision of the lecture's figure: threshold 0.1, at most 2 levels.
+    pub const ADAPTIVE: Sampling = Sampling::Adaptive { threshold: 0.1, max_level: 2 };
 }
 
 /// Records the traces that figure `kind` reads, for `aim` in `scene` (named `scene_name`).
@@ -172,9 +196,33 @@ pub fn record<V: Dim>(
             vec![main]
         }
         FigureKind::Rays | FigureKind::RayTree => vec![tracer.aimed(aim, Pick::Rich, rich_score)],
+        FigureKind::Adaptive => {
+            // The centre alone has nothing to subdivide: the figure's own adaptive rule then.
+            let sampling = match tracing.sampling {
+                Sampling::Center => Tracing::ADAPTIVE,
+                other => other,
+            };
+            vec![tracer.sampled(aim, sampling)?]
+        }
+        FigureKind::HeatMap => {
+            let config = RenderConfig {
+                sampling: tracing.sampling,
+                rays_per_pixel: true,
+                ..RenderConfig::centers(depth)
+            };
+            let rendered = render(scene, &accel, &config);
+            let per_pixel = rendered.rays_per_pixel.unwrap_or_default();
+            let counts =
+                Counts { sampling: tracing.sampling, per_pixel, traced: rendered.stats.rays.primary };
+            return Ok(Traces {
+                scene_name: scene_name.to_owned(),
+                traces: Vec::new(),
+                counts: Some(counts),
+            });
+        }
         _ => vec![tracer.aimed(aim, Pick::Default, |_| None)],
     };
-    Ok(Traces { scene_name: scene_name.to_owned(), traces })
+    Ok(Traces { scene_name: scene_name.to_owned(), traces, counts: None })
 }
 
 /// The message for a trace that lacks what a figure draws.
@@ -239,6 +287,53 @@ impl<V: Dim> Recording<'_, V> {
             max_depth: depth,
             projection: scene.camera.projection,
             pick,
+            samples: None,
+        }
+    }
+
+    /// Pixel `(i, j)` traced with its samples (`sampling` samples corners).
+    fn pixel_samples(&self, i: usize, j: usize, sampling: Sampling, pick: Pick) -> Traced<V> {
+        let mut tracer = Tracer::new(self.scene, self.accel, EventLog::new());
+        tracer.max_depth = self.depth;
+        let traced = trace_pixel(&mut tracer, sampling, i, j);
+        let (u, v) = self.scene.camera.pixel_center(i, j);
+        let uv = if V::DIM == 2 { vec![u] } else { vec![u, v] };
+        Traced {
+            targets: vec![Target::Pixel { i, j, uv }],
+            colors: vec![traced.color],
+            log: tracer.recorder,
+            max_depth: self.depth,
+            projection: self.scene.camera.projection,
+            pick,
+            samples: Some(traced),
+        }
+    }
+
+    /// `adaptive`: the given pixel, or the one whose subdivision splits the most squares.
+    fn sampled(&self, aim: &Aim<V>, sampling: Sampling) -> Result<Traced<V>, FigureError> {
+        match aim {
+            Aim::Pixel(i, j) => Ok(self.pixel_samples(*i, *j, sampling, Pick::Given)),
+            Aim::Ray(_) => Err(FigureError("adaptive subdivides a pixel: give --pixel, not --ray".into())),
+            Aim::Auto => {
+                // A subdivision that mixes levels (some squares split, some not) shows the rule
+                // best: the most distinct leaf levels, then the most splits.
+                let best = self.best_pixel(|i, j| {
+                    let t = self.pixel_samples(i, j, sampling, Pick::Given);
+                    let squares = t.samples.as_ref().map_or(&[][..], |s| &s.squares[..]);
+                    let splits = squares.iter().filter(|q| q.split).count();
+                    let mut levels: Vec<u32> = squares.iter().filter(|q| !q.split).map(|q| q.level).collect();
+                    levels.sort_unstable();
+                    levels.dedup();
+                    (splits > 0).then_some(100.0 * levels.len() as f64 + splits as f64)
+                });
+                Ok(match best {
+                    Some((i, j)) => self.pixel_samples(i, j, sampling, Pick::Subdivided),
+                    None => {
+                        let (i, j) = default_pixel(self.scene);
+                        self.pixel_samples(i, j, sampling, Pick::Default)
+                    }
+                })
+            }
         }
     }
 
@@ -274,14 +369,19 @@ impl<V: Dim> Recording<'_, V> {
     /// The pixel of a coarse grid (at most 48 × 36 candidates) whose trace scores highest; ties
     /// go to the pixel nearest the image's centre.
     fn scan(&self, score: impl Fn(&EventLog<V>) -> Option<f64>) -> Option<(usize, usize)> {
+        self.best_pixel(|i, j| score(&self.pixel(i, j, Pick::Given).log))
+    }
+
+    /// The pixel of a coarse grid (at most 48 × 36 candidates) with the highest `score`; ties go
+    /// to the pixel nearest the image's centre.
+    fn best_pixel(&self, score: impl Fn(usize, usize) -> Option<f64>) -> Option<(usize, usize)> {
         let cam = &self.scene.camera;
         let (sx, sy) = ((cam.nx / 48).max(1), (cam.ny / 36).max(1));
         let centre = (cam.nx as f64 / 2.0, cam.ny as f64 / 2.0);
         let mut best: Option<(f64, f64, (usize, usize))> = None;
         for j in (sy / 2..cam.ny).step_by(sy) {
             for i in (sx / 2..cam.nx).step_by(sx) {
-                let traced = self.pixel(i, j, Pick::Given);
-                let Some(s) = score(&traced.log) else { continue };
+                let Some(s) = score(i, j) else { continue };
                 let d = (i as f64 + 0.5 - centre.0).hypot(j as f64 + 0.5 - centre.1);
                 if best.is_none_or(|(bs, bd, _)| s > bs || ((s - bs).abs() < 1e-12 && d < bd)) {
                     best = Some((s, d, (i, j)));

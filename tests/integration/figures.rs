@@ -15,8 +15,8 @@ use whitted::record::event::{Event, RayKind};
 use whitted::scene::load::load_str;
 use whitted::scene::{AnyScene, Scene};
 
-/// The kinds this build draws (the others need the sampling and acceleration events).
-const DRAWN: [FigureKind; 7] = [
+/// The kinds this build draws (the others need the acceleration structures' events).
+const DRAWN: [FigureKind; 9] = [
     FigureKind::UvMap,
     FigureKind::Projections,
     FigureKind::Rays,
@@ -24,7 +24,19 @@ const DRAWN: [FigureKind; 7] = [
     FigureKind::LocalModel,
     FigureKind::RayTree,
     FigureKind::Shadows,
+    FigureKind::Adaptive,
+    FigureKind::HeatMap,
 ];
+
+/// How a kind is traced in the tests: the sampling kinds adaptively (threshold 0.1, K = 2).
+fn tracing(kind: FigureKind) -> Tracing {
+    match kind {
+        FigureKind::HeatMap | FigureKind::Adaptive => {
+            Tracing { sampling: Tracing::ADAPTIVE, ..Tracing::SCENE }
+        }
+        _ => Tracing::SCENE,
+    }
+}
 
 /// A small canvas for the fast tests.
 const SMALL: (u32, u32) = (480, 270);
@@ -38,7 +50,7 @@ fn figure_in<V: Planar>(
     size: (u32, u32),
 ) -> Drawing {
     let traces =
-        record(kind, scene, name, aim, Tracing::SCENE).unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
+        record(kind, scene, name, aim, tracing(kind)).unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
     let opts = Options { lang, width: size.0, height: size.1 };
     draw(kind, &traces, scene, &opts).unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"))
 }
@@ -261,6 +273,8 @@ fn labels_come_in_both_languages() {
         (FigureKind::Refraction, Label::TitleRefraction),
         (FigureKind::RayTree, Label::TitleRayTree),
         (FigureKind::Shadows, Label::TitleShadows),
+        (FigureKind::Adaptive, Label::TitleAdaptive),
+        (FigureKind::HeatMap, Label::TitleHeatMap),
     ];
     for (kind, title) in titles {
         for lang in [Lang::En, Lang::Ro] {
@@ -468,6 +482,6 @@ fn every_kind_draws_or_says_why_on_every_scene() {
 }
 
 fn try_figure<V: Planar>(scene: &Scene<V>, kind: FigureKind) -> Result<Drawing, String> {
-    let traces = record(kind, scene, "s", &Aim::Auto, Tracing::SCENE).map_err(|e| e.0)?;
+    let traces = record(kind, scene, "s", &Aim::Auto, tracing(kind)).map_err(|e| e.0)?;
     draw(kind, &traces, scene, &Options { lang: Lang::Ro, width: 480, height: 270 }).map_err(|e| e.0)
 }

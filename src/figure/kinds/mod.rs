@@ -1,6 +1,8 @@
 //! One file per diagram of product.md "Diagrams". Each reads the recorded traces and the scene
 //! through [`Input`] and adds its items to a [`Drawing`]; none traces, intersects or refracts.
 
+pub mod adaptive;
+pub mod heat_map;
 pub mod local_model;
 pub mod projections;
 pub mod ray_tree;
@@ -77,6 +79,8 @@ fn draw_once<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: &mut Drawing)
         FigureKind::LocalModel => local_model::draw(input, d),
         FigureKind::RayTree => ray_tree::draw(input, d),
         FigureKind::Shadows => shadows::draw(input, d),
+        FigureKind::Adaptive => adaptive::draw(input, d),
+        FigureKind::HeatMap => heat_map::draw(input, d),
         other => Err(FigureError(format!("`{}` needs events this build does not record yet", other.name()))),
     }
 }
