@@ -59,7 +59,9 @@ SCENES = [
 ]
 # name, whitted options, POV-Ray options
 MODES = [
-    ("center", ["--aa", "center"], ["-A"]),
+    # center is whitted's default: no flag, so that a whitted without --aa (before anti-aliasing
+    # was merged) runs this mode too.
+    ("center", [], ["-A"]),
     ("corners", ["--aa", "corners"], ["+A0.3", "+AM2", "+R1"]),
     ("adaptive", ["--aa", "adaptive", "--max-level", "2", "--threshold", "0.3"], ["+A0.3", "+AM2", "+R3"]),
 ]
@@ -642,6 +644,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--only", action="append", default=[],
                     help="scene to run (exact name, else every scene whose name contains it); repeatable")
+    ap.add_argument("--mode", action="append", default=[], choices=[m[0] for m in MODES],
+                    help="sampling mode to run (default: all); repeatable")
     ap.add_argument("--quick", action="store_true", help="one run per configuration instead of three")
     ap.add_argument("--runs", type=int, help="runs per configuration (default 3, 1 with --quick)")
     ap.add_argument("--no-povray", action="store_true", help="run whitted only")
@@ -687,6 +691,8 @@ def main():
     for scene, json_file, pov_args in selected:
         gave_up = {"whitted": False, "povray": False}
         for mode, our_mode, pov_mode in MODES:
+            if args.mode and mode not in args.mode:
+                continue
             for threads in THREADS:
                 tag = "%s-%s-t%d" % (scene, mode, threads)
                 jobs = [("whitted", os.path.join(image_dir, tag + "-whitted.png"), REPO)]

@@ -16,8 +16,9 @@
 //! ```
 //! `scene` is relative to the lesson file; `pixel` is `[i, j]` (`[i]` in 2D), `ray` is
 //! `{ "origin": [...], "direction": [...] }`; `aa` is `center`, `corners` or `adaptive` (with
-//! `threshold`, default 0.1, and `max_level`, default 2) for `adaptive` and `heat-map`; `text`,
-//! `pixel`, `ray`, `depth` and `aa` may be left out. An unknown field is an error.
+//! `threshold`, default 0.1, and `max_level`, default 2) for `adaptive` and `heat-map`; `grid`
+//! (cells per axis) for `grid-dda`; `text`, `pixel`, `ray`, `depth`, `aa` and `grid` may be left
+//! out. An unknown field is an error.
 
 use serde_json::{Map, Value};
 
@@ -59,6 +60,8 @@ pub struct FigureSpec {
     pub depth: Option<u32>,
     /// The sampling of `adaptive` and `heat-map` (`aa`, `threshold`, `max_level`).
     pub sampling: Option<Sampling>,
+    /// The grid's cells per axis (`grid`), for `grid-dda`.
+    pub grid: Option<Vec<usize>>,
     /// What the figure shows, in both languages.
     pub caption: Both,
 }
@@ -157,7 +160,8 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
         errors.push(format!("{path}: must be an object"));
         return None;
     };
-    let fields = ["kind", "scene", "pixel", "ray", "depth", "aa", "threshold", "max_level", "caption"];
+    let fields =
+        ["kind", "scene", "pixel", "ray", "depth", "aa", "threshold", "max_level", "grid", "caption"];
     unknown(map, &format!("{path}."), &fields, errors);
     let kind = map.get("kind").and_then(Value::as_str).and_then(FigureKind::from_name);
     if kind.is_none() {
@@ -211,8 +215,24 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
         },
     };
     let sampling = sampling(map, path, errors);
+    let grid = match map.get("grid") {
+        None => None,
+        Some(g) => {
+            let cells: Option<Vec<usize>> = g.as_array().and_then(|a| {
+                a.iter()
+                    .map(|x| {
+                        x.as_u64().and_then(|n| usize::try_from(n).ok()).filter(|n| (1..=256).contains(n))
+                    })
+                    .collect()
+            });
+            if cells.as_ref().is_none_or(|c| !(2..=3).contains(&c.len())) {
+                errors.push(format!("{path}.grid: must be 2 or 3 cell counts in [1, 256]"));
+            }
+            cells
+        }
+    };
     let caption = both(map.get("caption"), &format!("{path}.caption"), errors);
-    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, caption })
+    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, grid, caption })
 }
 
 /// `aa` (`center`, `corners`, `adaptive`) with `threshold` (default 0.1) and `max_level` (default 2).

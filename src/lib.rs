@@ -10,6 +10,7 @@
 #![forbid(unsafe_code)]
 
 pub mod accel;
+pub mod bounds;
 pub mod doc;
 pub mod figure;
 pub mod geom;

@@ -1,44 +1,25 @@
-//! Brute force (algorithm.md §7: `O(n)` tests per ray): every object in index order. The oracle
-//! every other structure is tested against.
+//! Brute force (algorithm.md §7: `O(n)` tests per ray): every object in index order, a mesh's
+//! triangles in their order. The oracle every other structure is tested against.
 
-use super::test_object;
-use crate::geom::ray::Ray;
-use crate::record::event::ObjectRef;
+use super::{Prim, Visitor};
 use crate::record::Recorder;
 use crate::scene::Scene;
-use crate::shape::{Dim, SurfaceHit};
+use crate::shape::Dim;
 use crate::trace::stats::Stats;
 
-/// The nearest hit over all objects; the strict `<` keeps the smaller index on equal t (§6).
-pub fn nearest<V: Dim, R: Recorder<V>>(
+/// Hands every primitive of every object, in index order, to the visitor.
+pub fn walk<V: Dim, R: Recorder<V>, W: Visitor<V>>(
     scene: &Scene<V>,
-    ray: &Ray<V>,
+    visitor: &mut W,
     stats: &mut Stats,
     rec: &mut R,
-) -> Option<(ObjectRef, SurfaceHit<V>)> {
-    let mut best: Option<(ObjectRef, SurfaceHit<V>)> = None;
-    for index in 0..scene.objects.len() {
-        if let Some(hit) = test_object(scene, index, ray, stats, rec) {
-            if best.is_none_or(|(_, b)| hit.t < b.t) {
-                best = Some((ObjectRef { index, triangle: None }, hit));
-            }
-        }
-    }
-    best
-}
-
-/// Every object hit at `0 < t < d_L`, in index order, until `on` says stop.
-pub fn occluders<V: Dim, R: Recorder<V>>(
-    scene: &Scene<V>,
-    ray: &Ray<V>,
-    d_l: f64,
-    stats: &mut Stats,
-    rec: &mut R,
-    mut on: impl FnMut(ObjectRef) -> bool,
 ) {
-    for index in 0..scene.objects.len() {
-        if let Some(hit) = test_object(scene, index, ray, stats, rec) {
-            if hit.t < d_l && !on(ObjectRef { index, triangle: None }) {
+    for (object, o) in scene.objects.iter().enumerate() {
+        for part in 0..o.shape.parts() {
+            // Indices fit: Accel::build checked that objects and parts fit in u32.
+            #[allow(clippy::cast_possible_truncation)]
+            let prim = Prim { object: object as u32, part: part as u32 };
+            if visitor.visit(prim, stats, rec) {
                 return;
             }
         }

@@ -1,52 +1,248 @@
-//! Acceleration structures (algorithm.md §9): every one answers the same two questions — the
-//! nearest hit of a ray, and the occluders of a shadow segment — and must give exactly the answer
-//! of brute force (`list`), equal t broken by the object index (§6).
+//! Acceleration structures (algorithm.md §7 "Cost", §9 "Fewer intersection tests"): every one
+//! answers the same two questions — the nearest hit of a ray, and the occluders of a shadow
+//! segment — and must give exactly the answer of brute force (`list`): the same object, the same
+//! t bit for bit, equal t broken by the object index, then the triangle index (§6).
+//!
+//! The structures see *primitives* ([`Prim`]): every bounded object is one, except a mesh,
+//! whose triangles are one each. Unbounded objects (planes, 2D lines) are never inside a
+//! structure: they are tested first, directly, and their hit bounds the search.
+//!
+//! Each structure walks its primitives in its own order and hands each to a [`Visitor`]:
+//! [`Nearest`] keeps the nearest hit by `(t, object, triangle)`, so the order of visits never
+//! changes the answer; [`Shadow`] collects occluders with `0 < t < d_L`. A structure may skip
+//! whatever starts beyond the visitor's [`Visitor::bound`] (with the slack of [`beyond`]).
 
+pub mod bvh;
+pub mod grid;
 pub mod list;
+pub mod octree;
+pub mod volumes;
 
+use crate::bounds::aabb::Aabb;
+use crate::bounds::{BoundingVolume, Hull, VolumeKind};
 use crate::geom::ray::Ray;
 use crate::record::event::{Event, ObjectRef};
 use crate::record::Recorder;
 use crate::scene::Scene;
-use crate::shape::{Dim, SurfaceHit};
+use crate::shape::{Dim, Facet, Shape, SurfaceHit};
 use crate::trace::stats::Stats;
+use std::cell::RefCell;
 
 /// The `--accel` choice.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AccelKind {
-    /// Brute force: every object, in index order.
+    /// Brute force: every object, in index order (§7: `O(n)` per ray).
     None,
+    /// A bounding volume per primitive (§9.1), tested before the primitive.
+    Bounds,
+    /// A bounding volume hierarchy (§9.3).
+    Bvh,
+    /// A regular grid walked by the 3D DDA (§9.2).
+    Grid,
+    /// An octree (a quadtree in 2D) (§9.2, adaptive).
+    Octree,
 }
 
 impl AccelKind {
+    /// Every kind, in the order of the lecture.
+    pub const ALL: [Self; 5] = [Self::None, Self::Bounds, Self::Bvh, Self::Grid, Self::Octree];
     /// The name used on the command line and in statistics.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             Self::None => "none",
+            Self::Bounds => "bounds",
+            Self::Bvh => "bvh",
+            Self::Grid => "grid",
+            Self::Octree => "octree",
         }
     }
+    /// The kind of a name, if any.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+}
+
+/// How to build a structure: its kind and the options of some kinds.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AccelOptions {
+    /// Which structure.
+    pub kind: AccelKind,
+    /// The per-primitive volume of [`AccelKind::Bounds`].
+    pub volume: VolumeKind,
+    /// The grid's cells per axis (`--grid NX,NY,NZ`); `None` for the heuristic of `grid`.
+    pub grid: Option<Vec<usize>>,
+}
+
+impl AccelOptions {
+    /// `kind` with the default options: axis-aligned boxes, the grid's own resolution.
+    #[must_use]
+    pub fn of(kind: AccelKind) -> Self {
+        Self { kind, volume: VolumeKind::Aabb, grid: None }
+    }
+}
+
+/// A primitive: part `part` of object `object` (a mesh triangle, or the object itself, part 0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Prim {
+    /// Index in the scene's `objects`.
+    pub object: u32,
+    /// The part: a mesh's triangle (by its position in the mesh), else 0.
+    pub part: u32,
+}
+
+impl Prim {
+    /// The object index as `usize`.
+    #[must_use]
+    pub fn object(self) -> usize {
+        self.object as usize
+    }
+    /// The part index as `usize`.
+    #[must_use]
+    pub fn part(self) -> usize {
+        self.part as usize
+    }
+}
+
+/// The structure itself.
+#[derive(Clone, Debug)]
+enum Structure<V: Dim> {
+    List,
+    Bounds(volumes::Volumes<V>),
+    Bvh(bvh::Bvh<V>),
+    Grid(grid::Grid<V>),
+    Octree(octree::Octree<V>),
+}
+
+/// A built structure as a figure draws it: its volumes, its nodes or its cells.
+#[derive(Clone, Debug)]
+pub enum Layout<'a, V: Dim> {
+    /// Brute force: nothing to draw.
+    List,
+    /// One bounding volume per primitive, in object order.
+    Volumes(&'a [(Prim, BoundingVolume<V>)]),
+    /// A hierarchy (BVH, octree): entry `k` is the node that `node_visit` events call `k`.
+    Tree(Vec<TreeNode<V>>),
+    /// A regular grid: its box and its cells per axis.
+    Grid {
+        /// The grid's box.
+        bounds: Aabb<V>,
+        /// Cells per axis.
+        cells: Vec<usize>,
+    },
+}
+
+/// A node of a hierarchy, for drawing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TreeNode<V> {
+    /// Its box.
+    pub bounds: Aabb<V>,
+    /// Its depth (the root is 0).
+    pub depth: u32,
+    /// Its children's node numbers (none for a leaf).
+    pub children: Vec<usize>,
+    /// A leaf's primitives.
+    pub prims: Vec<Prim>,
 }
 
 /// A built acceleration structure over a scene's objects.
 #[derive(Clone, Debug)]
 pub struct Accel<V: Dim> {
     kind: AccelKind,
-    _dim: std::marker::PhantomData<V>,
+    /// Unbounded objects, tested before the structure.
+    unbounded: Vec<u32>,
+    structure: Structure<V>,
 }
 
 impl<V: Dim> Accel<V> {
-    /// Builds the structure of `kind` over `scene` (after the scene is complete and valid).
+    /// Builds the structure of `kind`, default options, over `scene` (complete and valid).
     #[must_use]
-    pub fn build(_scene: &Scene<V>, kind: AccelKind) -> Self {
-        Self { kind, _dim: std::marker::PhantomData }
+    pub fn build(scene: &Scene<V>, kind: AccelKind) -> Self {
+        Self::build_with(scene, &AccelOptions::of(kind))
+    }
+    /// Builds the structure `options` describe over `scene`.
+    #[must_use]
+    pub fn build_with(scene: &Scene<V>, options: &AccelOptions) -> Self {
+        let mut unbounded = Vec::new();
+        let mut prims = Vec::new();
+        for (index, object) in scene.objects.iter().enumerate() {
+            let object_index = u32::try_from(index).expect("fewer than 2^32 objects");
+            if object.shape.bounds().is_none() {
+                unbounded.push(object_index);
+                continue;
+            }
+            for part in 0..object.shape.parts() {
+                prims.push(Prim {
+                    object: object_index,
+                    part: u32::try_from(part).expect("fewer than 2^32 parts"),
+                });
+            }
+        }
+        let structure = match options.kind {
+            AccelKind::None => Structure::List,
+            AccelKind::Bounds => Structure::Bounds(volumes::Volumes::build(scene, &prims, options.volume)),
+            AccelKind::Bvh => Structure::Bvh(bvh::Bvh::build(scene, prims)),
+            AccelKind::Grid => Structure::Grid(grid::Grid::build(scene, &prims, options.grid.as_deref())),
+            AccelKind::Octree => Structure::Octree(octree::Octree::build(scene, &prims)),
+        };
+        Self { kind: options.kind, unbounded, structure }
     }
     /// Which structure this is.
     #[must_use]
     pub fn kind(&self) -> AccelKind {
         self.kind
     }
-    /// The nearest hit with `t > 0`; equal t goes to the smaller object index.
+    /// The grid's cells per axis, when this is a grid.
+    #[must_use]
+    pub fn grid_resolution(&self) -> Option<Vec<usize>> {
+        match &self.structure {
+            Structure::Grid(g) => Some(g.resolution()),
+            _ => None,
+        }
+    }
+
+    /// The built structure as the figures draw it (read only; `figure::kinds` never walks it).
+    #[must_use]
+    pub fn layout(&self) -> Layout<'_, V> {
+        match &self.structure {
+            Structure::List => Layout::List,
+            Structure::Bounds(v) => Layout::Volumes(v.entries()),
+            Structure::Bvh(b) => Layout::Tree(b.tree()),
+            Structure::Grid(g) => Layout::Grid { bounds: g.bounds(), cells: g.resolution() },
+            Structure::Octree(o) => Layout::Tree(o.tree()),
+        }
+    }
+
+    /// Walks primitives through `visitor`: unbounded objects first, then the structure.
+    fn search<R: Recorder<V>, W: Visitor<V>>(
+        &self,
+        scene: &Scene<V>,
+        ray: &Ray<V>,
+        visitor: &mut W,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) {
+        if let Structure::List = self.structure {
+            list::walk(scene, visitor, stats, rec);
+            return;
+        }
+        for &object in &self.unbounded {
+            if visitor.visit(Prim { object, part: 0 }, stats, rec) {
+                return;
+            }
+        }
+        match &self.structure {
+            Structure::List => {}
+            Structure::Bounds(v) => v.walk(scene, ray, visitor, stats, rec),
+            Structure::Bvh(b) => b.walk(ray, visitor, stats, rec),
+            Structure::Grid(g) => g.walk(scene, ray, visitor, stats, rec),
+            Structure::Octree(o) => o.walk(ray, visitor, stats, rec),
+        }
+    }
+
+    /// The nearest hit with `t > 0`; equal t goes to the smaller object index, then the smaller
+    /// triangle index (§6).
     #[inline]
     pub fn nearest<R: Recorder<V>>(
         &self,
@@ -55,12 +251,15 @@ impl<V: Dim> Accel<V> {
         stats: &mut Stats,
         rec: &mut R,
     ) -> Option<(ObjectRef, SurfaceHit<V>)> {
-        match self.kind {
-            AccelKind::None => list::nearest(scene, ray, stats, rec),
-        }
+        let mut visitor = Nearest::new(scene, ray);
+        self.search(scene, ray, &mut visitor, stats, rec);
+        visitor.found()
     }
-    /// Reports each distinct object with a hit at `0 < t < d_L` to `on` (with its t), until `on`
-    /// returns false (an opaque occluder ends the search).
+
+    /// Reports each distinct object with a hit at `0 < t < d_L` to `on`, until `on` returns
+    /// false. An opaque occluder ends the search at once; transparent ones are reported once
+    /// each (a mesh is one object, however many of its triangles the segment crosses), in
+    /// object-index order, so that `s = Π kt` is the same product whatever the structure.
     #[inline]
     pub fn occluders<R: Recorder<V>>(
         &self,
@@ -69,30 +268,211 @@ impl<V: Dim> Accel<V> {
         d_l: f64,
         stats: &mut Stats,
         rec: &mut R,
-        on: impl FnMut(ObjectRef) -> bool,
+        mut on: impl FnMut(ObjectRef) -> bool,
     ) {
-        match self.kind {
-            AccelKind::None => list::occluders(scene, ray, d_l, stats, rec, on),
+        let mut visitor = Shadow { scene, ray, d_l, transparent: Vec::new(), opaque: None };
+        self.search(scene, ray, &mut visitor, stats, rec);
+        let Shadow { mut transparent, opaque, .. } = visitor;
+        transparent.sort_unstable();
+        for prim in transparent.into_iter().chain(opaque) {
+            if !on(object_ref(scene, prim)) {
+                return;
+            }
         }
     }
 }
 
-/// One ray–object test, counted and recorded (`object_test` with every root).
+/// How an acceleration structure hands primitives to the question being answered.
+pub trait Visitor<V: Dim> {
+    /// Hits at `t` beyond this cannot change the answer: a structure may skip what lies beyond.
+    fn bound(&self) -> f64;
+    /// Tests a primitive; true when the search is over.
+    fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool;
+}
+
+/// The nearest-hit question: keeps the least `(t, object, part)`.
+pub struct Nearest<'a, V: Dim> {
+    scene: &'a Scene<V>,
+    ray: &'a Ray<V>,
+    best: Option<(Prim, SurfaceHit<V>)>,
+}
+
+impl<'a, V: Dim> Nearest<'a, V> {
+    /// The question for `ray`, nothing found yet.
+    #[must_use]
+    pub fn new(scene: &'a Scene<V>, ray: &'a Ray<V>) -> Self {
+        Self { scene, ray, best: None }
+    }
+    /// The nearest hit found, named as traces name it.
+    #[must_use]
+    pub fn found(self) -> Option<(ObjectRef, SurfaceHit<V>)> {
+        self.best.map(|(prim, hit)| (object_ref(self.scene, prim), hit))
+    }
+}
+
+impl<V: Dim> Visitor<V> for Nearest<'_, V> {
+    #[inline]
+    fn bound(&self) -> f64 {
+        self.best.as_ref().map_or(f64::INFINITY, |(_, h)| h.t)
+    }
+    #[inline]
+    fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool {
+        if let Some(hit) = test_prim(self.scene, prim, self.ray, stats, rec) {
+            // §6: equal t goes to the smaller object, then the smaller triangle.
+            #[allow(clippy::float_cmp)] // An exact tie is exactly what the rule is about.
+            let closer = |(p, b): &(Prim, SurfaceHit<V>)| hit.t < b.t || (hit.t == b.t && prim < *p);
+            if self.best.as_ref().is_none_or(closer) {
+                self.best = Some((prim, hit));
+            }
+        }
+        false
+    }
+}
+
+/// The shadow question: occluders with `0 < t < d_L` (§11 "Shadow rays are segments").
+pub struct Shadow<'a, V: Dim> {
+    scene: &'a Scene<V>,
+    ray: &'a Ray<V>,
+    d_l: f64,
+    /// Transparent occluders found, one primitive per object.
+    transparent: Vec<Prim>,
+    /// The opaque occluder that ended the search.
+    opaque: Option<Prim>,
+}
+
+impl<V: Dim> Visitor<V> for Shadow<'_, V> {
+    #[inline]
+    fn bound(&self) -> f64 {
+        self.d_l
+    }
+    #[inline]
+    fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool {
+        // An object already found multiplies s once: its other triangles need no test.
+        if self.transparent.iter().any(|p| p.object == prim.object) {
+            return false;
+        }
+        let Some(hit) = test_prim(self.scene, prim, self.ray, stats, rec) else {
+            return false;
+        };
+        if !(hit.t < self.d_l) {
+            return false;
+        }
+        if self.scene.material_of(prim.object()).transmits() {
+            self.transparent.push(prim);
+            false
+        } else {
+            self.opaque = Some(prim);
+            true
+        }
+    }
+}
+
+/// How a primitive is named in traces: its object, and for a mesh its triangle's OBJ index.
+#[must_use]
+pub fn object_ref<V: Dim>(scene: &Scene<V>, prim: Prim) -> ObjectRef {
+    ObjectRef { index: prim.object(), triangle: scene.objects[prim.object()].shape.part_id(prim.part()) }
+}
+
+/// One ray–primitive test, counted and recorded (`object_test` with every root).
 #[inline]
-pub fn test_object<V: Dim, R: Recorder<V>>(
+pub fn test_prim<V: Dim, R: Recorder<V>>(
     scene: &Scene<V>,
-    index: usize,
+    prim: Prim,
     ray: &Ray<V>,
     stats: &mut Stats,
     rec: &mut R,
 ) -> Option<SurfaceHit<V>> {
     stats.tests.object += 1;
-    let shape = &scene.objects[index].shape;
-    let hit = shape.hit(ray);
+    let shape = &scene.objects[prim.object()].shape;
+    let hit = shape.part_hit(prim.part(), ray);
     rec.event(|| Event::ObjectTest {
-        object: ObjectRef { index, triangle: None },
-        roots: shape.roots(ray),
+        object: object_ref(scene, prim),
+        roots: shape.part_roots(prim.part(), ray),
         accepted: hit.map(|h| h.t),
     });
     hit
+}
+
+/// The bounds of a primitive, grown by a few ulps so that rounding in `C ± r` never leaves part
+/// of the object outside (`None` only for unbounded objects, which are never primitives).
+#[must_use]
+pub fn prim_bounds<V: Dim>(scene: &Scene<V>, prim: Prim) -> Aabb<V> {
+    let (min, max) =
+        scene.objects[prim.object()].shape.part_bounds(prim.part()).unwrap_or((V::ZERO, V::ZERO));
+    Aabb::new(min, max).padded()
+}
+
+/// What a bounding volume is fitted around, for a primitive.
+#[must_use]
+pub fn prim_hull<V: Dim>(scene: &Scene<V>, prim: Prim) -> Hull<V> {
+    use crate::shape::Parts;
+    match &scene.objects[prim.object()].shape {
+        Shape::Sphere(s) => Hull::Ball { center: s.center, radius: s.radius },
+        Shape::Box(b) => Hull::Points(
+            (0..1usize << V::DIM)
+                .map(|corner| {
+                    let mut p = b.min;
+                    for a in 0..V::DIM {
+                        if corner >> a & 1 == 1 {
+                            p[a] = b.max[a];
+                        }
+                    }
+                    p
+                })
+                .collect(),
+        ),
+        Shape::Facet(f) => Hull::Points(f.points()),
+        Shape::Mesh(m) => Hull::Points(m.points(prim.part())),
+        Shape::Plane(_) => Hull::Points(vec![V::ZERO]),
+    }
+}
+
+/// §11, the prune test of every traversal: a node or cell entered at `t_in` can hold nothing
+/// that beats `bound` when `t_in·(1 − 2⁻⁴⁰) > bound` (for `t_in > 0`). The slack of 2⁻⁴⁰ (about
+/// 10⁻¹²) covers the rounding of the box's t (3 roundings) and of any object's own t, so a
+/// primitive whose computed t ties or beats the bound is never skipped: pruning changes the
+/// number of tests, never the answer.
+#[inline]
+#[must_use]
+pub fn beyond(t_in: f64, bound: f64) -> bool {
+    const SLACK: f64 = 1.0 / (1u64 << 40) as f64;
+    t_in - t_in.abs() * SLACK > bound
+}
+
+thread_local! {
+    /// The mailbox of the grid and the octree (Amanatides & Woo): per thread, a stamp per
+    /// primitive; a primitive was tested by the current ray iff its stamp equals the ray's.
+    static MAILBOX: RefCell<Mailbox> = const { RefCell::new(Mailbox { ray: 0, stamps: Vec::new() }) };
+}
+
+/// Remembers which primitives the current ray has tested, so none is tested twice.
+pub struct Mailbox {
+    ray: u32,
+    stamps: Vec<u32>,
+}
+
+impl Mailbox {
+    /// Runs `f` with this thread's mailbox emptied for a new ray over `n` primitives.
+    pub fn with<T>(n: usize, f: impl FnOnce(&mut Mailbox) -> T) -> T {
+        MAILBOX.with(|cell| {
+            let mut m = cell.borrow_mut();
+            if m.stamps.len() < n {
+                m.stamps.resize(n, 0);
+            }
+            m.ray = m.ray.wrapping_add(1);
+            if m.ray == 0 {
+                // After 2^32 rays the stamps could repeat: start afresh.
+                m.stamps.iter_mut().for_each(|s| *s = 0);
+                m.ray = 1;
+            }
+            f(&mut m)
+        })
+    }
+    /// True the first time primitive `i` is offered for the current ray.
+    #[inline]
+    pub fn first_visit(&mut self, i: usize) -> bool {
+        let fresh = self.stamps[i] != self.ray;
+        self.stamps[i] = self.ray;
+        fresh
+    }
 }

@@ -53,6 +53,18 @@ fn describe<V: Dim>(scene: &Scene<V>) -> String {
             format!(" ({})", types.join(", "))
         }
     );
+    for (i, o) in scene.objects.iter().enumerate() {
+        if let whitted::shape::Shape::Mesh(m) = &o.shape {
+            use whitted::shape::Parts;
+            let _ = writeln!(
+                out,
+                "  mesh {}: {} triangles, {} degenerate skipped",
+                scene.object_label(i),
+                m.count(),
+                m.skipped()
+            );
+        }
+    }
     let _ = writeln!(out, "  lights: {}", scene.lights.len());
     let _ = writeln!(out, "  materials: {}", scene.materials.len());
     let _ = writeln!(out, "  max_depth: {} ({})", scene.max_depth, depth_meaning(scene.max_depth));

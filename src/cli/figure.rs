@@ -2,6 +2,7 @@
 //! (`figure::draw`) and write a PNG or an SVG, chosen by the file extension; `--list` names every
 //! kind with one line.
 
+use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
 use super::trace::{target, LangArg};
 use super::{load_scene, parse, print_out, write_file, Failure};
@@ -45,6 +46,10 @@ pub struct FigureArgs {
     /// kinds trace the pixel's centre.
     #[command(flatten)]
     sampling: SamplingArgs,
+    /// The structure (--accel, --bounds, --grid) the other kinds trace with; `slab-test`,
+    /// `kay-kajiya`, `bvh`, `grid-dda` and `octree` use their own, keeping --grid's cells.
+    #[command(flatten)]
+    accel: AccelArgs,
     /// Print every kind with one line and exit.
     #[arg(long)]
     list: bool,
@@ -80,14 +85,19 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", kind.name())));
     let format = Format::of(&output)?;
     let (width, height) = canvas(args.size);
+    let scene = load_scene(scene_path)?;
     let request = Request {
         kind,
         pixel: args.pixel,
         ray: args.ray.clone(),
-        tracing: Tracing { depth: args.depth, sampling: args.sampling.sampling()?, ..Tracing::SCENE },
+        tracing: Tracing {
+            depth: args.depth,
+            sampling: args.sampling.sampling()?,
+            accel: args.accel.options(dim_of(&scene)).map_err(Failure::input)?,
+        },
         opts: Options { lang: args.lang.lang(), width, height },
     };
-    let drawing = figure(&load_scene(scene_path)?, &scene_name(scene_path), &request)?;
+    let drawing = figure(&scene, &scene_name(scene_path), &request)?;
     write_file(&output, &format.encode(&drawing)?)
 }
 
@@ -103,6 +113,14 @@ pub struct Request {
     pub tracing: Tracing,
     /// Language and size.
     pub opts: Options,
+}
+
+/// The dimension of a loaded scene.
+fn dim_of(scene: &AnyScene) -> usize {
+    match scene {
+        AnyScene::Flat(_) => 2,
+        AnyScene::Space(_) => 3,
+    }
 }
 
 /// The scene's name for captions: its file stem.
@@ -129,7 +147,7 @@ fn figure_in<V: Planar>(scene: &Scene<V>, name: &str, request: &Request) -> Resu
     } else {
         Aim::Auto
     };
-    let traces = source::record(request.kind, scene, name, &aim, request.tracing)
+    let traces = source::record(request.kind, scene, name, &aim, &request.tracing)
         .map_err(|e| Failure::input(format!("{}: {e}", request.kind.name())))?;
     fig::draw(request.kind, &traces, scene, &request.opts)
         .map_err(|e| Failure::input(format!("{}: {e}", request.kind.name())))

@@ -10,6 +10,7 @@ use clap::Args;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use whitted::accel::AccelOptions;
 use whitted::figure::source::Tracing;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::{self, FigureSpec, Lesson, Shown};
@@ -99,6 +100,10 @@ fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
         }
         Some(Sampling::Center) | None => {}
     }
+    if let Some(cells) = &spec.grid {
+        let cells: Vec<String> = cells.iter().map(ToString::to_string).collect();
+        cmd.push_str(&format!(" --grid {}", cells.join(",")));
+    }
     cmd.push_str(&format!(" --lang {} -o {}", lang_dir(lang), png.display()));
     cmd
 }
@@ -153,7 +158,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
                 tracing: Tracing {
                     depth: spec.depth,
                     sampling: spec.sampling.unwrap_or(Sampling::Center),
-                    ..Tracing::SCENE
+                    accel: AccelOptions { grid: spec.grid.clone(), ..Tracing::SCENE.accel },
                 },
                 opts: Options { lang, width, height },
             };

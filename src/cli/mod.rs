@@ -2,6 +2,7 @@
 //! `Cli` and `Command` are the interface of product.md; their doc comments are the `--help` text.
 #![allow(clippy::print_stdout)]
 
+mod accel;
 mod check;
 mod figure;
 mod lessons;
@@ -13,7 +14,7 @@ mod trace;
 use clap::{Parser, Subcommand};
 use std::fmt;
 use std::path::{Path, PathBuf};
-use whitted::scene::load::load_str;
+use whitted::scene::load::load_str_with;
 use whitted::scene::AnyScene;
 
 /// Recursive (Whitted) ray tracing, taught in the open.
@@ -65,11 +66,14 @@ impl fmt::Display for Failure {
     }
 }
 
-/// Reads and validates a scene file; every problem becomes one line of the failure.
+/// Reads and validates a scene file; every problem becomes one line of the failure. A mesh's
+/// OBJ file is read relative to the scene file's folder.
 pub fn load_scene(path: &Path) -> Result<AnyScene, Failure> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| Failure::input(format!("{}: cannot read the scene: {e}", path.display())))?;
-    load_str(&text).map_err(|errors| {
+    let folder = path.parent().unwrap_or_else(|| Path::new("."));
+    let read_obj = |name: &str| std::fs::read_to_string(folder.join(name)).map_err(|e| e.to_string());
+    load_str_with(&text, &read_obj).map_err(|errors| {
         let lines: Vec<String> = errors.iter().map(|e| format!("{}: {e}", path.display())).collect();
         Failure::input(lines.join("\n"))
     })

@@ -2,6 +2,7 @@
 //! a progress bar on stderr when it is a terminal) → PNG → the one-line summary (pixels, samples,
 //! rays by kind, tests, Mrays/s, time) on stderr, `--json` statistics on stdout.
 
+use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
 use super::{default_output, load_scene, parse, print_out, write_file, Failure};
 use clap::Args;
@@ -10,7 +11,7 @@ use serde_json::json;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
-use whitted::accel::{Accel, AccelKind};
+use whitted::accel::{Accel, AccelOptions};
 use whitted::doc::float;
 use whitted::render::{render, RenderConfig, Rendered};
 use whitted::sample::Sampling;
@@ -39,6 +40,8 @@ pub struct RenderArgs {
     json: bool,
     #[command(flatten)]
     sampling: SamplingArgs,
+    #[command(flatten)]
+    accel: AccelArgs,
 }
 
 /// Applies `--size` to a scene's camera: the window stays, the pixel count changes.
@@ -72,14 +75,19 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         b.build().map_err(|e| Failure::other(format!("cannot start the worker threads: {e}")))?
     };
     let threads = pool.current_num_threads();
+    let dim = match &scene {
+        AnyScene::Flat(_) => 2,
+        AnyScene::Space(_) => 3,
+    };
+    let options = args.accel.options(dim).map_err(Failure::input)?;
     let outcome = match scene {
         AnyScene::Flat(mut s) => {
             let rows = resize(&mut s, args.size);
-            pool.install(|| render_scene(&s, args, sampling, rows))
+            pool.install(|| render_scene(&s, args, sampling, &options, rows))
         }
         AnyScene::Space(mut s) => {
             let rows = resize(&mut s, args.size);
-            pool.install(|| render_scene(&s, args, sampling, rows))
+            pool.install(|| render_scene(&s, args, sampling, &options, rows))
         }
     };
     let output = args.output.clone().unwrap_or_else(|| default_output(&args.scene, "png"));
@@ -89,7 +97,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let rays = stats.rays;
     let mrays = rays.total() as f64 / outcome.seconds.max(1e-9) / 1e6;
     eprintln!(
-        "whitted: {}x{} → {} | {} pixels, {} samples ({}) | rays: {} primary, {} reflected, {} transmitted, {} shadow | tests: {} object | {:.3} s trace, {:.2} Mrays/s, {} threads",
+        "whitted: {}x{} → {} | {} pixels, {} samples ({}) | rays: {} primary, {} reflected, {} transmitted, {} shadow | tests: {} object, {} bound, {} node, {} voxel | {} | {:.3} s trace, {:.2} Mrays/s, {} threads",
         outcome.rendered.image.width,
         outcome.rendered.image.height,
         output.display(),
@@ -101,6 +109,10 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         rays.transmitted,
         rays.shadow,
         stats.tests.object,
+        stats.tests.bound,
+        stats.tests.node,
+        stats.tests.voxel,
+        outcome.accel,
         outcome.seconds,
         mrays,
         threads,
@@ -152,10 +164,11 @@ fn render_scene<V: Dim>(
     scene: &Scene<V>,
     args: &RenderArgs,
     sampling: Sampling,
+    options: &AccelOptions,
     strip_rows: Option<usize>,
 ) -> Outcome {
     let build = Instant::now();
-    let accel = Accel::build(scene, AccelKind::None);
+    let accel = Accel::build_with(scene, options);
     let build_seconds = build.elapsed().as_secs_f64();
     let max_depth = args.depth.unwrap_or(scene.max_depth);
     // A progress bar over pixel rows, only for a person watching a terminal.

@@ -3,11 +3,12 @@
 //! `--aa corners|adaptive` the pixel's samples are traced instead of its centre (`sample::trace_pixel`,
 //! `doc::samples`).
 
+use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
 use super::{load_scene, parse, print_out, Failure};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
-use whitted::accel::{Accel, AccelKind};
+use whitted::accel::Accel;
 use whitted::doc::narrate::{narrate, Lang};
 use whitted::doc::samples::{narrate_samples, sampled_document};
 use whitted::doc::{trace_document, TraceTarget};
@@ -60,6 +61,8 @@ pub struct TraceArgs {
     /// With --pixel: corners or adaptive trace the pixel's samples instead of its centre.
     #[command(flatten)]
     sampling: SamplingArgs,
+    #[command(flatten)]
+    accel: AccelArgs,
 }
 
 /// Runs `whitted trace`.
@@ -117,7 +120,8 @@ pub fn target<V: Dim>(
 fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure> {
     let sampling = args.sampling.sampling()?;
     let (ray, target) = target(scene, args.pixel, args.ray.as_ref())?;
-    let accel = Accel::build(scene, AccelKind::None);
+    let options = args.accel.options(V::DIM).map_err(Failure::input)?;
+    let accel = Accel::build_with(scene, &options);
     let mut tracer = Tracer::new(scene, &accel, EventLog::new());
     if let Some(d) = args.depth {
         tracer.max_depth = d;

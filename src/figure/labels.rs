@@ -163,6 +163,48 @@ pub enum Label {
     Threshold,
     /// K = 0: the corners, no subdivision.
     CornersOnly,
+    /// A ray meets the volume.
+    MeetsVolume,
+    /// A ray misses the volume.
+    MissesVolume,
+    /// Drawn in the plane of two axes (followed by their names).
+    AxisPlane,
+    /// Legend: the ray that meets the volume.
+    RayMeets,
+    /// Legend: the ray that misses it.
+    RayMisses,
+    /// Legend: a slab's planes (followed by its name).
+    SlabPlanes,
+    /// Caption: nodes tested.
+    NodesTested,
+    /// Caption: nodes entered.
+    NodesEntered,
+    /// Caption: objects tested.
+    ObjectsTested,
+    /// Legend: a node whose box the ray met.
+    NodeEntered,
+    /// Legend: a node whose box it missed.
+    NodeMissed,
+    /// Legend: a node never tested.
+    NodeUntested,
+    /// "grid" (caption, before its cells).
+    Grid,
+    /// "cells visited".
+    CellsVisited,
+    /// Legend: a visited cell.
+    CellVisited,
+    /// Legend: where the ray leaves a cell.
+    CellExit,
+    /// Legend: a hit found beyond its cell.
+    FoundBeyond,
+    /// "cell" (table head).
+    Cell,
+    /// The pitfall: "found while visiting cell".
+    PitfallIn,
+    /// The cell's exit t.
+    CellExitT,
+    /// The pitfall's rule.
+    PitfallRule,
 }
 
 impl Label {
@@ -294,6 +336,35 @@ impl Label {
             Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
             Self::RaysPerPixel => ("rays", "raze"),
             Self::Threshold => ("threshold", "pragul"),
+            Self::MeetsVolume => ("meets the volume", "intersectează volumul"),
+            Self::MissesVolume => ("misses the volume", "ratează volumul"),
+            Self::AxisPlane => ("drawn in the plane", "desenat în planul"),
+            Self::RayMeets => ("the ray that meets the volume", "raza care intersectează volumul"),
+            Self::RayMisses => ("a ray that misses it", "o rază care îl ratează"),
+            Self::SlabPlanes => ("planes", "planele"),
+            Self::NodesTested => ("nodes tested", "noduri testate"),
+            Self::NodesEntered => ("met", "intersectate"),
+            Self::ObjectsTested => ("objects tested", "obiecte testate"),
+            Self::NodeEntered => ("box met (n: test order)", "volum intersectat (n: ordinea testului)"),
+            Self::NodeMissed => ("box missed: subtree skipped", "volum ratat: subarbore sărit"),
+            Self::NodeUntested => ("never tested", "netestat"),
+            Self::Grid => ("grid", "grila"),
+            Self::CellsVisited => ("cells visited", "voxeli parcurși"),
+            Self::CellVisited => ("cell visited (k: order)", "voxel parcurs (k: ordinea)"),
+            Self::CellExit => {
+                ("where the ray leaves a cell (min tMax)", "unde raza iese din voxel (min tMax)")
+            }
+            Self::FoundBeyond => (
+                "hit found in a cell, lying beyond it",
+                "intersecție găsită într-un voxel, dar dincolo de el",
+            ),
+            Self::Cell => ("cell", "voxel"),
+            Self::PitfallIn => ("the pitfall: hit found in cell", "capcana: intersecție găsită în voxelul"),
+            Self::CellExitT => ("its exit", "ieșirea lui"),
+            Self::PitfallRule => (
+                "a hit counts only within its cell:\nthe walk goes on",
+                "o intersecție contează numai în voxelul ei:\nparcurgerea continuă",
+            ),
             Self::CornersOnly => {
                 ("K = 0: the 4 corners, no subdivision", "K = 0: cele 4 colțuri, fără subdivizare")
             }
@@ -310,6 +381,13 @@ impl Label {
 pub fn pick_reason(pick: Pick, lang: Lang) -> Option<&'static str> {
     let (en, ro) = match pick {
         Pick::Given => return None,
+        Pick::Walk => {
+            ("its walk through the structure shows the most", "parcurgerea structurii arată cel mai mult")
+        }
+        Pick::VolumeHit => ("its ray meets the volume", "raza sa intersectează volumul"),
+        Pick::VolumeMiss => {
+            ("its ray misses the volume by a little", "raza sa ratează volumul la mică distanță")
+        }
         Pick::Subdivided => {
             ("its subdivision mixes the most levels", "subdivizarea sa amestecă cele mai multe niveluri")
         }

@@ -6,7 +6,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::geom::Vector;
-use crate::shape::{Dim, Shape};
+use crate::shape::{Dim, Parts, Shape};
 
 /// A plane of the scene with an origin and two orthonormal axes: page `x` and page `y` (up).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -141,6 +141,8 @@ impl Planar for DVec2 {
                     Outline::Path(points)
                 }
             }
+            // There are no meshes in 2D.
+            Shape::Mesh(m) => match *m {},
         };
         vec![ObjectOutline { outline, section: true }]
     }
@@ -208,6 +210,20 @@ impl Planar for DVec3 {
                 }
                 let projected = t.vertices.iter().map(|p| plane.point(*p)).collect();
                 out.push(ObjectOutline { outline: Outline::Polygon(projected), section: false });
+            }
+            Shape::Mesh(m) => {
+                // Each triangle the plane cuts adds a segment of the section; the projection's
+                // outline is drawn as the convex hull of every vertex.
+                let mut all = Vec::new();
+                for k in 0..m.count() {
+                    let vertices = m.points(k);
+                    let cut = section(plane, normal, &vertices, &[(0, 1), (1, 2), (2, 0)]);
+                    if cut.len() >= 2 {
+                        out.push(ObjectOutline { outline: Outline::Path(cut[..2].to_vec()), section: true });
+                    }
+                    all.extend(vertices.iter().map(|p| plane.point(*p)));
+                }
+                out.push(ObjectOutline { outline: Outline::Polygon(convex_hull(all)), section: false });
             }
         }
         out

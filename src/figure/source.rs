@@ -4,8 +4,10 @@
 //! pixel and is given none gets a telling one, found by scanning recorded traces of a grid of
 //! pixels for the events it draws (a refraction, a blocked shadow ray, a large ray tree).
 
-use crate::accel::{Accel, AccelKind};
+use crate::accel::{Accel, AccelKind, AccelOptions};
+use crate::bounds::VolumeKind;
 use crate::geom::ray::Ray;
+use crate::geom::slab::culling_hit;
 use crate::geom::Vector;
 use crate::record::event::{Event, RayKind};
 use crate::record::{EventLog, RayNode};
@@ -53,6 +55,12 @@ pub enum Pick {
     Lit,
     /// The pixel whose adaptive subdivision mixes the most levels.
     Subdivided,
+    /// The pixel whose primary ray's walk through the structure is the most telling.
+    Walk,
+    /// A pixel whose primary ray meets the volume.
+    VolumeHit,
+    /// A pixel whose primary ray misses the volume, nearest to meeting it.
+    VolumeMiss,
 }
 
 /// Where a traced primary ray came from.
@@ -92,7 +100,7 @@ pub struct Traced<V> {
 
 /// Everything a figure reads besides the scene.
 #[derive(Clone, Debug)]
-pub struct Traces<V> {
+pub struct Traces<V: Dim> {
     /// The scene's name (its file stem), for the caption.
     pub scene_name: String,
     /// The traces: the main one first; `projections` has the orthographic then the perspective
@@ -100,6 +108,10 @@ pub struct Traces<V> {
     pub traces: Vec<Traced<V>>,
     /// The primary rays of every pixel of a whole render (`heat-map`).
     pub counts: Option<Counts>,
+    /// The structure the traces were recorded with (its volumes, nodes or cells are drawn).
+    pub accel: Accel<V>,
+    /// The object a figure is about (`slab-test`, `kay-kajiya`: the bounded object tested).
+    pub focus: Option<usize>,
 }
 
 /// The primary rays that entered each pixel of a render.
@@ -114,12 +126,13 @@ pub struct Counts {
 }
 
 /// Options of the tracing a figure reads.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Tracing {
     /// Overrides the scene's `max_depth`.
     pub depth: Option<u32>,
-    /// The structure that finds hits.
-    pub accel: AccelKind,
+    /// The structure that finds hits; the kinds that draw one (`slab-test`, `kay-kajiya`, `bvh`,
+    /// `grid-dda`, `octree`) use theirs, keeping only the grid's cells.
+    pub accel: AccelOptions,
     /// How pixels become primary rays, for the kinds that show sampling (`adaptive`, `heat-map`);
     /// the others trace the pixel's centre.
     pub sampling: Sampling,
@@ -127,7 +140,11 @@ pub struct Tracing {
 
 impl Tracing {
     /// The scene's own depth, brute force, one ray through each pixel centre.
-    pub const SCENE: Self = Self { depth: None, accel: AccelKind::None, sampling: Sampling::Center };
+    pub const SCENE: Self = Self {
+        depth: None,
+        accel: AccelOptions { kind: AccelKind::None, volume: VolumeKind::Aabb, grid: None },
+        sampling: Sampling::Center,
+    };
     /// The adaptive subdivision of the lecture's figure: threshold 0.1, at most 2 levels.
     pub const ADAPTIVE: Sampling = Sampling::Adaptive { threshold: 0.1, max_level: 2 };
 }
@@ -142,7 +159,7 @@ pub fn record<V: Dim>(
     scene: &Scene<V>,
     scene_name: &str,
     aim: &Aim<V>,
-    tracing: Tracing,
+    tracing: &Tracing,
 ) -> Result<Traces<V>, FigureError> {
     let cam = &scene.camera;
     if let Aim::Pixel(i, j) = *aim {
@@ -153,9 +170,20 @@ pub fn record<V: Dim>(
             )));
         }
     }
-    let accel = Accel::build(scene, tracing.accel);
+    let structure =
+        |kind: AccelKind, volume: VolumeKind| AccelOptions { kind, volume, grid: tracing.accel.grid.clone() };
+    let options = match kind {
+        FigureKind::SlabTest => structure(AccelKind::Bounds, VolumeKind::Aabb),
+        FigureKind::KayKajiya => structure(AccelKind::Bounds, VolumeKind::Kdop),
+        FigureKind::Bvh => structure(AccelKind::Bvh, VolumeKind::Aabb),
+        FigureKind::GridDda => structure(AccelKind::Grid, VolumeKind::Aabb),
+        FigureKind::Octree => structure(AccelKind::Octree, VolumeKind::Aabb),
+        _ => tracing.accel.clone(),
+    };
+    let accel = Accel::build_with(scene, &options);
     let depth = tracing.depth.unwrap_or(scene.max_depth);
     let tracer = Recording { scene, accel: &accel, depth };
+    let (mut counts, mut focus) = (None, None);
     let traces = match kind {
         FigureKind::Projections => projections(&tracer, aim),
         FigureKind::UvMap => match aim {
@@ -212,17 +240,19 @@ pub fn record<V: Dim>(
             };
             let rendered = render(scene, &accel, &config);
             let per_pixel = rendered.rays_per_pixel.unwrap_or_default();
-            let counts =
-                Counts { sampling: tracing.sampling, per_pixel, traced: rendered.stats.rays.primary };
-            return Ok(Traces {
-                scene_name: scene_name.to_owned(),
-                traces: Vec::new(),
-                counts: Some(counts),
-            });
+            counts =
+                Some(Counts { sampling: tracing.sampling, per_pixel, traced: rendered.stats.rays.primary });
+            Vec::new()
         }
-        _ => vec![tracer.aimed(aim, Pick::Default, |_| None)],
+        FigureKind::SlabTest | FigureKind::KayKajiya => {
+            let (traces, object) = bound_pair(&tracer, aim)?;
+            focus = Some(object);
+            traces
+        }
+        FigureKind::Bvh | FigureKind::Octree => vec![tracer.aimed(aim, Pick::Walk, tree_score)],
+        FigureKind::GridDda => vec![tracer.aimed(aim, Pick::Walk, grid_score)],
     };
-    Ok(Traces { scene_name: scene_name.to_owned(), traces, counts: None })
+    Ok(Traces { scene_name: scene_name.to_owned(), traces, counts, accel, focus })
 }
 
 /// The message for a trace that lacks what a figure draws.
@@ -537,4 +567,122 @@ fn lit_score<V: Dim>(scene: &Scene<V>, log: &EventLog<V>) -> Option<f64> {
             2.0 * kind + 3.0 * highlight + 2.0 - (t.n_dot_l - 0.6).abs() - (n_dot_v - 0.8).abs()
         })
         .reduce(f64::max)
+}
+
+/// The events of root `root`'s search for its nearest hit: those of its node before its `hit`
+/// or `miss` (the shadow rays' tests come after).
+pub fn search_events<V>(log: &EventLog<V>, root: usize) -> impl Iterator<Item = &Event<V>> {
+    node_events(log, root).take_while(|e| !matches!(e, Event::Hit { .. } | Event::Miss { .. }))
+}
+
+/// Whether a recorded box interval counts as met, by the structures' own closed rule.
+#[must_use]
+pub fn met(t_in: f64, t_out: f64) -> bool {
+    culling_hit(t_in, t_out)
+}
+
+/// The `bound_test` of object `object` in root 0's search: `(intervals, t_in, t_out, hit)`.
+#[must_use]
+pub fn bound_test_of<V>(log: &EventLog<V>, object: usize) -> Option<(&[[f64; 2]], f64, f64, bool)> {
+    search_events(log, 0).find_map(|e| match e {
+        Event::BoundTest { object: Some(o), intervals, t_in, t_out, hit, .. } if o.index == object => {
+            Some((intervals.as_slice(), *t_in, *t_out, *hit))
+        }
+        _ => None,
+    })
+}
+
+/// `slab-test` and `kay-kajiya`: a pixel whose primary ray meets an object's volume and one whose
+/// primary ray misses the same volume by a little (its gap max t_i − min t_e near a tenth of its
+/// distance), and that object. A given pixel is the first
+/// of the two (its hit object, or the first volume it meets, is the one drawn).
+fn bound_pair<V: Dim>(rec: &Recording<'_, V>, aim: &Aim<V>) -> Result<(Vec<Traced<V>>, usize), FigureError> {
+    let first = match aim {
+        Aim::Auto => {
+            // The pixel nearest the centre whose primary ray hits an object inside its volume.
+            let best = rec.best_pixel(|i, j| {
+                let t = rec.pixel(i, j, Pick::Given);
+                let object = first_hit(&t.log)
+                    .and_then(|k| t.log.nodes[k].end.as_ref()?.hit)
+                    .map(|h| h.object.index)?;
+                bound_test_of(&t.log, object).filter(|b| b.3).map(|_| 1.0)
+            });
+            let (i, j) = best.unwrap_or_else(|| default_pixel(rec.scene));
+            rec.pixel(i, j, if best.is_some() { Pick::VolumeHit } else { Pick::Default })
+        }
+        Aim::Pixel(i, j) => rec.pixel(*i, *j, Pick::Given),
+        Aim::Ray(ray) => rec.trace(rec.scene, &[(*ray, Target::Ray)], rec.depth, Pick::Given),
+    };
+    let hit_object =
+        first_hit(&first.log).and_then(|k| first.log.nodes[k].end.as_ref()?.hit).map(|h| h.object.index);
+    let focus = hit_object.filter(|o| bound_test_of(&first.log, *o).is_some()).or_else(|| {
+        search_events(&first.log, 0).find_map(|e| match e {
+            Event::BoundTest { object: Some(o), hit: true, .. } => Some(o.index),
+            _ => None,
+        })
+    });
+    let Some(focus) = focus else {
+        return Err(FigureError(missing(aim, "bounding volume it meets (give a pixel whose ray meets one)")));
+    };
+    // The partner: a near miss of the same volume (the lecture's blue ray).
+    let near_miss = rec.best_pixel(|i, j| {
+        let t = rec.pixel(i, j, Pick::Given);
+        let (_, t_in, t_out, hit) = bound_test_of(&t.log, focus)?;
+        let finite = t_in.is_finite() && t_out.is_finite() && t_out > 0.0;
+        // A clear miss, but a near one: the gap max t_i − min t_e about a tenth of the distance.
+        (!hit && finite).then(|| -((t_in - t_out) / t_out.abs().max(1e-12) - 0.1).abs())
+    });
+    let mut traces = vec![first];
+    if let Some((i, j)) = near_miss {
+        traces.push(rec.pixel(i, j, Pick::VolumeMiss));
+    }
+    Ok((traces, focus))
+}
+
+/// `bvh` and `octree`: a primary ray that enters several nodes and passes others by.
+fn tree_score<V>(log: &EventLog<V>) -> Option<f64> {
+    let (mut entered, mut missed) = (0usize, 0usize);
+    for e in search_events(log, 0) {
+        if let Event::NodeVisit { t_in, t_out, .. } = e {
+            if met(*t_in, *t_out) {
+                entered += 1;
+            } else {
+                missed += 1;
+            }
+        }
+    }
+    (entered > 1).then(|| 10.0 * entered.min(6) as f64 + missed.min(6) as f64)
+}
+
+/// `grid-dda`: a walk of several cells, best one that shows the pitfall (a hit found in a cell
+/// that lies beyond it).
+fn grid_score<V>(log: &EventLog<V>) -> Option<f64> {
+    let steps = search_events(log, 0).filter(|e| matches!(e, Event::VoxelStep { .. })).count();
+    let pitfall = grid_pitfall(log).is_some();
+    (steps > 1).then(|| if pitfall { 100.0 } else { 0.0 } + steps.min(12) as f64)
+}
+
+/// The lecture's pitfall in root 0's grid walk: the first step whose cell found a hit (an
+/// accepted `object_test` of an object the cell lists) lying beyond the cell's exit `min tMax`:
+/// `(step, object, t, exit)`. Unbounded objects, tested before the walk, do not count.
+#[must_use]
+pub fn grid_pitfall<V>(log: &EventLog<V>) -> Option<(usize, usize, f64, f64)> {
+    let mut found: Vec<(usize, f64)> = Vec::new();
+    let mut step = 0;
+    for e in search_events(log, 0) {
+        match e {
+            Event::ObjectTest { object, accepted: Some(t), .. } => found.push((object.index, *t)),
+            Event::VoxelStep { t_max, objects, .. } => {
+                let exit = t_max.iter().copied().fold(f64::INFINITY, f64::min);
+                let listed = |o: usize| objects.iter().any(|x| x.index == o);
+                if let Some((object, t)) = found.iter().find(|(o, t)| listed(*o) && *t > exit) {
+                    return Some((step, *object, *t, exit));
+                }
+                found.clear();
+                step += 1;
+            }
+            _ => {}
+        }
+    }
+    None
 }

@@ -21,6 +21,20 @@ pub struct SlabInterval {
 #[inline]
 #[must_use]
 pub fn slab_interval(o: f64, d: f64, lo: f64, hi: f64) -> SlabInterval {
+    slab_by(o, d, lo, hi, |x| x / d)
+}
+
+/// [`slab_interval`] with `1/d` computed once per ray: `t = (lo − o)·(1/d)`. Each t then carries
+/// three roundings, the `γ₃` of [`widen_exit`], so only culling volumes use it; objects divide.
+#[inline]
+#[must_use]
+pub fn slab_interval_recip(o: f64, d: f64, inv_d: f64, lo: f64, hi: f64) -> SlabInterval {
+    slab_by(o, d, lo, hi, |x| x * inv_d)
+}
+
+/// The one slab rule, with `t_of(x)` turning a distance along the slab normal into a t.
+#[inline(always)]
+fn slab_by(o: f64, d: f64, lo: f64, hi: f64, t_of: impl Fn(f64) -> f64) -> SlabInterval {
     if d == 0.0 {
         return if lo <= o && o <= hi {
             SlabInterval { t_near: f64::NEG_INFINITY, t_far: f64::INFINITY }
@@ -28,13 +42,106 @@ pub fn slab_interval(o: f64, d: f64, lo: f64, hi: f64) -> SlabInterval {
             SlabInterval { t_near: f64::INFINITY, t_far: f64::NEG_INFINITY }
         };
     }
-    let t1 = (lo - o) / d;
-    let t2 = (hi - o) / d;
+    let t1 = t_of(lo - o);
+    let t2 = t_of(hi - o);
     if t1 <= t2 {
         SlabInterval { t_near: t1, t_far: t2 }
     } else {
         SlabInterval { t_near: t2, t_far: t1 }
     }
+}
+
+/// A ray prepared for many culling tests: its origin, direction and `1/D` per axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RecipRay<V> {
+    /// The origin O.
+    pub origin: V,
+    /// The unit direction D.
+    pub dir: V,
+    /// `1/D` per axis (±∞ where a component is ±0; never used there, see [`slab_interval`]).
+    pub inv_dir: V,
+    /// No component of D is zero: no slab is parallel, and [`RecipRay::box_interval`] takes
+    /// the same formulas without the parallel branch.
+    pub oblique: bool,
+}
+
+impl<V: Vector> RecipRay<V> {
+    /// Prepares `ray`.
+    #[must_use]
+    pub fn new(ray: &Ray<V>) -> Self {
+        let mut inv_dir = ray.dir;
+        for axis in 0..V::DIM {
+            inv_dir[axis] = 1.0 / ray.dir[axis];
+        }
+        let oblique = (0..V::DIM).all(|a| ray.dir[a] != 0.0 && inv_dir[a].is_finite());
+        Self { origin: ray.origin, dir: ray.dir, inv_dir, oblique }
+    }
+    /// `[max t_near, min t_far]` of the box `[min, max]`, slab by slab, by reciprocals.
+    #[inline(always)]
+    #[must_use]
+    pub fn box_interval(&self, min: V, max: V) -> (f64, f64) {
+        let (mut t_in, mut t_out) = (f64::NEG_INFINITY, f64::INFINITY);
+        if self.oblique {
+            // slab_interval_recip without its parallel branch, written with plain comparisons
+            // (no NaN can arise: every 1/d is finite and non-zero).
+            for axis in 0..V::DIM {
+                let t1 = (min[axis] - self.origin[axis]) * self.inv_dir[axis];
+                let t2 = (max[axis] - self.origin[axis]) * self.inv_dir[axis];
+                let (near, far) = if t1 <= t2 { (t1, t2) } else { (t2, t1) };
+                t_in = if near > t_in { near } else { t_in };
+                t_out = if far < t_out { far } else { t_out };
+            }
+            return (t_in, t_out);
+        }
+        for axis in 0..V::DIM {
+            let s = slab_interval_recip(
+                self.origin[axis],
+                self.dir[axis],
+                self.inv_dir[axis],
+                min[axis],
+                max[axis],
+            );
+            t_in = t_in.max(s.t_near);
+            t_out = t_out.min(s.t_far);
+        }
+        (t_in, t_out)
+    }
+}
+
+impl<V: Vector> RecipRay<V> {
+    /// [`RecipRay::box_interval`] of two boxes at once (a BVH node's children). For an oblique
+    /// ray the near plane of every slab is chosen once by the sign of `1/d` (rounding is
+    /// monotonic, so `(lo − o)/d ≤ (hi − o)/d` keeps its order), which leaves two lanes of plain
+    /// arithmetic; the results are those of two calls of `box_interval`, bit for bit.
+    #[inline(always)]
+    #[must_use]
+    pub fn box_pair_interval(&self, min: [V; 2], max: [V; 2]) -> [(f64, f64); 2] {
+        if !self.oblique {
+            return [self.box_interval(min[0], max[0]), self.box_interval(min[1], max[1])];
+        }
+        let mut t_in = [f64::NEG_INFINITY; 2];
+        let mut t_out = [f64::INFINITY; 2];
+        for axis in 0..V::DIM {
+            let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
+            let (near, far) = if inv >= 0.0 { (min, max) } else { (max, min) };
+            for c in 0..2 {
+                let tn = (near[c][axis] - o) * inv;
+                let tf = (far[c][axis] - o) * inv;
+                t_in[c] = if tn > t_in[c] { tn } else { t_in[c] };
+                t_out[c] = if tf < t_out[c] { tf } else { t_out[c] };
+            }
+        }
+        [(t_in[0], t_out[0]), (t_in[1], t_out[1])]
+    }
+}
+
+/// Whether a culling volume's interval `[t_in, t_out]` admits the ray: closed, exit widened
+/// (§11), `t_in ≤ t_out·(1 + 2γ₃)` and `t_out·(1 + 2γ₃) ≥ 0`.
+#[inline]
+#[must_use]
+pub fn culling_hit(t_in: f64, t_out: f64) -> bool {
+    let wide = widen_exit(t_out);
+    t_in <= wide && wide >= 0.0
 }
 
 /// The intersection of a ray with an axis-aligned box, slab by slab.

@@ -12,6 +12,7 @@ use super::{AnyScene, Object, Scene};
 use crate::geom::frame::{self, Frame, FrameError};
 use crate::geom::Vector;
 use crate::shape::aabox::AaBox;
+use crate::shape::mesh::{parse_obj, Mesh, MeshError};
 use crate::shape::plane::Plane;
 use crate::shape::polygon::{Polygon, PolygonError};
 use crate::shape::sphere::Sphere;
@@ -36,14 +37,26 @@ const WINDOW_2D: &[&str] = &["l", "r"];
 const LIGHT: &[&str] = &["position", "intensity", "attenuation", "name"];
 const MATERIAL: &[&str] = &["ka", "kd", "ks", "n", "kt", "ior", "checker"];
 const CHECKER: &[&str] = &["size", "kd2", "ka2"];
-const TYPES_3D: &[&str] = &["sphere", "plane", "box", "triangle"];
+const TYPES_3D: &[&str] = &["sphere", "plane", "box", "triangle", "mesh"];
 const TYPES_2D: &[&str] = &["sphere", "plane", "box", "triangle", "segment", "polygon"];
 
-/// Parse and validate a scene.
+/// How the loader gets the text of a file a scene names (a mesh's OBJ), from its caller: the
+/// library reads no files. The name is as the scene writes it; the error is a reason.
+pub type ReadFile<'a> = &'a dyn Fn(&str) -> Result<String, String>;
+
+/// Parse and validate a scene that names no file (a `mesh` is an error here).
 ///
 /// # Errors
 /// Every problem found, each naming its JSON path; a syntax error alone if the text is not JSON.
 pub fn load_str(text: &str) -> Result<AnyScene, Vec<SceneError>> {
+    load_str_with(text, &|_| Err("this scene was given as text, with no folder to read files from".into()))
+}
+
+/// Parse and validate a scene, reading the files it names (a mesh's OBJ) through `read_file`.
+///
+/// # Errors
+/// Every problem found, each naming its JSON path; a syntax error alone if the text is not JSON.
+pub fn load_str_with(text: &str, read_file: ReadFile<'_>) -> Result<AnyScene, Vec<SceneError>> {
     let root: Value = serde_json::from_str(text).map_err(|e| {
         let what = e.to_string();
         // serde_json appends " at line L column C"; say it once, first.
@@ -59,8 +72,8 @@ pub fn load_str(text: &str) -> Result<AnyScene, Vec<SceneError>> {
         return Err(r.errors);
     };
     match dimension_of(camera) {
-        Some(2) => build::<DVec2>(r, top).map(AnyScene::Flat),
-        Some(3) => build::<DVec3>(r, top).map(AnyScene::Space),
+        Some(2) => build::<DVec2>(r, top, read_file).map(AnyScene::Flat),
+        Some(3) => build::<DVec3>(r, top, read_file).map(AnyScene::Space),
         _ => {
             r.err("camera.eye", "must be a point of 2 numbers (a 2D scene) or 3 numbers (a 3D scene)");
             Err(r.errors)
@@ -310,6 +323,13 @@ trait LoadDim: Dim {
     fn facet(r: &mut Reader, ty: &str, map: &Map<String, Value>, path: &str) -> Option<Self::Facet>;
     /// `Ny` from the resolution array.
     fn rows(r: &mut Reader, res: &[Value], path: &str) -> Option<usize>;
+    /// A `mesh` object (3D only).
+    fn mesh(
+        r: &mut Reader,
+        map: &Map<String, Value>,
+        path: &str,
+        read_file: ReadFile<'_>,
+    ) -> Option<Self::Mesh>;
 }
 
 fn frame_error(r: &mut Reader, e: FrameError) {
@@ -349,6 +369,44 @@ impl LoadDim for DVec3 {
         }
         resolution_axis(r, &res[1], &format!("{path}[1]"))
     }
+    fn mesh(r: &mut Reader, map: &Map<String, Value>, path: &str, read_file: ReadFile<'_>) -> Option<Mesh> {
+        let p = join(path, "obj");
+        let Some(v) = map.get("obj") else {
+            r.err(p, "missing (required: the OBJ file, relative to the scene file)");
+            return None;
+        };
+        let name = r.string(v, &p)?;
+        let text = match read_file(name) {
+            Ok(t) => t,
+            Err(e) => {
+                r.err(p, format!("cannot read `{name}`: {e}"));
+                return None;
+            }
+        };
+        let (vertices, faces) = match parse_obj(&text, MAX_MAGNITUDE) {
+            Ok(x) => x,
+            Err(e) => {
+                let at = e.line.map(|l| format!(" line {l}")).unwrap_or_default();
+                r.err(p, format!("{name}{at}: {}", e.problem));
+                return None;
+            }
+        };
+        match Mesh::new(vertices, &faces) {
+            Ok(m) => Some(m),
+            Err(e) => {
+                let problem = match e {
+                    MeshError::VertexOutOfRange { face } => {
+                        format!("triangle {face} names a vertex that does not exist")
+                    }
+                    MeshError::NoTriangles { skipped: 0 } => "contains no triangles".into(),
+                    MeshError::NoTriangles { skipped } => format!("all {skipped} triangles have zero area"),
+                    MeshError::TooLarge => "more than 2^32 − 1 vertices or triangles".into(),
+                };
+                r.err(p, format!("{name}: {problem}"));
+                None
+            }
+        }
+    }
 }
 
 impl LoadDim for DVec2 {
@@ -385,6 +443,10 @@ impl LoadDim for DVec2 {
         }
         Some(1)
     }
+    fn mesh(r: &mut Reader, _: &Map<String, Value>, path: &str, _: ReadFile<'_>) -> Option<Self::Mesh> {
+        r.err(join(path, "type"), "`mesh` exists only in 3D scenes");
+        None
+    }
 }
 
 fn resolution_axis(r: &mut Reader, v: &Value, path: &str) -> Option<usize> {
@@ -417,7 +479,11 @@ fn vertices<V: Vector>(
     points.into_iter().collect()
 }
 
-fn build<V: LoadDim>(mut r: Reader, top: &Map<String, Value>) -> Result<Scene<V>, Vec<SceneError>> {
+fn build<V: LoadDim>(
+    mut r: Reader,
+    top: &Map<String, Value>,
+    read_file: ReadFile<'_>,
+) -> Result<Scene<V>, Vec<SceneError>> {
     let camera = read_camera::<V>(&mut r, &top["camera"]);
     let background = r.optional_color(top, "", "background", Rgb::BLACK, (0.0, f64::INFINITY));
     let ambient = r.optional_color(top, "", "ambient", Rgb::grey(1.0), (0.0, f64::INFINITY));
@@ -427,7 +493,7 @@ fn build<V: LoadDim>(mut r: Reader, top: &Map<String, Value>) -> Result<Scene<V>
     };
     let lights = read_lights::<V>(&mut r, top.get("lights"));
     let (mut materials, names) = read_named_materials(&mut r, top.get("materials"));
-    let objects = read_objects::<V>(&mut r, top.get("objects"), &mut materials, &names);
+    let objects = read_objects::<V>(&mut r, top.get("objects"), &mut materials, &names, read_file);
     match camera {
         Some(camera) if r.errors.is_empty() => Ok(Scene {
             camera,
@@ -629,6 +695,7 @@ fn read_objects<V: LoadDim>(
     v: Option<&Value>,
     materials: &mut Vec<Material>,
     names: &[String],
+    read_file: ReadFile<'_>,
 ) -> Vec<Object<V>> {
     let Some(v) = v else { return vec![] };
     let Some(items) = v.as_array() else {
@@ -655,6 +722,7 @@ fn read_objects<V: LoadDim>(
             "box" => &["min", "max"],
             "triangle" | "polygon" => &["vertices"],
             "segment" => &["a", "b"],
+            "mesh" => &["obj"],
             _ => {
                 let hint =
                     suggest(ty, V::TYPES).map(|s| format!("; did you mean `{s}`?")).unwrap_or_default();
@@ -689,7 +757,7 @@ fn read_objects<V: LoadDim>(
                 materials.len() - 1
             }),
         };
-        let shape = read_shape::<V>(r, ty, map, &path);
+        let shape = read_shape::<V>(r, ty, map, &path, read_file);
         if let (Some(shape), Some(material)) = (shape, material) {
             out.push(Object { name, shape, material });
         }
@@ -702,8 +770,10 @@ fn read_shape<V: LoadDim>(
     ty: &str,
     map: &Map<String, Value>,
     path: &str,
+    read_file: ReadFile<'_>,
 ) -> Option<Shape<V>> {
     match ty {
+        "mesh" => V::mesh(r, map, path, read_file).map(Shape::Mesh),
         "sphere" => {
             let center = r.required_vector::<V>(map, path, "center");
             let radius = r.required(map, path, "radius").and_then(|x| match positive(x) {
@@ -837,6 +907,39 @@ mod tests {
                         {"type": "triangle", "vertices": [[0,0],[1,0],[2,0]]}]}"#;
         let e = errors(text);
         assert_eq!(e, vec!["objects[2].vertices: zero-area triangle".to_string()]);
+    }
+
+    #[test]
+    fn meshes_are_read_through_the_caller_and_errors_name_file_and_line() {
+        let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n";
+        let read =
+            |name: &str| if name == "tri.obj" { Ok(obj.to_string()) } else { Err("not found".to_string()) };
+        let text = format!(
+            r#"{{{CAM}, "objects": [{{"type": "mesh", "obj": "tri.obj", "name": "m", "material": {{"kd": 0.5}}}}]}}"#
+        );
+        let AnyScene::Space(s) = load_str_with(&text, &read).unwrap() else { panic!() };
+        let Shape::Mesh(m) = &s.objects[0].shape else { panic!() };
+        use crate::shape::Parts;
+        assert_eq!((m.count(), m.skipped()), (1, 1));
+        let e = load_str_with(&text.replace("tri.obj", "gone.obj"), &read).unwrap_err();
+        assert_eq!(e[0].to_string(), "objects[0].obj: cannot read `gone.obj`: not found");
+        let bad = |_: &str| Ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n".to_string());
+        let e = load_str_with(&text, &bad).unwrap_err();
+        assert!(e[0].to_string().starts_with("objects[0].obj: tri.obj line 4: "), "{e:?}");
+        assert!(load_str(&text).is_err(), "load_str reads no file");
+        let flat = r#"{"camera": {"eye": [0, 5], "center": [0, 0], "window": {"l": -1, "r": 1}, "resolution": [8]},
+            "objects": [{"type": "mesh", "obj": "tri.obj"}]}"#;
+        assert_eq!(
+            errors_with(flat, &read),
+            vec!["objects[0].type: `mesh` exists only in 3D scenes".to_string()]
+        );
+    }
+
+    fn errors_with(text: &str, read: ReadFile<'_>) -> Vec<String> {
+        match load_str_with(text, read) {
+            Ok(_) => vec![],
+            Err(e) => e.iter().map(ToString::to_string).collect(),
+        }
     }
 
     #[test]

@@ -4,6 +4,7 @@
 //! primitives differ by dimension and sit behind [`Dim::Facet`].
 
 pub mod aabox;
+pub mod mesh;
 pub mod plane;
 pub mod polygon;
 pub mod sphere;
@@ -17,17 +18,21 @@ use glam::{DVec2, DVec3};
 pub trait Dim: Vector {
     /// The flat primitive of this dimension: a watertight triangle in 3D, a polygon or segment in 2D.
     type Facet: Facet<Self>;
+    /// A triangle mesh in 3D; in 2D a type with no values.
+    type Mesh: Parts<Self>;
     /// `"2D"` or `"3D"`.
     const NAME: &'static str;
 }
 
 impl Dim for DVec3 {
     type Facet = triangle::Triangle;
+    type Mesh = mesh::Mesh;
     const NAME: &'static str = "3D";
 }
 
 impl Dim for DVec2 {
     type Facet = polygon::Polygon;
+    type Mesh = mesh::NoMesh;
     const NAME: &'static str = "2D";
 }
 
@@ -52,8 +57,30 @@ pub trait Facet<V>: Clone + std::fmt::Debug + Send + Sync + 'static {
     fn bounds(&self) -> (V, V);
     /// The largest |coordinate| of its vertices (the object scale of the spawn offset, §11).
     fn scale(&self) -> f64;
+    /// Its vertices (for fitting bounding volumes).
+    fn points(&self) -> Vec<V>;
     /// A short name for messages and `check`: `triangle`, `segment`, `polygon`.
     fn kind(&self) -> &'static str;
+}
+
+/// An object made of many parts (a mesh's triangles), each tested on its own.
+pub trait Parts<V>: Clone + std::fmt::Debug + Send + Sync + 'static {
+    /// How many parts.
+    fn count(&self) -> usize;
+    /// The nearest hit of part `k` with `t > 0`.
+    fn hit(&self, k: usize, ray: &Ray<V>) -> Option<SurfaceHit<V>>;
+    /// Every root of part `k`, ascending.
+    fn roots(&self, k: usize, ray: &Ray<V>) -> Vec<f64>;
+    /// The axis-aligned bounds of part `k`.
+    fn bounds(&self, k: usize) -> (V, V);
+    /// The vertices of part `k`.
+    fn points(&self, k: usize) -> Vec<V>;
+    /// The part's index in its file (a mesh triangle's index in the OBJ).
+    fn id(&self, k: usize) -> usize;
+    /// The largest |coordinate| of all its vertices (the spawn offset's object scale, §11).
+    fn scale(&self) -> f64;
+    /// Degenerate parts skipped when it was built.
+    fn skipped(&self) -> usize;
 }
 
 /// A primitive of a scene, in 2D or 3D.
@@ -67,6 +94,8 @@ pub enum Shape<V: Dim> {
     Box(aabox::AaBox<V>),
     /// A triangle in 3D; a triangle, segment or polygon in 2D.
     Facet(V::Facet),
+    /// A triangle mesh (3D only): one object of many triangles.
+    Mesh(V::Mesh),
 }
 
 impl<V: Dim> Shape<V> {
@@ -78,6 +107,18 @@ impl<V: Dim> Shape<V> {
             Self::Plane(p) => p.hit(ray),
             Self::Box(b) => b.hit(ray),
             Self::Facet(f) => f.hit(ray),
+            Self::Mesh(m) => {
+                // The nearest triangle; strict `<` keeps the smaller index on equal t (§6).
+                let mut best: Option<SurfaceHit<V>> = None;
+                for k in 0..m.count() {
+                    if let Some(h) = m.hit(k, ray) {
+                        if best.is_none_or(|b| h.t < b.t) {
+                            best = Some(h);
+                        }
+                    }
+                }
+                best
+            }
         }
     }
     /// Every root along the ray's line, ascending, whatever its sign (the `object_test` event).
@@ -88,6 +129,11 @@ impl<V: Dim> Shape<V> {
             Self::Plane(p) => p.roots(ray),
             Self::Box(b) => b.roots(ray),
             Self::Facet(f) => f.roots(ray),
+            Self::Mesh(m) => {
+                let mut all: Vec<f64> = (0..m.count()).flat_map(|k| m.roots(k, ray)).collect();
+                all.sort_by(f64::total_cmp);
+                all
+            }
         }
     }
     /// The axis-aligned bounds, or `None` for an unbounded plane.
@@ -98,6 +144,13 @@ impl<V: Dim> Shape<V> {
             Self::Plane(_) => None,
             Self::Box(b) => Some((b.min, b.max)),
             Self::Facet(f) => Some(f.bounds()),
+            Self::Mesh(m) => {
+                let first = m.bounds(0);
+                Some((1..m.count()).fold(first, |(lo, hi), k| {
+                    let (a, b) = m.bounds(k);
+                    (lo.min_by_axis(a), hi.max_by_axis(b))
+                }))
+            }
         }
     }
     /// The object scale of the spawn offset, §11: sphere `‖C‖∞ + r`, plane `‖point‖∞`, box and
@@ -109,6 +162,7 @@ impl<V: Dim> Shape<V> {
             Self::Plane(p) => p.point.max_abs(),
             Self::Box(b) => b.min.max_abs().max(b.max.max_abs()),
             Self::Facet(f) => f.scale(),
+            Self::Mesh(m) => m.scale(),
         }
     }
     /// The type name as the scene file writes it (`circle` and `line` are the 2D names).
@@ -122,6 +176,48 @@ impl<V: Dim> Shape<V> {
             (Self::Box(_), 2) => "rectangle",
             (Self::Box(_), _) => "box",
             (Self::Facet(f), _) => f.kind(),
+            (Self::Mesh(_), _) => "mesh",
+        }
+    }
+
+    /// How many parts the acceleration structures see: a mesh's triangles, else 1.
+    #[must_use]
+    pub fn parts(&self) -> usize {
+        match self {
+            Self::Mesh(m) => m.count(),
+            _ => 1,
+        }
+    }
+    /// The nearest hit of part `k` with `t > 0` (the object itself when it has one part).
+    #[inline]
+    pub fn part_hit(&self, k: usize, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
+        match self {
+            Self::Mesh(m) => m.hit(k, ray),
+            _ => self.hit(ray),
+        }
+    }
+    /// Every root of part `k`, ascending.
+    #[must_use]
+    pub fn part_roots(&self, k: usize, ray: &Ray<V>) -> Vec<f64> {
+        match self {
+            Self::Mesh(m) => m.roots(k, ray),
+            _ => self.roots(ray),
+        }
+    }
+    /// The axis-aligned bounds of part `k`, or `None` for an unbounded plane.
+    #[must_use]
+    pub fn part_bounds(&self, k: usize) -> Option<(V, V)> {
+        match self {
+            Self::Mesh(m) => Some(m.bounds(k)),
+            _ => self.bounds(),
+        }
+    }
+    /// The index that names part `k` in traces: a mesh triangle's OBJ index, else `None`.
+    #[must_use]
+    pub fn part_id(&self, k: usize) -> Option<usize> {
+        match self {
+            Self::Mesh(m) => Some(m.id(k)),
+            _ => None,
         }
     }
 }

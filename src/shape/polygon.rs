@@ -170,6 +170,9 @@ impl Facet<DVec2> for Polygon {
     fn scale(&self) -> f64 {
         self.vertices.iter().fold(0.0, |m, p| m.max(p.max_abs()))
     }
+    fn points(&self) -> Vec<DVec2> {
+        self.vertices.clone()
+    }
     fn kind(&self) -> &'static str {
         self.kind
     }

@@ -19,10 +19,11 @@ pub struct Triangle {
 }
 
 /// Where the ray's line crosses the triangle's plane inside it: distance and barycentrics.
-struct Crossing {
-    t: f64,
+pub(crate) struct Crossing {
+    /// Distance along the ray's line (any sign).
+    pub t: f64,
     /// Barycentric weights of a, b, c.
-    weights: [f64; 3],
+    pub weights: [f64; 3],
 }
 
 impl Triangle {
@@ -33,50 +34,56 @@ impl Triangle {
         Some(Self { vertices: [a, b, c], normal })
     }
 
-    /// The Woop–Benthin–Wald test; `None` if the line misses or is edge-on.
     #[inline]
     fn crossing(&self, ray: &Ray<DVec3>) -> Option<Crossing> {
-        let d = ray.dir;
-        // Permute so that z is the axis where |D| is largest; swap x and y to keep the winding.
-        let kz = d.abs().max_position();
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        // Shear constants.
-        let sx = d[kx] / d[kz];
-        let sy = d[ky] / d[kz];
-        let sz = 1.0 / d[kz];
-        let [a, b, c] = self.vertices.map(|p| p - ray.origin);
-        let sheared = |p: DVec3| (p[kx] - sx * p[kz], p[ky] - sy * p[kz]);
-        let (ax, ay) = sheared(a);
-        let (bx, by) = sheared(b);
-        let (cx, cy) = sheared(c);
-        // Edge functions; an exact zero is re-evaluated with the error-free product difference.
-        let mut u = cx * by - cy * bx;
-        let mut v = ax * cy - ay * cx;
-        let mut w = bx * ay - by * ax;
-        if u == 0.0 || v == 0.0 || w == 0.0 {
-            u = diff_of_products(cx, by, cy, bx);
-            v = diff_of_products(ax, cy, ay, cx);
-            w = diff_of_products(bx, ay, by, ax);
-        }
-        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-            return None;
-        }
-        let det = u + v + w;
-        if det == 0.0 {
-            // Edge-on triangles are invisible (§11).
-            return None;
-        }
-        let t_scaled = u * (sz * a[kz]) + v * (sz * b[kz]) + w * (sz * c[kz]);
-        let t = t_scaled / det;
-        if !t.is_finite() {
-            return None;
-        }
-        Some(Crossing { t, weights: [u / det, v / det, w / det] })
+        crossing(&self.vertices, ray)
     }
+}
+
+/// The Woop–Benthin–Wald test of the triangle `vertices`; `None` if the line misses or is
+/// edge-on. Shared by scene triangles and mesh triangles.
+#[inline]
+pub(crate) fn crossing(vertices: &[DVec3; 3], ray: &Ray<DVec3>) -> Option<Crossing> {
+    let d = ray.dir;
+    // Permute so that z is the axis where |D| is largest; swap x and y to keep the winding.
+    let kz = d.abs().max_position();
+    let mut kx = (kz + 1) % 3;
+    let mut ky = (kx + 1) % 3;
+    if d[kz] < 0.0 {
+        std::mem::swap(&mut kx, &mut ky);
+    }
+    // Shear constants.
+    let sx = d[kx] / d[kz];
+    let sy = d[ky] / d[kz];
+    let sz = 1.0 / d[kz];
+    let [a, b, c] = vertices.map(|p| p - ray.origin);
+    let sheared = |p: DVec3| (p[kx] - sx * p[kz], p[ky] - sy * p[kz]);
+    let (ax, ay) = sheared(a);
+    let (bx, by) = sheared(b);
+    let (cx, cy) = sheared(c);
+    // Edge functions; an exact zero is re-evaluated with the error-free product difference.
+    let mut u = cx * by - cy * bx;
+    let mut v = ax * cy - ay * cx;
+    let mut w = bx * ay - by * ax;
+    if u == 0.0 || v == 0.0 || w == 0.0 {
+        u = diff_of_products(cx, by, cy, bx);
+        v = diff_of_products(ax, cy, ay, cx);
+        w = diff_of_products(bx, ay, by, ax);
+    }
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        return None;
+    }
+    let det = u + v + w;
+    if det == 0.0 {
+        // Edge-on triangles are invisible (§11).
+        return None;
+    }
+    let t_scaled = u * (sz * a[kz]) + v * (sz * b[kz]) + w * (sz * c[kz]);
+    let t = t_scaled / det;
+    if !t.is_finite() {
+        return None;
+    }
+    Some(Crossing { t, weights: [u / det, v / det, w / det] })
 }
 
 impl Facet<DVec3> for Triangle {
@@ -100,6 +107,9 @@ impl Facet<DVec3> for Triangle {
     }
     fn scale(&self) -> f64 {
         self.vertices.iter().fold(0.0, |m, p| m.max(p.max_abs()))
+    }
+    fn points(&self) -> Vec<DVec3> {
+        self.vertices.to_vec()
     }
     fn kind(&self) -> &'static str {
         "triangle"

@@ -15,27 +15,24 @@ use whitted::record::event::{Event, RayKind};
 use whitted::scene::load::load_str;
 use whitted::scene::{AnyScene, Scene};
 
-/// The kinds this build draws (the others need the acceleration structures' events).
-const DRAWN: [FigureKind; 9] = [
-    FigureKind::UvMap,
-    FigureKind::Projections,
-    FigureKind::Rays,
-    FigureKind::Refraction,
-    FigureKind::LocalModel,
-    FigureKind::RayTree,
-    FigureKind::Shadows,
-    FigureKind::Adaptive,
-    FigureKind::HeatMap,
-];
+/// Every kind.
+const DRAWN: [FigureKind; 14] = FigureKind::ALL;
 
-/// How a kind is traced in the tests: the sampling kinds adaptively (threshold 0.1, K = 2).
-fn tracing(kind: FigureKind) -> Tracing {
-    match kind {
-        FigureKind::HeatMap | FigureKind::Adaptive => {
-            Tracing { sampling: Tracing::ADAPTIVE, ..Tracing::SCENE }
-        }
-        _ => Tracing::SCENE,
+/// How a kind is traced in the tests: the sampling kinds adaptively (threshold 0.1, K = 2); the
+/// grid of the pitfall fixture with its 4 × 4 × 4 cells.
+fn tracing_for(kind: FigureKind, scene: &str) -> Tracing {
+    let mut t = Tracing::SCENE;
+    if matches!(kind, FigureKind::HeatMap | FigureKind::Adaptive) {
+        t.sampling = Tracing::ADAPTIVE;
     }
+    if kind == FigureKind::GridDda && scene.starts_with("grid_pitfall") {
+        t.accel.grid = Some(vec![4, 4, 4]);
+    }
+    t
+}
+
+fn tracing(kind: FigureKind) -> Tracing {
+    tracing_for(kind, "")
 }
 
 /// A small canvas for the fast tests.
@@ -49,8 +46,8 @@ fn figure_in<V: Planar>(
     lang: Lang,
     size: (u32, u32),
 ) -> Drawing {
-    let traces =
-        record(kind, scene, name, aim, tracing(kind)).unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
+    let traces = record(kind, scene, name, aim, &tracing_for(kind, name))
+        .unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
     let opts = Options { lang, width: size.0, height: size.1 };
     draw(kind, &traces, scene, &opts).unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"))
 }
@@ -70,6 +67,9 @@ fn fixtures(kind: FigureKind) -> &'static [&'static str] {
         FigureKind::LocalModel => &["ortho_box.json", "lens_2d.json"],
         FigureKind::RayTree => &["glass.json", "corridor.json"],
         FigureKind::Refraction => &["glass.json", "lens_2d.json"],
+        FigureKind::Bvh | FigureKind::Octree => &["glass.json", "groups_2d.json"],
+        FigureKind::GridDda => &["grid_pitfall.json", "groups_2d.json"],
+        FigureKind::KayKajiya => &["ortho_box.json", "lens_2d.json"],
         _ => &["glass.json", "lens_2d.json"],
     }
 }
@@ -222,7 +222,8 @@ fn every_png_has_its_size_and_is_not_blank() {
 
 /// The ray roles a trace holds, read from its events.
 fn roles_of<V: Planar>(scene: &Scene<V>, pixel: (usize, usize)) -> Vec<RayRole> {
-    let traces = record(FigureKind::Rays, scene, "s", &Aim::Pixel(pixel.0, pixel.1), Tracing::SCENE).unwrap();
+    let traces =
+        record(FigureKind::Rays, scene, "s", &Aim::Pixel(pixel.0, pixel.1), &Tracing::SCENE).unwrap();
     let log = &traces.traces[0].log;
     let mut roles = vec![RayRole::Primary];
     if log.nodes.iter().any(|n| n.start.kind == RayKind::Reflected) {
@@ -275,6 +276,11 @@ fn labels_come_in_both_languages() {
         (FigureKind::Shadows, Label::TitleShadows),
         (FigureKind::Adaptive, Label::TitleAdaptive),
         (FigureKind::HeatMap, Label::TitleHeatMap),
+        (FigureKind::SlabTest, Label::TitleSlabTest),
+        (FigureKind::KayKajiya, Label::TitleKayKajiya),
+        (FigureKind::Bvh, Label::TitleBvh),
+        (FigureKind::GridDda, Label::TitleGridDda),
+        (FigureKind::Octree, Label::TitleOctree),
     ];
     for (kind, title) in titles {
         for lang in [Lang::En, Lang::Ro] {
@@ -311,11 +317,11 @@ fn a_figure_reads_the_trace_it_was_given() {
         format!("(u, v) = ({}, {})", whitted::figure::parts::num(u), whitted::figure::parts::num(v));
     assert!(d.items.iter().any(|i| matches!(&i.shape, Shape::Text(t) if t.text == expected)), "{expected}");
     // A pixel outside the image is an error, not a panic.
-    assert!(record(FigureKind::Rays, &scene, "glass", &Aim::Pixel(8, 0), Tracing::SCENE).is_err());
+    assert!(record(FigureKind::Rays, &scene, "glass", &Aim::Pixel(8, 0), &Tracing::SCENE).is_err());
     // A kind that needs a refraction refuses a pixel without one.
     let AnyScene::Space(boxes) = load_str(&fixture("ortho_box.json")).unwrap() else { panic!("3D") };
     let err =
-        record(FigureKind::Refraction, &boxes, "ortho_box", &Aim::Pixel(0, 0), Tracing::SCENE).unwrap_err();
+        record(FigureKind::Refraction, &boxes, "ortho_box", &Aim::Pixel(0, 0), &Tracing::SCENE).unwrap_err();
     assert!(err.0.contains("has no refraction or total internal reflection"), "{err}");
 }
 
@@ -472,8 +478,20 @@ fn every_kind_draws_or_says_why_on_every_scene() {
             match made {
                 Ok(d) => assert_finite_items(&d, &format!("{name} {kind:?}")),
                 // Only the kinds that need a refraction, a hit or a shadow ray may refuse.
+                // Only the kinds that need a refraction, a hit, a shadow ray or a bounded object
+                // may refuse.
                 Err(e) => assert!(
-                    matches!(kind, FigureKind::Refraction | FigureKind::LocalModel | FigureKind::Shadows),
+                    matches!(
+                        kind,
+                        FigureKind::Refraction
+                            | FigureKind::LocalModel
+                            | FigureKind::Shadows
+                            | FigureKind::SlabTest
+                            | FigureKind::KayKajiya
+                            | FigureKind::Bvh
+                            | FigureKind::Octree
+                            | FigureKind::GridDda
+                    ),
                     "{name} {kind:?}: {e}"
                 ),
             }
@@ -482,6 +500,6 @@ fn every_kind_draws_or_says_why_on_every_scene() {
 }
 
 fn try_figure<V: Planar>(scene: &Scene<V>, kind: FigureKind) -> Result<Drawing, String> {
-    let traces = record(kind, scene, "s", &Aim::Auto, tracing(kind)).map_err(|e| e.0)?;
+    let traces = record(kind, scene, "s", &Aim::Auto, &tracing(kind)).map_err(|e| e.0)?;
     draw(kind, &traces, scene, &Options { lang: Lang::Ro, width: 480, height: 270 }).map_err(|e| e.0)
 }

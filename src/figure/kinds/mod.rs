@@ -2,13 +2,20 @@
 //! through [`Input`] and adds its items to a [`Drawing`]; none traces, intersects or refracts.
 
 pub mod adaptive;
+pub mod bvh;
+pub mod grid_dda;
 pub mod heat_map;
+pub mod hierarchy;
+pub mod kay_kajiya;
 pub mod local_model;
+pub mod octree;
 pub mod projections;
 pub mod ray_tree;
 pub mod rays;
 pub mod refraction;
 pub mod shadows;
+pub mod slab_test;
+pub mod slabs;
 pub mod uv_map;
 
 use super::drawing::{Drawing, LegendPlace};
@@ -81,6 +88,10 @@ fn draw_once<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: &mut Drawing)
         FigureKind::Shadows => shadows::draw(input, d),
         FigureKind::Adaptive => adaptive::draw(input, d),
         FigureKind::HeatMap => heat_map::draw(input, d),
-        other => Err(FigureError(format!("`{}` needs events this build does not record yet", other.name()))),
+        FigureKind::SlabTest => slab_test::draw(input, d),
+        FigureKind::KayKajiya => kay_kajiya::draw(input, d),
+        FigureKind::Bvh => bvh::draw(input, d),
+        FigureKind::Octree => octree::draw(input, d),
+        FigureKind::GridDda => grid_dda::draw(input, d),
     }
 }

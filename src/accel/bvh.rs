@@ -1,0 +1,515 @@
+//! The bounding volume hierarchy (algorithm.md §9.3 "BVH"): leaves hold a few primitives, inner
+//! nodes the box of their two children; a ray that misses a node's box skips its whole subtree.
+//!
+//! **Build** (deterministic: the same scene gives the same tree on any machine and any number
+//! of threads): top-down, binned surface-area heuristic. At each node the primitives' centroids
+//! are sorted into [`BINS`] equal bins along each axis; the split between bins minimising
+//! `C_trav + (S(L)·N_L + S(R)·N_R)/S(P)` (S: surface area in 3D, perimeter in 2D; one object
+//! test costs 1, a node visit [`C_TRAV`]) wins, ties to the lower axis and bin. A node becomes a
+//! leaf when it holds one primitive, or at most [`MAX_LEAF`] and no split beats testing them
+//! all. Below depth [`BALANCE_DEPTH`], or when every centroid coincides, the split is at the
+//! median (by centroid, then by index), which bounds the depth by `BALANCE_DEPTH + 33`.
+//!
+//! **Traversal**: front to back. Both children's boxes are tested (`node_visit` events, one
+//! node test each); the nearer is visited first, the farther kept on a stack with its entry
+//! `t_in`; a node is skipped when its entry lies beyond the best hit so far ([`super::beyond`]),
+//! so the walk stops as soon as the nearest hit is closer than the next node.
+
+use super::{beyond, prim_bounds, Prim, TreeNode, Visitor};
+use crate::bounds::aabb::Aabb;
+use crate::bounds::BoundHit;
+use crate::geom::ray::Ray;
+use crate::geom::slab::{culling_hit, RecipRay};
+use crate::geom::Vector;
+use crate::record::event::Event;
+use crate::record::Recorder;
+use crate::scene::Scene;
+use crate::shape::Dim;
+use crate::trace::stats::Stats;
+
+/// Centroid bins per axis.
+pub const BINS: usize = 12;
+/// The most primitives a leaf holds when the SAH prefers not to split.
+pub const MAX_LEAF: usize = 4;
+/// Groups of more primitives than this are binned along their longest axis only.
+pub const ALL_AXES_BELOW: usize = 4096;
+/// The cost of visiting a node, in object tests.
+pub const C_TRAV: f64 = 0.5;
+/// From this depth on, splits are at the median.
+pub const BALANCE_DEPTH: u32 = 40;
+
+/// A node of the tree as built: a leaf over `prims[start .. start + count]`, or (count 0) an
+/// inner node whose children are the next node and node `start`. Node numbers in `node_visit`
+/// events are indices in this depth-first order (the root is 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Built<V> {
+    bounds: Aabb<V>,
+    start: u32,
+    count: u32,
+}
+
+/// A child as the traversal sees it: a leaf over `prims[start .. start + count]` (count > 0)
+/// or the inner node `nodes[start]` (count 0); `id` is its number in depth-first order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Link {
+    start: u32,
+    count: u32,
+    id: u32,
+}
+
+/// An inner node with both children's boxes side by side, so one read gives both tests.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Node<V> {
+    boxes: [Aabb<V>; 2],
+    links: [Link; 2],
+}
+
+/// A built BVH: the root's box and link, inner nodes, primitives in leaf order.
+#[derive(Clone, Debug)]
+pub struct Bvh<V> {
+    root_box: Aabb<V>,
+    root: Link,
+    nodes: Vec<Node<V>>,
+    prims: Vec<Prim>,
+}
+
+/// A primitive as the builder sees it: its box and its index. The builder reorders these
+/// records themselves (not indices to them), so every pass reads memory in order; the centroid
+/// is the box's centre, recomputed where needed (cheaper than 24 more bytes per primitive).
+#[derive(Clone, Copy, Debug)]
+struct Item<V> {
+    bounds: Aabb<V>,
+    prim: u32,
+}
+
+impl<V: Vector> Item<V> {
+    #[inline]
+    fn centroid(&self) -> V {
+        self.bounds.centroid()
+    }
+}
+
+/// What the builder works on: a run of items, the first at position `base` of the whole list.
+struct Builder<'a, V> {
+    items: &'a mut [Item<V>],
+    base: usize,
+    nodes: &'a mut Vec<Built<V>>,
+}
+
+/// Groups of at least this many primitives have their two subtrees built in parallel (rayon),
+/// down to [`PARALLEL_DEPTH`] levels; the tree is the same whatever the number of threads.
+const PARALLEL_MIN: usize = 1 << 16;
+/// How many levels fork (at most 2^PARALLEL_DEPTH tasks).
+const PARALLEL_DEPTH: u32 = 3;
+
+/// Appends the subtree over `items` (at `base` of the whole list) to `out`, depth first: an
+/// inner node's `start` is the index of its right child in `out`, a leaf's the position of its
+/// first item in the whole list.
+fn build_into<V: Vector>(out: &mut Vec<Built<V>>, items: &mut [Item<V>], base: usize, depth: u32) {
+    let n = items.len();
+    if n < PARALLEL_MIN || depth >= PARALLEL_DEPTH {
+        Builder { items, base, nodes: out }.node(0, n, depth);
+        return;
+    }
+    let index = out.len();
+    let (bounds, mid) = {
+        let mut b = Builder { items: &mut *items, base, nodes: &mut *out };
+        let (bounds, cbox) = b.boxes(0, n);
+        (bounds, b.split(0, n, depth, &bounds, &cbox))
+    };
+    out.push(Built { bounds, start: to_u32(base), count: to_u32(n) });
+    let Some(mid) = mid else {
+        return;
+    };
+    // The left subtree goes straight into `out`, the right one into its own list, appended after.
+    let (left_items, right_items) = items.split_at_mut(mid);
+    // Reserved here, on the calling thread, so that the memory comes from the allocator's main
+    // arena (where the scene's parse left free memory) rather than a worker's fresh one.
+    let mut right = Vec::with_capacity(right_items.len());
+    rayon::join(
+        || build_into(out, left_items, base, depth + 1),
+        || build_into(&mut right, right_items, base + mid, depth + 1),
+    );
+    let right_start = out.len();
+    out[index] = Built { bounds, start: to_u32(right_start), count: 0 };
+    out.extend(right.into_iter().map(|mut b| {
+        if b.count == 0 {
+            b.start += to_u32(right_start);
+        }
+        b
+    }));
+}
+
+thread_local! {
+    /// The traversal stack of this thread's walks: pending `(link, depth, t_in)`, reused so that
+    /// a walk neither allocates nor clears a large array.
+    static STACK: std::cell::RefCell<Vec<(Link, u32, f64)>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+impl<V: Dim> Bvh<V> {
+    /// Builds the tree over `prims` (their boxes from the scene).
+    #[must_use]
+    pub fn build(scene: &Scene<V>, prims: Vec<Prim>) -> Self {
+        let items = prims
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| Item { bounds: prim_bounds(scene, p), prim: to_u32(i) })
+            .collect();
+        Self::from_items(prims, items)
+    }
+
+    /// Builds the tree over primitives with the given boxes.
+    #[must_use]
+    pub fn from_boxes(prims: Vec<Prim>, boxes: Vec<Aabb<V>>) -> Self {
+        let items =
+            boxes.into_iter().enumerate().map(|(i, bounds)| Item { bounds, prim: to_u32(i) }).collect();
+        Self::from_items(prims, items)
+    }
+
+    /// Builds the tree over primitives given as builder items (box and index into `prims`).
+    fn from_items(prims: Vec<Prim>, mut items: Vec<Item<V>>) -> Self {
+        let n = prims.len();
+        let empty = Link { start: 0, count: 0, id: 0 };
+        if n == 0 {
+            return Self { root_box: Aabb::empty(), root: empty, nodes: Vec::new(), prims };
+        }
+        let (order, built) = {
+            let mut built = Vec::with_capacity(n);
+            build_into(&mut built, &mut items, 0, 0);
+            let order: Vec<u32> = items.iter().map(|it| it.prim).collect();
+            drop(items);
+            (order, built)
+        };
+        let prims = order.iter().map(|&i| prims[i as usize]).collect();
+        // Inner nodes get consecutive indices in depth-first order.
+        let mut inner_index = vec![0u32; built.len()];
+        let mut count = 0;
+        for (i, b) in built.iter().enumerate() {
+            if b.count == 0 {
+                inner_index[i] = count;
+                count += 1;
+            }
+        }
+        let link = |j: usize| {
+            let b = built[j];
+            let start = if b.count > 0 { b.start } else { inner_index[j] };
+            Link { start, count: b.count, id: to_u32(j) }
+        };
+        let nodes = (0..built.len())
+            .filter(|&i| built[i].count == 0)
+            .map(|i| {
+                let (l, r) = (i + 1, built[i].start as usize);
+                Node { boxes: [built[l].bounds, built[r].bounds], links: [link(l), link(r)] }
+            })
+            .collect();
+        Self { root_box: built[0].bounds, root: link(0), nodes, prims }
+    }
+
+    /// Number of nodes (leaves and inner nodes).
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        if self.prims.is_empty() {
+            0
+        } else {
+            2 * self.nodes.len() + 1
+        }
+    }
+
+    /// The nodes for drawing, by their `node_visit` number (depth-first order, the root 0).
+    #[must_use]
+    pub fn tree(&self) -> Vec<TreeNode<V>> {
+        let mut out = vec![None; self.node_count()];
+        if out.is_empty() {
+            return Vec::new();
+        }
+        let mut stack = vec![(self.root, self.root_box, 0u32)];
+        while let Some((link, bounds, depth)) = stack.pop() {
+            let (children, prims) = if link.count > 0 {
+                let start = link.start as usize;
+                (Vec::new(), self.prims[start..start + link.count as usize].to_vec())
+            } else {
+                let node = &self.nodes[link.start as usize];
+                for (child, b) in node.links.iter().zip(&node.boxes) {
+                    stack.push((*child, *b, depth + 1));
+                }
+                (node.links.iter().map(|l| l.id as usize).collect(), Vec::new())
+            };
+            out[link.id as usize] = Some(TreeNode { bounds, depth, children, prims });
+        }
+        out.into_iter().flatten().collect()
+    }
+
+    /// A box's interval, counted, recorded, with the culling decision.
+    #[inline(always)]
+    fn record<R: Recorder<V>>(
+        (t_in, t_out): (f64, f64),
+        id: u32,
+        depth: u32,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> BoundHit {
+        stats.tests.node += 1;
+        rec.event(|| Event::NodeVisit { structure: "bvh", node: id as usize, depth, t_in, t_out });
+        BoundHit { t_in, t_out, hit: culling_hit(t_in, t_out) }
+    }
+
+    /// One box against the ray: counted, recorded.
+    #[inline(always)]
+    fn test_box<R: Recorder<V>>(
+        bounds: &Aabb<V>,
+        id: u32,
+        depth: u32,
+        ray: &RecipRay<V>,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> BoundHit {
+        stats.tests.node += 1;
+        let h = bounds.cull(ray);
+        rec.event(|| Event::NodeVisit {
+            structure: "bvh",
+            node: id as usize,
+            depth,
+            t_in: h.t_in,
+            t_out: h.t_out,
+        });
+        h
+    }
+
+    /// Front-to-back traversal, handing the primitives of every leaf reached to the visitor.
+    pub fn walk<R: Recorder<V>, W: Visitor<V>>(
+        &self,
+        ray: &Ray<V>,
+        visitor: &mut W,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) {
+        if self.prims.is_empty() {
+            return;
+        }
+        let r = RecipRay::new(ray);
+        let root = Self::test_box(&self.root_box, 0, 0, &r, stats, rec);
+        if !root.hit {
+            return;
+        }
+        STACK.with(|cell| {
+            let mut stack = cell.borrow_mut();
+            stack.clear();
+            stack.push((self.root, 0, root.t_in));
+            while let Some((link, depth, t_in)) = stack.pop() {
+                if beyond(t_in, visitor.bound()) {
+                    continue;
+                }
+                if link.count > 0 {
+                    let start = link.start as usize;
+                    for p in &self.prims[start..start + link.count as usize] {
+                        if visitor.visit(*p, stats, rec) {
+                            return;
+                        }
+                    }
+                    continue;
+                }
+                let node = &self.nodes[link.start as usize];
+                let [l, rr] = node.links;
+                let [bl, br] = &node.boxes;
+                let [il, ir] = r.box_pair_interval([bl.min, br.min], [bl.max, br.max]);
+                let hl = Self::record(il, l.id, depth + 1, stats, rec);
+                let hr = Self::record(ir, rr.id, depth + 1, stats, rec);
+                // Push the farther first, so the nearer is popped first (a tie keeps left first).
+                let (near, far, h_near, h_far) =
+                    if hr.t_in < hl.t_in { (rr, l, hr, hl) } else { (l, rr, hl, hr) };
+                for (child, h) in [(far, h_far), (near, h_near)] {
+                    if h.hit && !beyond(h.t_in, visitor.bound()) {
+                        stack.push((child, depth + 1, h.t_in));
+                    }
+                }
+            }
+        });
+    }
+}
+
+impl<V: Vector> Builder<'_, V> {
+    /// The box of `items[lo..hi]` and the box of their centroids, in one pass.
+    fn boxes(&self, lo: usize, hi: usize) -> (Aabb<V>, Aabb<V>) {
+        let (mut bounds, mut cbox) = (Aabb::empty(), Aabb::empty());
+        for it in &self.items[lo..hi] {
+            bounds = bounds.union(&it.bounds);
+            let c = it.centroid();
+            cbox = cbox.union(&Aabb::new(c, c));
+        }
+        (bounds, cbox)
+    }
+
+    /// Builds the node over `items[lo..hi]` and its subtree; the node is pushed at the index it
+    /// had when called.
+    fn node(&mut self, lo: usize, hi: usize, depth: u32) {
+        let index = self.nodes.len();
+        let (bounds, cbox) = self.boxes(lo, hi);
+        self.nodes.push(Built { bounds, start: to_u32(self.base + lo), count: to_u32(hi - lo) });
+        if hi - lo == 1 {
+            return;
+        }
+        let Some(mid) = self.split(lo, hi, depth, &bounds, &cbox) else {
+            return;
+        };
+        self.node(lo, mid, depth + 1);
+        let right = self.nodes.len();
+        self.node(mid, hi, depth + 1);
+        self.nodes[index] = Built { bounds, start: to_u32(right), count: 0 };
+    }
+
+    /// Where to split `items[lo..hi]` (reordering it), or `None` for a leaf.
+    fn split(&mut self, lo: usize, hi: usize, depth: u32, bounds: &Aabb<V>, cbox: &Aabb<V>) -> Option<usize> {
+        let count = hi - lo;
+        let axis = cbox.longest_axis();
+        if depth >= BALANCE_DEPTH || !(cbox.extent()[axis] > 0.0) {
+            return (count > MAX_LEAF || depth >= BALANCE_DEPTH).then(|| self.median(lo, hi, axis));
+        }
+        let (cost, axis, bin) = self.best_bin_split(lo, hi, cbox, bounds);
+        if count <= MAX_LEAF && cost >= count as f64 {
+            return None;
+        }
+        // Partition by bin: those left of the split first.
+        let (cmin, scale) = bin_map(cbox, axis);
+        let mut mid = lo;
+        for k in lo..hi {
+            if bin_of(self.items[k].centroid()[axis], cmin, scale) <= bin {
+                self.items.swap(mid, k);
+                mid += 1;
+            }
+        }
+        if mid == lo || mid == hi {
+            return Some(self.median(lo, hi, axis));
+        }
+        Some(mid)
+    }
+
+    /// The best binned SAH split over every axis: `(cost, axis, last bin of the left side)`.
+    /// All axes are binned in one pass over the primitives.
+    fn best_bin_split(&self, lo: usize, hi: usize, cbox: &Aabb<V>, bounds: &Aabb<V>) -> (f64, usize, usize) {
+        let parent = bounds.surface();
+        // Large groups are binned along their longest axis only, small ones along every axis.
+        let longest = cbox.longest_axis();
+        let maps: Vec<Option<(f64, f64)>> = (0..V::DIM)
+            .map(|axis| {
+                let used = hi - lo <= ALL_AXES_BELOW || axis == longest;
+                (used && cbox.extent()[axis] > 0.0).then(|| bin_map(cbox, axis))
+            })
+            .collect();
+        let mut counts = [[0usize; BINS]; 3];
+        let mut boxes = [[Aabb::empty(); BINS]; 3];
+        for it in &self.items[lo..hi] {
+            let (c, b) = (it.centroid(), &it.bounds);
+            for (axis, map) in maps.iter().enumerate() {
+                if let Some((cmin, scale)) = map {
+                    let k = bin_of(c[axis], *cmin, *scale);
+                    counts[axis][k] += 1;
+                    boxes[axis][k] = boxes[axis][k].union(b);
+                }
+            }
+        }
+        let mut best = (f64::INFINITY, 0, 0);
+        for axis in (0..V::DIM).filter(|&a| maps[a].is_some()) {
+            let (counts, boxes) = (&counts[axis], &boxes[axis]);
+            // Sweep from the right: the area and count of bins b+1.. .
+            let mut right_area = [0.0; BINS];
+            let mut right_count = [0usize; BINS];
+            let (mut acc, mut n) = (Aabb::empty(), 0);
+            for b in (1..BINS).rev() {
+                acc = acc.union(&boxes[b]);
+                n += counts[b];
+                right_area[b] = acc.surface();
+                right_count[b] = n;
+            }
+            let (mut acc, mut n) = (Aabb::empty(), 0);
+            for b in 0..BINS - 1 {
+                acc = acc.union(&boxes[b]);
+                n += counts[b];
+                let (nl, nr) = (n, right_count[b + 1]);
+                if nl == 0 || nr == 0 {
+                    continue;
+                }
+                let cost = if parent > 0.0 {
+                    C_TRAV + (acc.surface() * nl as f64 + right_area[b + 1] * nr as f64) / parent
+                } else {
+                    // A flat or point-like group: every box has measure 0; split evenly.
+                    C_TRAV + nl.max(nr) as f64
+                };
+                if cost < best.0 {
+                    best = (cost, axis, b);
+                }
+            }
+        }
+        best
+    }
+
+    /// Splits `items[lo..hi]` at its middle, by centroid along `axis` then by index.
+    fn median(&mut self, lo: usize, hi: usize, axis: usize) -> usize {
+        let mid = lo + (hi - lo) / 2;
+        self.items[lo..hi].select_nth_unstable_by(mid - lo, |a, b| {
+            a.centroid()[axis].total_cmp(&b.centroid()[axis]).then(a.prim.cmp(&b.prim))
+        });
+        mid
+    }
+}
+
+/// The bin map of an axis: `(min, BINS / extent)`.
+fn bin_map<V: Vector>(cbox: &Aabb<V>, axis: usize) -> (f64, f64) {
+    (cbox.min[axis], BINS as f64 / cbox.extent()[axis])
+}
+
+/// The bin of a centroid coordinate, clamped to the last bin.
+#[inline]
+fn bin_of(c: f64, cmin: f64, scale: f64) -> usize {
+    // A non-negative value below BINS: truncation is the floor.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let b = ((c - cmin) * scale).max(0.0) as usize;
+    b.min(BINS - 1)
+}
+
+fn to_u32(x: usize) -> u32 {
+    u32::try_from(x).expect("fewer than 2^32 primitives")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn cube(i: u32) -> Aabb<DVec3> {
+        let p = DVec3::new(f64::from(i % 10), f64::from(i / 10 % 10), f64::from(i / 100));
+        Aabb::new(p, p + DVec3::splat(0.5))
+    }
+
+    #[test]
+    fn build_is_deterministic_and_covers_every_primitive_once() {
+        let prims: Vec<Prim> = (0..1000).map(|i| Prim { object: i, part: 0 }).collect();
+        let boxes: Vec<Aabb<DVec3>> = (0..1000).map(cube).collect();
+        let a = Bvh::from_boxes(prims.clone(), boxes.clone());
+        let b = Bvh::from_boxes(prims, boxes);
+        assert_eq!(a.nodes, b.nodes);
+        assert_eq!(a.prims, b.prims);
+        let mut seen: Vec<u32> = a.prims.iter().map(|p| p.object).collect();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..1000).collect::<Vec<_>>());
+        // Every leaf is small and every child box lies inside its parent's.
+        let mut parents = vec![a.root_box; a.nodes.len()];
+        for (i, n) in a.nodes.iter().enumerate() {
+            for (b, l) in n.boxes.iter().zip(n.links) {
+                assert_eq!(parents[i].union(b), parents[i]);
+                if l.count > 0 {
+                    assert!(l.count as usize <= MAX_LEAF);
+                } else {
+                    parents[l.start as usize] = *b;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn identical_boxes_split_at_the_median() {
+        let prims: Vec<Prim> = (0..100).map(|i| Prim { object: i, part: 0 }).collect();
+        let boxes = vec![Aabb::new(DVec3::ZERO, DVec3::ONE); 100];
+        let t = Bvh::from_boxes(prims, boxes);
+        assert!(t.nodes.iter().flat_map(|n| n.links).all(|l| l.count as usize <= MAX_LEAF));
+    }
+}

@@ -1,0 +1,274 @@
+//! A triangle mesh (product.md "Scene files": `mesh`; algorithm.md §11 "Triangles"): the
+//! triangles of one OBJ file sharing one material, flat-shaded, each tested by the watertight
+//! Woop–Benthin–Wald test. Vertices are stored once and triangles as index triples, so a
+//! 1M-triangle mesh takes about 24 MB. A mesh is one object: its triangles are its parts, found
+//! by the acceleration structures one by one and named by their index in the OBJ.
+//! Degenerate (zero-area) triangles are skipped when the mesh is built and never hit.
+
+use super::triangle::crossing;
+use super::{Parts, SurfaceHit};
+use crate::geom::ray::Ray;
+use crate::geom::Vector;
+use glam::{DVec2, DVec3};
+
+/// The triangles of one OBJ file.
+///
+/// # Guarantees
+/// Every face indexes `vertices`, has a non-zero area and its OBJ index in `ids` (ascending);
+/// there is at least one face.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    vertices: Vec<DVec3>,
+    faces: Vec<[u32; 3]>,
+    ids: Vec<u32>,
+    skipped: usize,
+    scale: f64,
+}
+
+/// Why a mesh cannot be built.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum MeshError {
+    /// A face names a vertex that does not exist.
+    VertexOutOfRange {
+        /// The face's index.
+        face: usize,
+    },
+    /// Every triangle has zero area (or there is none).
+    NoTriangles {
+        /// How many degenerate triangles were skipped.
+        skipped: usize,
+    },
+    /// More triangles or vertices than 32-bit indices can name.
+    TooLarge,
+}
+
+impl Mesh {
+    /// A mesh from its vertices and triangles (index triples into `vertices`, in OBJ order).
+    /// Triangles whose normal `(b − a) × (c − a)` cannot be normalised are skipped and counted.
+    ///
+    /// # Errors
+    /// [`MeshError`] when a face indexes no vertex, when no triangle is left, or when there are
+    /// more than 2³² − 1 vertices or faces.
+    pub fn new(vertices: Vec<DVec3>, faces: &[[u32; 3]]) -> Result<Self, MeshError> {
+        if u32::try_from(vertices.len()).is_err() || u32::try_from(faces.len()).is_err() {
+            return Err(MeshError::TooLarge);
+        }
+        let mut kept = Vec::with_capacity(faces.len());
+        let mut ids = Vec::with_capacity(faces.len());
+        let mut skipped = 0;
+        for (index, face) in faces.iter().enumerate() {
+            if face.iter().any(|&v| v as usize >= vertices.len()) {
+                return Err(MeshError::VertexOutOfRange { face: index });
+            }
+            let [a, b, c] = face.map(|v| vertices[v as usize]);
+            if (b - a).cross(c - a).try_unit().is_none() {
+                skipped += 1;
+                continue;
+            }
+            kept.push(*face);
+            // Fits: faces.len() fits in u32 (checked above).
+            ids.push(u32::try_from(index).unwrap_or(u32::MAX));
+        }
+        if kept.is_empty() {
+            return Err(MeshError::NoTriangles { skipped });
+        }
+        let scale = kept.iter().flatten().fold(0.0, |m: f64, &v| m.max(vertices[v as usize].max_abs()));
+        Ok(Self { vertices, faces: kept, ids, skipped, scale })
+    }
+
+    /// The vertices of triangle `k` (a part index, not an OBJ index).
+    #[inline]
+    #[must_use]
+    pub fn triangle(&self, k: usize) -> [DVec3; 3] {
+        self.faces[k].map(|v| self.vertices[v as usize])
+    }
+}
+
+/// A problem in an OBJ file, with the line it is on when one line is to blame.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ObjError {
+    /// The 1-based line, if one line is to blame.
+    pub line: Option<usize>,
+    /// What is wrong.
+    pub problem: String,
+}
+
+/// Reads Wavefront OBJ text with `tobj`: every `v` and every face, polygons fan-triangulated in
+/// file order (so a triangle's index is its position among the triangles so made). Materials,
+/// normals and texture coordinates are ignored: the mesh takes the scene's material and is
+/// flat-shaded. Coordinates must be finite and at most `max_magnitude` (§11 "Validation").
+///
+/// # Errors
+/// The first problem found, with its line: tobj names no line, so the line is the shortest
+/// prefix of the text that tobj rejects (found by bisection, only when there is an error).
+pub fn parse_obj(text: &str, max_magnitude: f64) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), ObjError> {
+    let (models, _) =
+        read_models(text).map_err(|e| ObjError { line: failing_line(text), problem: e.to_string() })?;
+    let mut vertices = Vec::new();
+    let mut faces = Vec::new();
+    for model in models {
+        let m = model.mesh;
+        let offset = u32::try_from(vertices.len()).map_err(|_| too_large())?;
+        for p in m.positions.chunks_exact(3) {
+            let v = DVec3::new(p[0], p[1], p[2]);
+            if !(v.is_finite_vec() && v.max_abs() <= max_magnitude) {
+                return Err(ObjError {
+                    line: nth_vertex_line(text, vertices.len()),
+                    problem: format!("vertex {}: every coordinate must be finite and at most {max_magnitude:e} in magnitude", vertices.len() + 1),
+                });
+            }
+            vertices.push(v);
+        }
+        for f in m.indices.chunks_exact(3) {
+            faces.push([f[0] + offset, f[1] + offset, f[2] + offset]);
+        }
+    }
+    Ok((vertices, faces))
+}
+
+fn too_large() -> ObjError {
+    ObjError { line: None, problem: "more than 2^32 vertices".into() }
+}
+
+fn read_models(text: &str) -> tobj::LoadResult {
+    let options =
+        tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
+    tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| Err(tobj::LoadError::OpenFileFailed))
+}
+
+/// The 1-based line of the shortest prefix tobj rejects.
+fn failing_line(text: &str) -> Option<usize> {
+    let ends: Vec<usize> =
+        text.match_indices('\n').map(|(i, _)| i + 1).chain(std::iter::once(text.len())).collect();
+    // Invariant: the first `lo` lines parse, the first `hi` do not.
+    let (mut lo, mut hi) = (0, ends.len());
+    if read_models(text).is_ok() {
+        return None;
+    }
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        if read_models(&text[..ends[mid - 1]]).is_ok() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(hi)
+}
+
+/// The 1-based line of the `n`-th (0-based) `v` statement.
+fn nth_vertex_line(text: &str, n: usize) -> Option<usize> {
+    text.lines().enumerate().filter(|(_, l)| l.trim_start().starts_with("v ")).nth(n).map(|(i, _)| i + 1)
+}
+
+impl Parts<DVec3> for Mesh {
+    fn count(&self) -> usize {
+        self.faces.len()
+    }
+    /// The Woop–Benthin–Wald hit of triangle k with `t > 0`; N = normalize((b − a) × (c − a)).
+    #[inline]
+    fn hit(&self, k: usize, ray: &Ray<DVec3>) -> Option<SurfaceHit<DVec3>> {
+        let [a, b, c] = self.triangle(k);
+        let x = crossing(&[a, b, c], ray)?;
+        if !(x.t > 0.0) {
+            return None;
+        }
+        let point = a * x.weights[0] + b * x.weights[1] + c * x.weights[2];
+        let normal = (b - a).cross(c - a).try_unit()?;
+        Some(SurfaceHit { t: x.t, point, normal })
+    }
+    fn roots(&self, k: usize, ray: &Ray<DVec3>) -> Vec<f64> {
+        crossing(&self.triangle(k), ray).map(|x| x.t).into_iter().collect()
+    }
+    fn bounds(&self, k: usize) -> (DVec3, DVec3) {
+        let [a, b, c] = self.triangle(k);
+        (a.min(b).min(c), a.max(b).max(c))
+    }
+    fn points(&self, k: usize) -> Vec<DVec3> {
+        self.triangle(k).to_vec()
+    }
+    fn id(&self, k: usize) -> usize {
+        self.ids[k] as usize
+    }
+    fn scale(&self) -> f64 {
+        self.scale
+    }
+    fn skipped(&self) -> usize {
+        self.skipped
+    }
+}
+
+/// 2D scenes have no meshes: this type has no values.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum NoMesh {}
+
+impl Parts<DVec2> for NoMesh {
+    fn count(&self) -> usize {
+        match *self {}
+    }
+    fn hit(&self, _: usize, _: &Ray<DVec2>) -> Option<SurfaceHit<DVec2>> {
+        match *self {}
+    }
+    fn roots(&self, _: usize, _: &Ray<DVec2>) -> Vec<f64> {
+        match *self {}
+    }
+    fn bounds(&self, _: usize) -> (DVec2, DVec2) {
+        match *self {}
+    }
+    fn points(&self, _: usize) -> Vec<DVec2> {
+        match *self {}
+    }
+    fn id(&self, _: usize) -> usize {
+        match *self {}
+    }
+    fn scale(&self) -> f64 {
+        match *self {}
+    }
+    fn skipped(&self) -> usize {
+        match *self {}
+    }
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    fn square() -> Vec<DVec3> {
+        vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y, DVec3::new(2.0, 0.0, 0.0)]
+    }
+
+    #[test]
+    fn d4_degenerate_triangles_in_a_mesh_are_skipped_and_counted() {
+        // Face 1 is the degenerate (0,0,0), (1,0,0), (2,0,0).
+        let m = Mesh::new(square(), &[[0, 1, 2], [0, 1, 4], [0, 2, 3]]).unwrap();
+        assert_eq!((m.count(), m.skipped()), (2, 1));
+        assert_eq!((m.id(0), m.id(1)), (0, 2));
+        let down = Ray::new(DVec3::new(0.25, 0.5, 1.0), DVec3::NEG_Z);
+        let h = m.hit(1, &down).unwrap();
+        assert_eq!(h.t, 1.0);
+        assert_eq!(h.normal, DVec3::Z);
+    }
+
+    #[test]
+    fn obj_text_is_read_triangulated_and_errors_name_the_line() {
+        let text = "# a quad and a triangle\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 2 3\n";
+        let (v, f) = parse_obj(text, 1e100).unwrap();
+        assert_eq!(v.len(), 4);
+        assert_eq!(f, vec![[0, 1, 2], [0, 2, 3], [0, 1, 2]]);
+        let bad = "v 0 0 0\nv 1 0 0\nv 1 x 0\nf 1 2 3\n";
+        let e = parse_obj(bad, 1e100).unwrap_err();
+        assert_eq!(e.line, Some(3), "{e:?}");
+        let out = "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 9\n";
+        assert_eq!(parse_obj(out, 1e100).unwrap_err().line, Some(4));
+        let huge = "v 0 0 0\nv 1e200 0 0\nv 1 1 0\nf 1 2 3\n";
+        assert_eq!(parse_obj(huge, 1e100).unwrap_err().line, Some(2));
+    }
+
+    #[test]
+    fn bad_meshes_are_errors() {
+        assert_eq!(Mesh::new(square(), &[[0, 1, 9]]), Err(MeshError::VertexOutOfRange { face: 0 }));
+        assert_eq!(Mesh::new(square(), &[[0, 1, 4]]), Err(MeshError::NoTriangles { skipped: 1 }));
+    }
+}
