@@ -351,13 +351,8 @@ impl Label {
             Self::Grid => ("grid", "grila"),
             Self::CellsVisited => ("cells visited", "voxeli parcurși"),
             Self::CellVisited => ("cell visited (k: order)", "voxel parcurs (k: ordinea)"),
-            Self::CellExit => {
-                ("where the ray leaves a cell (min tMax)", "unde raza iese din voxel (min tMax)")
-            }
-            Self::FoundBeyond => (
-                "hit found in a cell, lying beyond it",
-                "intersecție găsită într-un voxel, dar dincolo de el",
-            ),
+            Self::CellExit => ("ray leaves the cell (min tMax)", "raza iese din voxel (min tMax)"),
+            Self::FoundBeyond => ("hit found beyond its cell", "intersecție găsită dincolo de voxel"),
             Self::Cell => ("cell", "voxel"),
             Self::PitfallIn => ("the pitfall: hit found in cell", "capcana: intersecție găsită în voxelul"),
             Self::CellExitT => ("its exit", "ieșirea lui"),

@@ -19,7 +19,7 @@ use crate::figure::FigureError;
 use crate::record::event::Event;
 
 /// At most this many steps are listed in the table.
-const LISTED: usize = 9;
+const LISTED: usize = 7;
 
 /// One recorded step of the walk.
 struct Step<'a> {
@@ -90,7 +90,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     if pitfall.is_some() {
         d.legend_entry(input.t(Label::FoundBeyond), pitfall_ring(), Sample::Dot(style::WHITE));
     }
-    // Under the table, in the column kept free of the scene.
+    // Under the table, in the column kept free of the scene (the table is at most 13 lines).
     d.legend_place = crate::figure::drawing::LegendPlace::Inside(crate::figure::drawing::Corner::BottomRight);
 
     // The grid's rectangle on the page and the size of a cell.
