@@ -20,7 +20,7 @@ use whitted::scene::AnyScene;
 /// Options of `whitted lessons`.
 #[derive(Args, Debug)]
 pub struct LessonsArgs {
-    /// Only the lesson with this name (its "name" field).
+    /// Draw only the lesson with this name (its "name" field); the pages still list every lesson.
     #[arg(long)]
     only: Option<String>,
     /// The folder to write into: DIR/en/, DIR/ro/, DIR/index.html, DIR/ro/index.html.
@@ -110,10 +110,13 @@ fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
 
 /// Runs `whitted lessons`.
 pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
-    let mut read = read_lessons(&args.lessons)?;
+    let read = read_lessons(&args.lessons)?;
+    // `--only` draws one lesson; the pages still list every lesson (the others' files are those
+    // an earlier run wrote).
+    let drawn: Vec<bool> =
+        read.iter().map(|r| args.only.as_ref().is_none_or(|o| &r.lesson.name == o)).collect();
     if let Some(only) = &args.only {
-        read.retain(|r| &r.lesson.name == only);
-        if read.is_empty() {
+        if !drawn.contains(&true) {
             return Err(Failure::input(format!("--only: no lesson is named `{only}`")));
         }
     }
@@ -128,7 +131,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
     }
     // Each scene is read once.
     let mut scenes: HashMap<PathBuf, Result<AnyScene, String>> = HashMap::new();
-    for r in &read {
+    for r in read.iter().zip(&drawn).filter(|(_, d)| **d).map(|(r, _)| r) {
         for spec in &r.lesson.figures {
             let path = r.dir.join(&spec.scene);
             scenes.entry(path.clone()).or_insert_with(|| load_scene(&path).map_err(|f| f.message));
@@ -137,12 +140,12 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
     let (width, height) = canvas(args.size);
     // One job per figure and language, drawn in parallel.
     let mut jobs: Vec<(usize, usize, Lang)> = Vec::new();
-    for (l, r) in read.iter().enumerate() {
+    for (l, r) in read.iter().enumerate().filter(|(l, _)| drawn[*l]) {
         for f in 0..r.lesson.figures.len() {
             jobs.extend(langs.iter().map(|g| (l, f, *g)));
         }
     }
-    let results: Vec<((usize, usize, Lang), Shown)> = jobs
+    let results: Vec<((usize, usize, Lang), Option<String>)> = jobs
         .par_iter()
         .map(|&(l, f, lang)| {
             let r = &read[l];
@@ -173,14 +176,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
                     }
                     Ok(())
                 });
-            let page_dir = if lang == Lang::En { lang_dir(lang).to_owned() + "/" } else { String::new() };
-            let shown = Shown {
-                png: format!("{page_dir}{stem}.png"),
-                svg: format!("{page_dir}{stem}.svg"),
-                command: command(spec, &scene_path, lang, &png),
-                error: made.err(),
-            };
-            ((l, f, lang), shown)
+            ((l, f, lang), made.err())
         })
         .collect();
 
@@ -192,13 +188,21 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             .map(|(l, r)| {
                 (0..r.lesson.figures.len())
                     .map(|f| {
-                        let s = results.iter().find(|(key, _)| *key == (l, f, *lang)).map(|(_, s)| s.clone());
-                        s.unwrap_or_else(|| Shown {
-                            png: String::new(),
-                            svg: String::new(),
-                            command: String::new(),
-                            error: Some("not drawn".into()),
-                        })
+                        let error = results
+                            .iter()
+                            .find(|(key, _)| *key == (l, f, *lang))
+                            .and_then(|(_, e)| e.clone());
+                        let stem = r.lesson.file_stem(f);
+                        let png = args.out.join(lang_dir(*lang)).join(format!("{stem}.png"));
+                        let page_dir =
+                            if *lang == Lang::En { format!("{}/", lang_dir(*lang)) } else { String::new() };
+                        let scene_path = r.dir.join(&r.lesson.figures[f].scene);
+                        Shown {
+                            png: format!("{page_dir}{stem}.png"),
+                            svg: format!("{page_dir}{stem}.svg"),
+                            command: command(&r.lesson.figures[f], &scene_path, *lang, &png),
+                            error,
+                        }
                     })
                     .collect()
             })
@@ -217,10 +221,11 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
         };
         write_file(&page, lesson::index_html(&lessons, &shown, *lang, other).as_bytes())?;
     }
-    let figures: usize = read.iter().map(|r| r.lesson.figures.len()).sum();
+    let figures: usize =
+        read.iter().zip(&drawn).filter(|(_, d)| **d).map(|(r, _)| r.lesson.figures.len()).sum();
     print_out(&format!(
         "lessons: {} lessons, {figures} figures × {} language(s), PNG and SVG, into {}\n",
-        read.len(),
+        drawn.iter().filter(|d| **d).count(),
         langs.len(),
         args.out.display()
     ));
