@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job: render and trace the example scenes into out/ (English and Romanian narrations).
+# The main job: render and trace the example scenes into out/ (English and Romanian narrations)
+# and draw every lesson's figures (lessons/) into out/en/ and out/ro/.
 set -euo pipefail
 cd "$(dirname "$0")"
 cargo build --release --quiet
@@ -14,4 +15,7 @@ done
 "$bin" trace scenes/whitted.json --pixel 400,200 --lang ro > out/whitted.trace.ro.txt
 "$bin" trace scenes/whitted.json --pixel 400,200 --json > out/whitted.trace.json
 "$bin" trace scenes/flat.json --pixel 30 --json > out/flat.trace.json
+# Every lesson's figures, PNG and SVG, in English (out/en/) and Romanian (out/ro/), with the
+# pages out/index.html and out/ro/index.html.
+"$bin" lessons --out out
 echo "wrote out/"

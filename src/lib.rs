@@ -4,7 +4,8 @@
 //! (`scene::camera`), the tracer follows each ray through the lecture's recursion
 //! `I = I_local + ks·R + kt·T` (`trace`) while reporting every step to a recorder chosen at compile
 //! time (`record`), and what was recorded becomes the trace document (`doc`), a narration, an image
-//! (`render`, `image`) or a diagram. The mathematics is written once for 2D and 3D (`geom`, `shape`).
+//! (`render`, `image`) or a diagram (`figure`), and the lessons (`lesson`) gather the diagrams of
+//! the lecture. The mathematics is written once for 2D and 3D (`geom`, `shape`).
 //! See `ARCHITECTURE.md` for the codemap and the invariants.
 #![forbid(unsafe_code)]
 
@@ -14,6 +15,7 @@ pub mod doc;
 pub mod figure;
 pub mod geom;
 pub mod image;
+pub mod lesson;
 pub mod record;
 pub mod render;
 pub mod sample;

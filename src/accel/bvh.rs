@@ -18,7 +18,7 @@
 //! when its entry lies beyond the best hit so far ([`super::beyond`]), so the walk stops as soon
 //! as the nearest hit is closer than the next node.
 
-use super::{beyond, prim_bounds, Prim, Visitor};
+use super::{beyond, prim_bounds, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
 use crate::bounds::BoundHit;
 use crate::geom::ray::Ray;
@@ -216,6 +216,30 @@ impl<V: Dim> Bvh<V> {
         } else {
             2 * self.nodes.len() + 1
         }
+    }
+
+    /// The nodes for drawing, by their `node_visit` number (depth-first order, the root 0).
+    #[must_use]
+    pub fn tree(&self) -> Vec<TreeNode<V>> {
+        let mut out = vec![None; self.node_count()];
+        if out.is_empty() {
+            return Vec::new();
+        }
+        let mut stack = vec![(self.root, self.root_box, 0u32)];
+        while let Some((link, bounds, depth)) = stack.pop() {
+            let (children, prims) = if link.count > 0 {
+                let start = link.start as usize;
+                (Vec::new(), self.prims[start..start + link.count as usize].to_vec())
+            } else {
+                let node = &self.nodes[link.start as usize];
+                for (child, b) in node.links.iter().zip(&node.boxes) {
+                    stack.push((*child, *b, depth + 1));
+                }
+                (node.links.iter().map(|l| l.id as usize).collect(), Vec::new())
+            };
+            out[link.id as usize] = Some(TreeNode { bounds, depth, children, prims });
+        }
+        out.into_iter().flatten().collect()
     }
 
     /// A box's interval, counted, recorded, with the culling decision.

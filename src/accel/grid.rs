@@ -141,6 +141,12 @@ impl<V: Dim> Grid<V> {
         g
     }
 
+    /// The grid's box.
+    #[must_use]
+    pub fn bounds(&self) -> Aabb<V> {
+        self.bounds
+    }
+
     /// The cells per axis.
     #[must_use]
     pub fn resolution(&self) -> Vec<usize> {

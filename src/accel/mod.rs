@@ -19,7 +19,7 @@ pub mod octree;
 pub mod volumes;
 
 use crate::bounds::aabb::Aabb;
-use crate::bounds::{Hull, VolumeKind};
+use crate::bounds::{BoundingVolume, Hull, VolumeKind};
 use crate::geom::ray::Ray;
 use crate::record::event::{Event, ObjectRef};
 use crate::record::Recorder;
@@ -115,6 +115,37 @@ enum Structure<V: Dim> {
     Octree(octree::Octree<V>),
 }
 
+/// A built structure as a figure draws it: its volumes, its nodes or its cells.
+#[derive(Clone, Debug)]
+pub enum Layout<'a, V: Dim> {
+    /// Brute force: nothing to draw.
+    List,
+    /// One bounding volume per primitive, in object order.
+    Volumes(&'a [(Prim, BoundingVolume<V>)]),
+    /// A hierarchy (BVH, octree): entry `k` is the node that `node_visit` events call `k`.
+    Tree(Vec<TreeNode<V>>),
+    /// A regular grid: its box and its cells per axis.
+    Grid {
+        /// The grid's box.
+        bounds: Aabb<V>,
+        /// Cells per axis.
+        cells: Vec<usize>,
+    },
+}
+
+/// A node of a hierarchy, for drawing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TreeNode<V> {
+    /// Its box.
+    pub bounds: Aabb<V>,
+    /// Its depth (the root is 0).
+    pub depth: u32,
+    /// Its children's node numbers (none for a leaf).
+    pub children: Vec<usize>,
+    /// A leaf's primitives.
+    pub prims: Vec<Prim>,
+}
+
 /// A built acceleration structure over a scene's objects.
 #[derive(Clone, Debug)]
 pub struct Accel<V: Dim> {
@@ -168,6 +199,18 @@ impl<V: Dim> Accel<V> {
         match &self.structure {
             Structure::Grid(g) => Some(g.resolution()),
             _ => None,
+        }
+    }
+
+    /// The built structure as the figures draw it (read only; `figure::kinds` never walks it).
+    #[must_use]
+    pub fn layout(&self) -> Layout<'_, V> {
+        match &self.structure {
+            Structure::List => Layout::List,
+            Structure::Bounds(v) => Layout::Volumes(v.entries()),
+            Structure::Bvh(b) => Layout::Tree(b.tree()),
+            Structure::Grid(g) => Layout::Grid { bounds: g.bounds(), cells: g.resolution() },
+            Structure::Octree(o) => Layout::Tree(o.tree()),
         }
     }
 

@@ -14,7 +14,7 @@
 //! index), each skipped when it starts beyond the best hit ([`super::beyond`]); a primitive in
 //! several leaves is tested once (the mailbox). `node_visit` events, one per node box tested.
 
-use super::{beyond, prim_bounds, Mailbox, Prim, Visitor};
+use super::{beyond, prim_bounds, Mailbox, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
 use crate::geom::ray::Ray;
 use crate::geom::slab::RecipRay;
@@ -127,6 +127,31 @@ impl<V: Dim> Octree<V> {
     #[must_use]
     pub fn node_count(&self) -> usize {
         self.nodes.len()
+    }
+
+    /// The nodes for drawing, by their index (the number `node_visit` events give them).
+    #[must_use]
+    pub fn tree(&self) -> Vec<TreeNode<V>> {
+        let mut depth = vec![0u32; self.nodes.len()];
+        let mut out = Vec::with_capacity(self.nodes.len());
+        for (index, node) in self.nodes.iter().enumerate() {
+            let (children, prims) = match node.kind {
+                Kind::Leaf { start, count } => {
+                    let items = &self.items[start as usize..(start + count) as usize];
+                    (Vec::new(), items.iter().map(|&k| self.prims[k as usize]).collect())
+                }
+                Kind::Inner { first_child } => {
+                    let first = first_child as usize;
+                    let children: Vec<usize> = (first..first + (1 << V::DIM)).collect();
+                    for &c in &children {
+                        depth[c] = depth[index] + 1;
+                    }
+                    (children, Vec::new())
+                }
+            };
+            out.push(TreeNode { bounds: node.bounds, depth: depth[index], children, prims });
+        }
+        out
     }
 
     /// Ordered traversal, handing each reached leaf's untested primitives to the visitor.

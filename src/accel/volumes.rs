@@ -26,6 +26,12 @@ impl<V: Dim> Volumes<V> {
         Self { entries, kind }
     }
 
+    /// Every primitive with its volume, in object order (for figures).
+    #[must_use]
+    pub fn entries(&self) -> &[(Prim, BoundingVolume<V>)] {
+        &self.entries
+    }
+
     /// Each volume (a `bound_test` event with its intervals), then its primitive if it is hit.
     pub fn walk<R: Recorder<V>, W: Visitor<V>>(
         &self,

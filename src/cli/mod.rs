@@ -4,6 +4,8 @@
 
 mod accel;
 mod check;
+mod figure;
+mod lessons;
 mod parse;
 mod render;
 mod sampling;
@@ -32,6 +34,10 @@ enum Command {
     Trace(trace::TraceArgs),
     /// Validate a scene and say what it models; every error at once (exit code 2).
     Check(check::CheckArgs),
+    /// Draw one diagram of the lecture from a recorded trace, as PNG or SVG (--list names them).
+    Figure(figure::FigureArgs),
+    /// Draw every lesson's figures (lessons/) in both languages, PNG and SVG, with index pages.
+    Lessons(lessons::LessonsArgs),
 }
 
 /// An error with its exit code: 2 for bad input (scene, arguments), 1 for anything else.
@@ -99,6 +105,8 @@ pub fn main() -> u8 {
         Command::Render(args) => render::run(&args),
         Command::Trace(args) => trace::run(&args),
         Command::Check(args) => check::run(&args),
+        Command::Figure(args) => figure::run(&args),
+        Command::Lessons(args) => lessons::run(&args),
     };
     match result {
         Ok(()) => 0,

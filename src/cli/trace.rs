@@ -28,6 +28,16 @@ pub enum LangArg {
     Ro,
 }
 
+impl LangArg {
+    /// The library's language.
+    pub fn lang(self) -> Lang {
+        match self {
+            Self::En => Lang::En,
+            Self::Ro => Lang::Ro,
+        }
+    }
+}
+
 /// Options of `whitted trace`.
 #[derive(Args, Debug)]
 pub struct TraceArgs {
@@ -63,10 +73,15 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
     }
 }
 
-/// The primary ray and what it was asked as.
-fn target<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(Ray<V>, TraceTarget), Failure> {
+/// The primary ray and what it was asked as: `--pixel I,J` (validated against the image) or
+/// `--ray O:D` (validated against the dimension); shared by `trace`, `figure` and `lessons`.
+pub fn target<V: Dim>(
+    scene: &Scene<V>,
+    pixel: Option<(usize, Option<usize>)>,
+    ray: Option<&(Vec<f64>, Vec<f64>)>,
+) -> Result<(Ray<V>, TraceTarget), Failure> {
     let cam = &scene.camera;
-    if let Some((i, j)) = args.pixel {
+    if let Some((i, j)) = pixel {
         let j = match (V::DIM, j) {
             (2, None | Some(0)) => 0,
             (2, Some(j)) => {
@@ -86,7 +101,7 @@ fn target<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(Ray<V>, TraceTa
         let (pixel, uv) = if V::DIM == 2 { (vec![i], vec![u]) } else { (vec![i, j], vec![u, v]) };
         return Ok((ray, TraceTarget { pixel: Some(pixel), uv: Some(uv) }));
     }
-    let Some((o, d)) = &args.ray else {
+    let Some((o, d)) = ray else {
         return Err(Failure::input("give --pixel I,J or --ray O:D"));
     };
     let wrong = |what: &str, n: usize| {
@@ -104,7 +119,7 @@ fn target<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(Ray<V>, TraceTa
 
 fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure> {
     let sampling = args.sampling.sampling()?;
-    let (ray, target) = target(scene, args)?;
+    let (ray, target) = target(scene, args.pixel, args.ray.as_ref())?;
     let options = args.accel.options(V::DIM).map_err(Failure::input)?;
     let accel = Accel::build_with(scene, &options);
     let mut tracer = Tracer::new(scene, &accel, EventLog::new());
@@ -120,7 +135,7 @@ fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure
             let doc = sampled_document(scene, &tracer.recorder, &tracer.stats, &target, sampling, &traced);
             serde_json::to_string_pretty(&doc).map_err(|e| Failure::other(e.to_string()))? + "\n"
         } else {
-            narrate_samples(&target, sampling, &traced, &tracer.stats, lang(args.lang))
+            narrate_samples(&target, sampling, &traced, &tracer.stats, args.lang.lang())
         };
         print_out(&text);
         return Ok(());
@@ -132,15 +147,8 @@ fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure
         let text = serde_json::to_string_pretty(&doc).map_err(|e| Failure::other(e.to_string()))?;
         print_out(&format!("{text}\n"));
     } else {
-        let lang = lang(args.lang);
+        let lang = args.lang.lang();
         print_out(&narrate(scene, &tracer.recorder, &tracer.stats, &target, tracer.max_depth, lang));
     }
     Ok(())
-}
-
-fn lang(arg: LangArg) -> Lang {
-    match arg {
-        LangArg::En => Lang::En,
-        LangArg::Ro => Lang::Ro,
-    }
 }

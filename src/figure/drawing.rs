@@ -987,10 +987,12 @@ impl Drawing {
             (DVec2::new(-diag, -diag), Align { h: HAlign::Right, v: VAlign::Top }),
             (DVec2::new(diag, -diag), Align { h: HAlign::Left, v: VAlign::Top }),
         ];
-        for distance in [1.0, 2.5, 4.5, 7.0] {
+        // A label far from its anchor loses its meaning: each step away costs as much as crossing
+        // one and a half lines (the halo keeps a label readable over a line).
+        for (step, distance) in [1.0, 2.5, 4.5, 7.0].into_iter().enumerate() {
             for (dir, align) in directions {
                 let candidate = Text { offset: dir * gap * distance, align, ..requested.clone() };
-                let c = cost(&candidate);
+                let c = cost(&candidate) + 1.5 * step as f64;
                 if c < best.0 {
                     best = (c, candidate.offset, candidate.align);
                     if c <= 0.0 {

@@ -1,9 +1,173 @@
-//! Diagrams drawn from traces: a back-end-free display list (`drawing`) in world coordinates,
+//! Diagrams drawn from traces (product.md "Diagrams"; every section of the lecture that has a
+//! figure). A figure reads recorded traces (`source`, the only part that runs the tracer) and the
+//! scene, and draws what the code *did* as a back-end-free display list (`drawing`) in the
+//! lecture's notation (`labels`, `parts`, `plane`), one file per diagram (`kinds`); the list is
 //! drawn to PNG through tiny-skia (`skia`) or to SVG (`svg`), with the lecture's colours and
 //! slide-scale sizes (`style`) and labels in an embedded font (`text`).
 
 pub mod drawing;
+pub mod kinds;
+pub mod labels;
+pub mod parts;
+pub mod plane;
 pub mod skia;
+pub mod source;
 pub mod style;
 pub mod svg;
 pub mod text;
+
+use crate::scene::Scene;
+use drawing::Drawing;
+use plane::Planar;
+use source::Traces;
+
+/// The language of a figure's labels: the narration's.
+pub use crate::doc::narrate::Lang;
+
+/// The diagrams of product.md, one per `whitted figure KIND`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FigureKind {
+    /// Pixel (i, j) → window point (u, v).
+    UvMap,
+    /// Orthographic vs perspective primary rays.
+    Projections,
+    /// All rays of one pixel's trace, by kind.
+    Rays,
+    /// R and T at one hit: N, θᵢ, θₜ, n₁, n₂, and total internal reflection.
+    Refraction,
+    /// N, L, H, V at a hit and the terms of I_local.
+    LocalModel,
+    /// The ray tree as a graph.
+    RayTree,
+    /// Shadow rays from a hit to every light and the factor s.
+    Shadows,
+    /// The slab test of an axis-aligned box.
+    SlabTest,
+    /// Kay–Kajiya slabs.
+    KayKajiya,
+    /// BVH traversal.
+    Bvh,
+    /// Regular grid and the voxel DDA.
+    GridDda,
+    /// Octree traversal.
+    Octree,
+    /// Adaptive subdivision of one pixel.
+    Adaptive,
+    /// Primary rays per pixel over the image.
+    HeatMap,
+}
+
+impl FigureKind {
+    /// Every kind, in the lecture's order.
+    pub const ALL: [Self; 14] = [
+        Self::UvMap,
+        Self::Projections,
+        Self::Rays,
+        Self::Refraction,
+        Self::LocalModel,
+        Self::RayTree,
+        Self::Shadows,
+        Self::SlabTest,
+        Self::KayKajiya,
+        Self::Bvh,
+        Self::GridDda,
+        Self::Octree,
+        Self::Adaptive,
+        Self::HeatMap,
+    ];
+
+    /// The name `whitted figure` takes.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::UvMap => "uv-map",
+            Self::Projections => "projections",
+            Self::Rays => "rays",
+            Self::Refraction => "refraction",
+            Self::LocalModel => "local-model",
+            Self::RayTree => "ray-tree",
+            Self::Shadows => "shadows",
+            Self::SlabTest => "slab-test",
+            Self::KayKajiya => "kay-kajiya",
+            Self::Bvh => "bvh",
+            Self::GridDda => "grid-dda",
+            Self::Octree => "octree",
+            Self::Adaptive => "adaptive",
+            Self::HeatMap => "heat-map",
+        }
+    }
+
+    /// The kind called `name`.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// What the figure shows, in one line (`whitted figure --list`).
+    #[must_use]
+    pub const fn description(self) -> &'static str {
+        match self {
+            Self::UvMap => "the pixel grid and the view window: pixel (i, j), rows from the bottom, its centre → (u, v) with the numbers",
+            Self::Projections => "orthographic and perspective primary rays side by side for the same window (D = [0, 0, −1] vs S − O)",
+            Self::Rays => "every ray of one pixel's trace by kind (primary, reflected, transmitted, shadow; blocked ones dashed), hits I₁, I₂ …",
+            Self::Refraction => "R and T at one hit: N, θᵢ, θₜ with their values, n₁, n₂, Snell's law; the total internal reflection case",
+            Self::LocalModel => "N, L, H, V at a hit with N·L, N·H and the terms of I_local with their numbers",
+            Self::RayTree => "the ray tree as a graph (P, R₁, T₁, L₁ …): each node's level, object and colour, the depth limit",
+            Self::Shadows => "the shadow rays from a hit to every light, the occluders and the factor s = Π kt",
+            Self::SlabTest => "a box with a hitting and a missing ray, per-axis intervals [tᵢ, tₑ], max tᵢ and min tₑ",
+            Self::KayKajiya => "Kay–Kajiya slab pairs at 0°, 45°, 90°, 135° around an object; a ray's per-slab intervals",
+            Self::Bvh => "the hierarchy's volumes, the nodes a ray visits in order and those it skips, the tree beside it",
+            Self::GridDda => "the regular grid and the cells the DDA visits in order, tMax per axis, the pitfall",
+            Self::Octree => "the adaptive subdivision of space and the nodes a ray visits",
+            Self::Adaptive => "one pixel's adaptive subdivision: squares by level, samples CA, CB …, reused ones, leaf colours",
+            Self::HeatMap => "primary rays per pixel over the whole image, with a colour scale",
+        }
+    }
+}
+
+/// Why a figure could not be made (a message for the reader, naming what is missing).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FigureError(pub String);
+
+impl std::fmt::Display for FigureError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for FigureError {}
+
+/// How a figure is drawn: its language and canvas size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// The labels' language.
+    pub lang: Lang,
+    /// Canvas width, pixels.
+    pub width: u32,
+    /// Canvas height, pixels.
+    pub height: u32,
+}
+
+impl Options {
+    /// A slide (1920 × 1080) in `lang`.
+    #[must_use]
+    pub const fn slide(lang: Lang) -> Self {
+        Self { lang, width: style::REFERENCE_WIDTH, height: style::REFERENCE_HEIGHT }
+    }
+}
+
+/// Draws figure `kind` from the recorded `traces` of `scene` (made by [`source::record`]).
+///
+/// # Errors
+/// A zero canvas size, or traces that lack what the kind draws.
+pub fn draw<V: Planar>(
+    kind: FigureKind,
+    traces: &Traces<V>,
+    scene: &Scene<V>,
+    opts: &Options,
+) -> Result<Drawing, FigureError> {
+    let d = Drawing::new(opts.width, opts.height)
+        .ok_or_else(|| FigureError(format!("a {}×{} canvas is empty", opts.width, opts.height)))?;
+    let input = kinds::Input { traces, scene, lang: opts.lang };
+    kinds::draw(kind, &input, d)
+}

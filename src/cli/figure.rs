@@ -1,0 +1,181 @@
+//! `whitted figure KIND SCENE`: record the traces the kind reads (`figure::source`), draw them
+//! (`figure::draw`) and write a PNG or an SVG, chosen by the file extension; `--list` names every
+//! kind with one line.
+
+use super::accel::AccelArgs;
+use super::sampling::SamplingArgs;
+use super::trace::{target, LangArg};
+use super::{load_scene, parse, print_out, write_file, Failure};
+use clap::Args;
+use std::path::{Path, PathBuf};
+use whitted::figure::drawing::Drawing;
+use whitted::figure::plane::Planar;
+use whitted::figure::source::{self, Aim, Tracing};
+use whitted::figure::{self as fig, skia, svg, FigureKind, Options};
+use whitted::scene::{AnyScene, Scene};
+
+/// Options of `whitted figure`.
+#[derive(Args, Debug)]
+pub struct FigureArgs {
+    /// The diagram: uv-map, projections, rays, refraction, local-model, ray-tree, shadows, … (see --list).
+    #[arg(required_unless_present = "list", value_parser = kind)]
+    kind: Option<FigureKind>,
+    /// The scene file (JSON).
+    #[arg(required_unless_present = "list")]
+    scene: Option<PathBuf>,
+    /// The pixel: I,J (column from the left, row from the BOTTOM); in 2D, I. Without it (and
+    /// without --ray) the figure picks a telling pixel and says which in its caption.
+    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray")]
+    pixel: Option<(usize, Option<usize>)>,
+    /// A ray given by hand: OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D); traced as a primary ray.
+    #[arg(long, value_parser = parse::ray)]
+    ray: Option<(Vec<f64>, Vec<f64>)>,
+    /// The file to write: .png or .svg (default: KIND.png in the current folder).
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// The labels' language.
+    #[arg(long, value_enum, default_value = "en")]
+    lang: LangArg,
+    /// Canvas size WxH in pixels (default 1920x1080; W alone keeps 16:9).
+    #[arg(long, value_parser = parse::size)]
+    size: Option<(usize, Option<usize>)>,
+    /// Override the scene's max_depth (0 = ray casting).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    depth: Option<u32>,
+    /// Sampling, for `adaptive` (default: adaptive, threshold 0.1, K = 2) and `heat-map`; the other
+    /// kinds trace the pixel's centre.
+    #[command(flatten)]
+    sampling: SamplingArgs,
+    /// The structure (--accel, --bounds, --grid) the other kinds trace with; `slab-test`,
+    /// `kay-kajiya`, `bvh`, `grid-dda` and `octree` use their own, keeping --grid's cells.
+    #[command(flatten)]
+    accel: AccelArgs,
+    /// Print every kind with one line and exit.
+    #[arg(long)]
+    list: bool,
+}
+
+/// `KIND` → a figure kind, naming the valid ones otherwise.
+fn kind(text: &str) -> Result<FigureKind, String> {
+    FigureKind::from_name(text).ok_or_else(|| {
+        let names: Vec<&str> = FigureKind::ALL.iter().map(|k| k.name()).collect();
+        format!("unknown figure kind `{text}`; the kinds are: {}", names.join(", "))
+    })
+}
+
+/// The canvas size of `--size` (1920×1080 without it; W alone keeps 16:9).
+pub fn canvas(size: Option<(usize, Option<usize>)>) -> (u32, u32) {
+    let Some((w, h)) = size else { return (1920, 1080) };
+    let h = h.unwrap_or(((w * 9 + 8) / 16).max(1));
+    // parse::size caps both at 65536.
+    (u32::try_from(w).unwrap_or(u32::MAX), u32::try_from(h).unwrap_or(u32::MAX))
+}
+
+/// Runs `whitted figure`.
+pub fn run(args: &FigureArgs) -> Result<(), Failure> {
+    if args.list {
+        let lines: Vec<String> =
+            FigureKind::ALL.iter().map(|k| format!("{:<12} {}\n", k.name(), k.description())).collect();
+        print_out(&lines.concat());
+        return Ok(());
+    }
+    let (Some(kind), Some(scene_path)) = (args.kind, args.scene.as_ref()) else {
+        return Err(Failure::input("give KIND and SCENE, or --list"));
+    };
+    let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", kind.name())));
+    let format = Format::of(&output)?;
+    let (width, height) = canvas(args.size);
+    let scene = load_scene(scene_path)?;
+    let request = Request {
+        kind,
+        pixel: args.pixel,
+        ray: args.ray.clone(),
+        tracing: Tracing {
+            depth: args.depth,
+            sampling: args.sampling.sampling()?,
+            accel: args.accel.options(dim_of(&scene)).map_err(Failure::input)?,
+        },
+        opts: Options { lang: args.lang.lang(), width, height },
+    };
+    let drawing = figure(&scene, &scene_name(scene_path), &request)?;
+    write_file(&output, &format.encode(&drawing)?)
+}
+
+/// One figure to make: its kind, what to trace, how to draw.
+pub struct Request {
+    /// The diagram.
+    pub kind: FigureKind,
+    /// `--pixel`.
+    pub pixel: Option<(usize, Option<usize>)>,
+    /// `--ray`.
+    pub ray: Option<(Vec<f64>, Vec<f64>)>,
+    /// Depth (and, later, the structure).
+    pub tracing: Tracing,
+    /// Language and size.
+    pub opts: Options,
+}
+
+/// The dimension of a loaded scene.
+fn dim_of(scene: &AnyScene) -> usize {
+    match scene {
+        AnyScene::Flat(_) => 2,
+        AnyScene::Space(_) => 3,
+    }
+}
+
+/// The scene's name for captions: its file stem.
+pub fn scene_name(path: &Path) -> String {
+    path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
+}
+
+/// Records and draws one figure of a loaded scene.
+pub fn figure(scene: &AnyScene, name: &str, request: &Request) -> Result<Drawing, Failure> {
+    match scene {
+        AnyScene::Flat(s) => figure_in(s, name, request),
+        AnyScene::Space(s) => figure_in(s, name, request),
+    }
+}
+
+fn figure_in<V: Planar>(scene: &Scene<V>, name: &str, request: &Request) -> Result<Drawing, Failure> {
+    let aim = if request.pixel.is_some() || request.ray.is_some() {
+        let (ray, traced) = target(scene, request.pixel, request.ray.as_ref())?;
+        match traced.pixel.as_deref() {
+            Some([i]) => Aim::Pixel(*i, 0),
+            Some([i, j]) => Aim::Pixel(*i, *j),
+            _ => Aim::Ray(ray),
+        }
+    } else {
+        Aim::Auto
+    };
+    let traces = source::record(request.kind, scene, name, &aim, &request.tracing)
+        .map_err(|e| Failure::input(format!("{}: {e}", request.kind.name())))?;
+    fig::draw(request.kind, &traces, scene, &request.opts)
+        .map_err(|e| Failure::input(format!("{}: {e}", request.kind.name())))
+}
+
+/// The two output formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// A PNG through tiny-skia.
+    Png,
+    /// An SVG document.
+    Svg,
+}
+
+impl Format {
+    /// The format a file name asks for by its extension.
+    pub fn of(path: &Path) -> Result<Self, Failure> {
+        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+            Some("png") => Ok(Self::Png),
+            Some("svg") => Ok(Self::Svg),
+            _ => Err(Failure::input(format!("{}: the output must end in .png or .svg", path.display()))),
+        }
+    }
+    /// The file's bytes.
+    pub fn encode(self, drawing: &Drawing) -> Result<Vec<u8>, Failure> {
+        match self {
+            Self::Png => skia::to_png(drawing).map_err(|e| Failure::other(e.to_string())),
+            Self::Svg => Ok(svg::to_svg(drawing).into_bytes()),
+        }
+    }
+}

@@ -1,0 +1,237 @@
+//! `whitted lessons`: read every lesson file of `lessons/` (`whitted::lesson`), draw each figure in
+//! each language as PNG and SVG into `out/en/` and `out/ro/`, and write the pages `out/index.html`
+//! (English) and `out/ro/index.html` (Romanian) that show them with their captions and the
+//! command that regenerates each.
+
+use super::figure::{canvas, figure, scene_name, Format, Request};
+use super::trace::LangArg;
+use super::{load_scene, parse, print_out, write_file, Failure};
+use clap::Args;
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use whitted::accel::AccelOptions;
+use whitted::figure::source::Tracing;
+use whitted::figure::{Lang, Options};
+use whitted::lesson::{self, FigureSpec, Lesson, Shown};
+use whitted::sample::Sampling;
+use whitted::scene::AnyScene;
+
+/// Options of `whitted lessons`.
+#[derive(Args, Debug)]
+pub struct LessonsArgs {
+    /// Draw only the lesson with this name (its "name" field); the pages still list every lesson.
+    #[arg(long)]
+    only: Option<String>,
+    /// The folder to write into: DIR/en/, DIR/ro/, DIR/index.html, DIR/ro/index.html.
+    #[arg(long, default_value = "out")]
+    out: PathBuf,
+    /// Only this language (default: both).
+    #[arg(long, value_enum)]
+    lang: Option<LangArg>,
+    /// The folder of lesson files.
+    #[arg(long, default_value = "lessons")]
+    lessons: PathBuf,
+    /// Canvas size WxH in pixels (default 1920x1080).
+    #[arg(long, value_parser = parse::size)]
+    size: Option<(usize, Option<usize>)>,
+}
+
+/// A lesson file read, with the folder its scene paths are relative to.
+struct Read {
+    lesson: Lesson,
+    dir: PathBuf,
+}
+
+/// The lesson files of `dir`, in file-name order.
+fn read_lessons(dir: &Path) -> Result<Vec<Read>, Failure> {
+    let entries = std::fs::read_dir(dir)
+        .map_err(|e| Failure::input(format!("{}: cannot read the lessons folder: {e}", dir.display())))?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    let mut problems = Vec::new();
+    let mut lessons = Vec::new();
+    for file in files {
+        let text = std::fs::read_to_string(&file)
+            .map_err(|e| Failure::input(format!("{}: cannot read: {e}", file.display())))?;
+        match lesson::parse(&text) {
+            Ok(lesson) => lessons.push(Read { lesson, dir: dir.to_path_buf() }),
+            Err(errors) => problems.extend(errors.into_iter().map(|e| format!("{}: {e}", file.display()))),
+        }
+    }
+    if problems.is_empty() {
+        Ok(lessons)
+    } else {
+        Err(Failure::input(problems.join("\n")))
+    }
+}
+
+/// The folder of a language under the output folder.
+fn lang_dir(lang: Lang) -> &'static str {
+    match lang {
+        Lang::En => "en",
+        Lang::Ro => "ro",
+    }
+}
+
+/// The command that regenerates one figure's PNG.
+fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
+    let mut cmd = format!("whitted figure {} {}", spec.kind.name(), scene.display());
+    match (spec.pixel, &spec.ray) {
+        (Some((i, Some(j))), _) => cmd.push_str(&format!(" --pixel {i},{j}")),
+        (Some((i, None)), _) => cmd.push_str(&format!(" --pixel {i}")),
+        (None, Some((o, d))) => {
+            let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+            cmd.push_str(&format!(" --ray={}:{}", join(o), join(d)));
+        }
+        (None, None) => {}
+    }
+    if let Some(depth) = spec.depth {
+        cmd.push_str(&format!(" --depth {depth}"));
+    }
+    match spec.sampling {
+        Some(Sampling::Corners) => cmd.push_str(" --aa corners"),
+        Some(Sampling::Adaptive { threshold, max_level }) => {
+            cmd.push_str(&format!(" --aa adaptive --threshold {threshold} --max-level {max_level}"));
+        }
+        Some(Sampling::Center) | None => {}
+    }
+    if let Some(cells) = &spec.grid {
+        let cells: Vec<String> = cells.iter().map(ToString::to_string).collect();
+        cmd.push_str(&format!(" --grid {}", cells.join(",")));
+    }
+    cmd.push_str(&format!(" --lang {} -o {}", lang_dir(lang), png.display()));
+    cmd
+}
+
+/// Runs `whitted lessons`.
+pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
+    let read = read_lessons(&args.lessons)?;
+    // `--only` draws one lesson; the pages still list every lesson (the others' files are those
+    // an earlier run wrote).
+    let drawn: Vec<bool> =
+        read.iter().map(|r| args.only.as_ref().is_none_or(|o| &r.lesson.name == o)).collect();
+    if let Some(only) = &args.only {
+        if !drawn.contains(&true) {
+            return Err(Failure::input(format!("--only: no lesson is named `{only}`")));
+        }
+    }
+    let langs: Vec<Lang> = match args.lang {
+        Some(l) => vec![l.lang()],
+        None => vec![Lang::En, Lang::Ro],
+    };
+    for lang in &langs {
+        let dir = args.out.join(lang_dir(*lang));
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| Failure::other(format!("{}: cannot create: {e}", dir.display())))?;
+    }
+    // Each scene is read once.
+    let mut scenes: HashMap<PathBuf, Result<AnyScene, String>> = HashMap::new();
+    for r in read.iter().zip(&drawn).filter(|(_, d)| **d).map(|(r, _)| r) {
+        for spec in &r.lesson.figures {
+            let path = r.dir.join(&spec.scene);
+            scenes.entry(path.clone()).or_insert_with(|| load_scene(&path).map_err(|f| f.message));
+        }
+    }
+    let (width, height) = canvas(args.size);
+    // One job per figure and language, drawn in parallel.
+    let mut jobs: Vec<(usize, usize, Lang)> = Vec::new();
+    for (l, r) in read.iter().enumerate().filter(|(l, _)| drawn[*l]) {
+        for f in 0..r.lesson.figures.len() {
+            jobs.extend(langs.iter().map(|g| (l, f, *g)));
+        }
+    }
+    let results: Vec<((usize, usize, Lang), Option<String>)> = jobs
+        .par_iter()
+        .map(|&(l, f, lang)| {
+            let r = &read[l];
+            let spec = &r.lesson.figures[f];
+            let scene_path = r.dir.join(&spec.scene);
+            let stem = r.lesson.file_stem(f);
+            let dir = args.out.join(lang_dir(lang));
+            let (png, svg) = (dir.join(format!("{stem}.png")), dir.join(format!("{stem}.svg")));
+            let request = Request {
+                kind: spec.kind,
+                pixel: spec.pixel,
+                ray: spec.ray.clone(),
+                tracing: Tracing {
+                    depth: spec.depth,
+                    sampling: spec.sampling.unwrap_or(Sampling::Center),
+                    accel: AccelOptions { grid: spec.grid.clone(), ..Tracing::SCENE.accel },
+                },
+                opts: Options { lang, width, height },
+            };
+            let made = scenes[&scene_path]
+                .as_ref()
+                .map_err(Clone::clone)
+                .and_then(|scene| figure(scene, &scene_name(&scene_path), &request).map_err(|f| f.message))
+                .and_then(|drawing| {
+                    for (path, format) in [(&png, Format::Png), (&svg, Format::Svg)] {
+                        write_file(path, &format.encode(&drawing).map_err(|f| f.message)?)
+                            .map_err(|f| f.message)?;
+                    }
+                    Ok(())
+                });
+            ((l, f, lang), made.err())
+        })
+        .collect();
+
+    let mut failed = Vec::new();
+    for lang in &langs {
+        let shown: Vec<Vec<Shown>> = read
+            .iter()
+            .enumerate()
+            .map(|(l, r)| {
+                (0..r.lesson.figures.len())
+                    .map(|f| {
+                        let error = results
+                            .iter()
+                            .find(|(key, _)| *key == (l, f, *lang))
+                            .and_then(|(_, e)| e.clone());
+                        let stem = r.lesson.file_stem(f);
+                        let png = args.out.join(lang_dir(*lang)).join(format!("{stem}.png"));
+                        let page_dir =
+                            if *lang == Lang::En { format!("{}/", lang_dir(*lang)) } else { String::new() };
+                        let scene_path = r.dir.join(&r.lesson.figures[f].scene);
+                        Shown {
+                            png: format!("{page_dir}{stem}.png"),
+                            svg: format!("{page_dir}{stem}.svg"),
+                            command: command(&r.lesson.figures[f], &scene_path, *lang, &png),
+                            error,
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        for (r, figures) in read.iter().zip(&shown) {
+            for (f, s) in figures.iter().enumerate() {
+                if let Some(e) = &s.error {
+                    failed.push(format!("{} ({}): {e}", r.lesson.file_stem(f), lang_dir(*lang)));
+                }
+            }
+        }
+        let lessons: Vec<Lesson> = read.iter().map(|r| r.lesson.clone()).collect();
+        let (page, other) = match lang {
+            Lang::En => (args.out.join("index.html"), "ro/index.html"),
+            Lang::Ro => (args.out.join("ro").join("index.html"), "../index.html"),
+        };
+        write_file(&page, lesson::index_html(&lessons, &shown, *lang, other).as_bytes())?;
+    }
+    let figures: usize =
+        read.iter().zip(&drawn).filter(|(_, d)| **d).map(|(r, _)| r.lesson.figures.len()).sum();
+    print_out(&format!(
+        "lessons: {} lessons, {figures} figures × {} language(s), PNG and SVG, into {}\n",
+        drawn.iter().filter(|d| **d).count(),
+        langs.len(),
+        args.out.display()
+    ));
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(Failure::other(failed.join("\n")))
+    }
+}

@@ -1,0 +1,151 @@
+//! `adaptive` (lecture "Îmbunătățirea calității imaginii (2)", algorithm.md §8.2): one pixel's
+//! recorded adaptive subdivision — the squares of each level shaded darker, the samples labelled
+//! in the order they were traced as the lecture does (CA, CB, …), the ones another square read
+//! again ringed, each leaf's colour (the mean of its corners) at its centre — and beside it the
+//! rule, the counts and the area-weighted mean, with the recorded numbers. In 2D the pixel is an
+//! interval and each level's intervals are drawn under it.
+
+use glam::DVec2;
+
+use super::Input;
+use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
+use crate::figure::labels::Label;
+use crate::figure::parts::{self, num, rgb_text, swatch, text_column};
+use crate::figure::plane::Planar;
+use crate::figure::style::{self, TextSize};
+use crate::figure::FigureError;
+use crate::sample::{PixelTrace, SquareRecord};
+
+/// The shade of a square of `level`: grey, darker with each level.
+fn shade(level: u32) -> style::Rgba {
+    style::DARK_GREY.with_alpha(0.06 + 0.14 * f64::from(level))
+}
+
+/// Draws the figure.
+///
+/// # Errors
+/// When the trace holds no sampled pixel.
+pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    let traced = input.main()?;
+    let pixel =
+        traced.samples.as_ref().ok_or_else(|| FigureError("the trace holds no sampled pixel".into()))?;
+    let (i, j) = match traced.targets.first() {
+        Some(crate::figure::source::Target::Pixel { i, j, .. }) => (*i, *j),
+        _ => (0, 0),
+    };
+    let scale = f64::from(1u32 << pixel.max_level);
+    // A lattice point of this pixel in the unit square (2D: on the unit interval, y = 0).
+    let local = |lattice: &[u64]| -> DVec2 {
+        let x = (lattice[0] as f64 - i as f64 * scale) / scale;
+        let y = lattice.get(1).map_or(0.0, |y| (*y as f64 - j as f64 * scale) / scale);
+        DVec2::new(x, y)
+    };
+    let flat = V::DIM == 2;
+    let deepest = pixel.squares.iter().map(|s| s.level).max().unwrap_or(0);
+
+    d.set_title(input.t(Label::TitleAdaptive));
+    let rule = format!("{} = {}, K = {}", input.t(Label::Threshold), num(pixel.threshold), pixel.max_level);
+    d.set_caption(&format!("{} · {rule}", input.traced(traced)));
+    for level in 0..=deepest {
+        d.legend_entry(
+            &format!("{} {level}", input.t(Label::Level)),
+            Style::NONE,
+            Sample::Swatch(shade(level)),
+        );
+    }
+    d.legend_entry(input.t(Label::SampleTraced), Style::NONE, Sample::Dot(style::BLACK));
+    d.legend_entry(input.t(Label::SampleReused), reused_ring(), Sample::Dot(style::WHITE));
+    d.legend_entry(input.t(Label::LeafColour), style::outline(style::BLACK), Sample::Dot(style::LIGHT_GREY));
+    let (bottom, top) = if flat { (-0.2 * f64::from(deepest + 1) - 0.1, 0.12) } else { (-0.05, 1.08) };
+    let column = parts::fit_with_column(d, &[DVec2::new(-0.08, bottom), DVec2::new(1.08, top)], 0.02, 0.45);
+
+    // The squares, parents first so that each leaf shows its own level's shade.
+    let rect_of = |s: &SquareRecord| -> (DVec2, DVec2) {
+        let lo = local(&s.lattice);
+        let side = s.side as f64 / scale;
+        if flat {
+            let top = -0.2 * f64::from(s.level) - 0.05;
+            (DVec2::new(lo.x, top - 0.14), DVec2::new(lo.x + side, top))
+        } else {
+            (lo, lo + DVec2::splat(side))
+        }
+    };
+    if flat {
+        d.rect("pixel", DVec2::ZERO, DVec2::new(1.0, 0.02), style::object(), None);
+    }
+    for s in &pixel.squares {
+        let (lo, hi) = rect_of(s);
+        d.rect(
+            &format!("square:{}", s.level),
+            lo,
+            hi,
+            Style::solid(style::DARK_GREY, style::GRID_WIDTH),
+            Some(shade(s.level)),
+        );
+    }
+    if !flat {
+        d.rect("pixel", DVec2::ZERO, DVec2::ONE, style::object(), None);
+    }
+    for s in pixel.squares.iter().filter(|s| !s.split) {
+        let (lo, hi) = rect_of(s);
+        d.marker("leaf-colour", (lo + hi) / 2.0, 16.0, swatch(s.color), style::outline(style::BLACK));
+    }
+    for sample in &pixel.samples {
+        let at = local(&sample.lattice);
+        if sample.reused {
+            d.marker("sample:reused", at, 17.0, style::WHITE.with_alpha(0.0), reused_ring());
+        }
+        d.marker("sample", at, 8.0, style::BLACK, Style::NONE);
+    }
+    for sample in &pixel.samples {
+        let at = local(&sample.lattice);
+        // Up and to the right of its point, as the lecture's figure writes them.
+        let up_right = Align { h: HAlign::Left, v: VAlign::Bottom };
+        let opts = TextOpts::NOTE.size(TextSize::Small).align(up_right).offset(8.0, 6.0);
+        d.text("sample-name", at, &sample.label, opts);
+    }
+
+    text_column(d, column + DVec2::new(0.04, -0.02), &numbers(input, pixel), TextSize::Body, 50.0);
+    Ok(())
+}
+
+/// The ring of a sample that another square read again.
+fn reused_ring() -> Style {
+    Style::solid(style::ORANGE, style::CONSTRUCTION_WIDTH)
+}
+
+/// The text beside the pixel: the rule, the samples, a deepest leaf's mean and the pixel's.
+fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
+    let k = pixel.max_level;
+    let per_side = (1u64 << k) + 1;
+    let full = if V::DIM == 2 { per_side } else { per_side * per_side };
+    let corners = if V::DIM == 2 { 2 } else { 4 };
+    let reused = pixel.samples.iter().filter(|s| s.reused).count();
+    let rule = if k == 0 {
+        vec![input.t(Label::CornersOnly).to_owned()]
+    } else {
+        vec![
+            format!("{}:", input.t(Label::SplitWhen)),
+            format!("   max − min ≥ {} (R, G, B), {} < K = {k}", num(pixel.threshold), input.t(Label::Level)),
+        ]
+    };
+    let mut lines = rule;
+    let traced = pixel.samples.len();
+    lines.push(format!(
+        "{}: {traced} / {full}, {} {reused}",
+        input.t(Label::SamplesTraced),
+        input.t(Label::Reused)
+    ));
+    // The deepest leaf's colour, the lecture's (CN + CL + CG + CM)/4.
+    if let Some(leaf) = pixel.squares.iter().filter(|s| !s.split).max_by_key(|s| s.level) {
+        let names: Vec<&str> = leaf.corners.iter().map(|c| pixel.samples[*c].label.as_str()).collect();
+        lines.push(format!("({})/{corners} = {}", names.join(" + "), rgb_text(leaf.color)));
+    }
+    let weight = if V::DIM == 2 { "2^{−level}" } else { "4^{−level}" };
+    lines.push(format!(
+        "{} = Σ {weight}·C_{{leaf}} = {}",
+        input.t(Label::PixelColour),
+        rgb_text(pixel.color)
+    ));
+    lines
+}

@@ -1,0 +1,223 @@
+//! `grid-dda` (lecture "Scena divizată în volume încadratoare (1), (2)", algorithm.md §9 "Regular
+//! grid", §11 "The voxel DDA"): the regular grid over the scene's box and the cells one primary
+//! ray's recorded walk visited, numbered in order, with the point where it leaves each (the
+//! smallest tMax) and beside them each step's cell, tMax per axis and the objects tested there;
+//! and the lecture's pitfall when the walk met it: a hit found while visiting a cell but lying
+//! beyond that cell is not accepted until the walk reaches it. Traced with `--accel grid`.
+
+use glam::DVec2;
+
+use super::Input;
+use crate::accel::Layout;
+use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::figure::labels::{self, Label};
+use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, num, text_column};
+use crate::figure::plane::{PagePlane, Planar};
+use crate::figure::source::{first_hit, grid_pitfall, search_events};
+use crate::figure::style::{self, RayRole, TextSize};
+use crate::figure::FigureError;
+use crate::record::event::Event;
+
+/// At most this many steps are listed in the table.
+const LISTED: usize = 7;
+
+/// One recorded step of the walk.
+struct Step<'a> {
+    cell: &'a [i64],
+    t_max: &'a [f64],
+    objects: Vec<usize>,
+}
+
+/// Draws the figure.
+///
+/// # Errors
+/// When the traces were not recorded with a grid.
+pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    let traced = input.main()?;
+    let Layout::Grid { bounds, cells } = input.traces.accel.layout() else {
+        return Err(FigureError("grid-dda: the traces were not recorded with a grid".into()));
+    };
+    if bounds.is_empty() {
+        return Err(FigureError("grid-dda: the scene has no bounded object to build a grid over".into()));
+    }
+    let (scene, log) = (input.scene, &traced.log);
+    let root = log.nodes.first().ok_or_else(|| FigureError("no ray was traced".into()))?;
+    let steps: Vec<Step<'_>> = search_events(log, 0)
+        .filter_map(|e| match e {
+            Event::VoxelStep { cell, t_max, objects, .. } => {
+                Some(Step { cell, t_max, objects: objects.iter().map(|o| o.index).collect() })
+            }
+            _ => None,
+        })
+        .collect();
+    let hit = first_hit(log).filter(|k| *k == 0).and_then(|k| log.nodes[k].end.as_ref()?.hit);
+    let pitfall = grid_pitfall(log);
+
+    // 2D: the scene's plane; 3D: the plane of the two axes the ray moves most along.
+    let dir = root.start.direction;
+    let axes: [usize; 2] = if V::DIM == 2 {
+        [0, 1]
+    } else {
+        let dropped = (0..3).fold(0, |m, a| if dir[a].abs() < dir[m].abs() { a } else { m });
+        let kept: Vec<usize> = (0..3).filter(|a| *a != dropped).collect();
+        [kept[0], kept[1]]
+    };
+    // In 3D the plane passes through the hit (or the ray's origin), so the objects the ray meets
+    // are cut where it meets them.
+    let through = hit.map_or(root.start.origin, |h| h.point);
+    let plane =
+        PagePlane::spanned(if V::DIM == 2 { V::ZERO } else { through }, V::axis(axes[0]), V::axis(axes[1]))
+            .ok_or_else(|| FigureError("no plane for the grid".into()))?;
+    let names = ["x", "y", "z"];
+
+    d.set_title(input.t(Label::TitleGridDda));
+    let resolution: Vec<String> = cells.iter().map(ToString::to_string).collect();
+    let mut caption = format!(
+        "{} · {} {} · {}: {}",
+        input.traced(traced),
+        input.t(Label::Grid),
+        resolution.join(" × "),
+        input.t(Label::CellsVisited),
+        steps.len()
+    );
+    if V::DIM == 3 {
+        caption.push_str(&format!(" · {} {}{}", input.t(Label::AxisPlane), names[axes[0]], names[axes[1]]));
+    }
+    d.set_caption(&caption);
+    parts::legend_role(d, RayRole::Primary, input.lang);
+    d.legend_entry(input.t(Label::CellVisited), Style::NONE, Sample::Swatch(visited_fill()));
+    d.legend_entry(input.t(Label::CellExit), Style::NONE, Sample::Dot(style::ORANGE));
+    if pitfall.is_some() {
+        d.legend_entry(input.t(Label::FoundBeyond), pitfall_ring(), Sample::Dot(style::WHITE));
+    }
+    // Under the table, in the column kept free of the scene (the table is at most 13 lines).
+    d.legend_place = crate::figure::drawing::LegendPlace::Inside(crate::figure::drawing::Corner::BottomRight);
+
+    // The grid's rectangle on the page and the size of a cell.
+    let (lo, hi) = (plane.point(bounds.min), plane.point(bounds.max));
+    let (lo, hi) = (lo.min(hi), lo.max(hi));
+    let n = [cells[axes[0]], cells[axes[1]]];
+    let size = DVec2::new((hi.x - lo.x) / n[0] as f64, (hi.y - lo.y) / n[1] as f64);
+    let cell_rect = |c: &[i64]| {
+        let at = DVec2::new(c[axes[0]] as f64, c[axes[1]] as f64);
+        (lo + at * size, lo + (at + DVec2::ONE) * size)
+    };
+    let ray_at = |t: f64| plane.point(root.start.origin + dir * t);
+    let mut points = vec![lo, hi];
+    let from = plane.point(root.start.origin);
+    let span = parts::span(&points);
+    points.push(from.clamp(lo - DVec2::splat(0.3 * span), hi + DVec2::splat(0.3 * span)));
+    let column = parts::fit_with_column(d, &points, 0.05, 0.42);
+    let view = d.view;
+    let scene_part = View::new(view.xmin(), column.x, view.ymin(), view.ymax()).unwrap_or(view);
+
+    // Visited cells, the grid, the objects.
+    for s in &steps {
+        let (a, b) = cell_rect(s.cell);
+        d.rect("cell:visited", a, b, Style::NONE, Some(visited_fill()));
+    }
+    for k in 0..=n[0] {
+        let x = lo.x + k as f64 * size.x;
+        d.segment("grid", DVec2::new(x, lo.y), DVec2::new(x, hi.y), style::grid());
+    }
+    for k in 0..=n[1] {
+        let y = lo.y + k as f64 * size.y;
+        d.segment("grid", DVec2::new(lo.x, y), DVec2::new(hi.x, y), style::grid());
+    }
+    d.rect("grid-box", lo, hi, style::outline(style::DARK_GREY), None);
+    let anchors = draw_objects(d, scene, &plane, &scene_part, &[], style::BLACK);
+
+    // The ray, from where it enters the picture to its hit or the picture's edge.
+    let start = if scene_part.xmin() <= from.x
+        && from.x <= scene_part.xmax()
+        && scene_part.ymin() <= from.y
+        && from.y <= scene_part.ymax()
+    {
+        from
+    } else {
+        parts::clip_line(from, plane.dir(dir).normalize_or_zero(), &scene_part).map_or(from, |(a, _)| a)
+    };
+    let end =
+        hit.map_or_else(|| parts::exit_point(start, plane.dir(dir), &scene_part), |h| plane.point(h.point));
+    draw_ray(d, RayRole::Primary, start, end);
+    // Where the ray leaves each visited cell: its smallest tMax.
+    for s in &steps {
+        let exit = s.t_max.iter().copied().fold(f64::INFINITY, f64::min);
+        if exit.is_finite() {
+            d.marker("cell-exit", ray_at(exit), style::DOT_RADIUS * 0.8, style::ORANGE, Style::NONE);
+        }
+    }
+    if let Some((_, _, t, _)) = pitfall {
+        d.marker("pitfall", ray_at(t), 22.0, style::WHITE.with_alpha(0.0), pitfall_ring());
+    }
+    if let Some(h) = hit {
+        d.dot("hit", plane.point(h.point), style::HIT);
+    }
+    for (k, s) in steps.iter().enumerate() {
+        let (a, b) = cell_rect(s.cell);
+        let opts = TextOpts::NOTE
+            .size(TextSize::Small)
+            .align(Align { h: HAlign::Left, v: VAlign::Top })
+            .offset(5.0, -3.0)
+            .bold();
+        d.text("step", DVec2::new(a.x, b.y), &(k + 1).to_string(), opts);
+    }
+    label_objects(d, scene, &anchors);
+
+    // The table of steps and the pitfall, in the column.
+    let axis_names: Vec<&str> = (0..V::DIM).map(|a| names[a]).collect();
+    let mut lines = vec![format!(
+        "k: {} · tMax({}) · {}",
+        input.t(Label::Cell),
+        axis_names.join(", "),
+        input.t(Label::ObjectsTested)
+    )];
+    for (k, s) in steps.iter().enumerate().take(LISTED) {
+        let cell: Vec<String> = s.cell.iter().map(ToString::to_string).collect();
+        let t_max: Vec<String> = s.t_max.iter().map(|t| num(*t)).collect();
+        let objects: Vec<String> =
+            s.objects.iter().map(|o| labels::escape(&scene.object_label(*o))).collect();
+        let objects = if objects.is_empty() { "—".to_owned() } else { objects.join(", ") };
+        lines.push(format!("{}: ({}) · ({}) · {objects}", k + 1, cell.join(", "), t_max.join(", ")));
+    }
+    if steps.len() > LISTED {
+        lines.push("…".to_owned());
+    }
+    if let Some((step, object, t, exit)) = pitfall {
+        lines.push(String::new());
+        lines.push(format!(
+            "{} {}: {}",
+            input.t(Label::PitfallIn),
+            step + 1,
+            labels::escape(&scene.object_label(object))
+        ));
+        lines.push(format!("   t = {} > {} = {}", num(t), input.t(Label::CellExitT), num(exit)));
+        lines.extend(input.t(Label::PitfallRule).split('\n').map(str::to_owned));
+    }
+    if let Some(h) = hit {
+        lines.push(format!(
+            "{}: {} (t = {})",
+            input.t(Label::HitPoint),
+            labels::escape(&scene.object_label(h.object.index)),
+            num(h.t)
+        ));
+    }
+    text_column(
+        d,
+        column + DVec2::new(0.02 * view.width(), -0.02 * view.height()),
+        &lines,
+        TextSize::Small,
+        40.0,
+    );
+    Ok(())
+}
+
+/// Visited cells: a light fill of the entered-node green.
+fn visited_fill() -> style::Rgba {
+    style::BLUISH_GREEN.with_alpha(0.25)
+}
+
+/// The ring around a hit found beyond its cell.
+fn pitfall_ring() -> Style {
+    Style::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH * 1.4)
+}

@@ -1,0 +1,120 @@
+//! `heat-map` (lecture "Îmbunătățirea calității imaginii", algorithm.md §8; the cost of §7): the
+//! number of primary rays whose colour entered each pixel of a whole render, for one sampling
+//! mode, on a colour scale (viridis, readable with any common colour-vision deficiency): 1 with
+//! `center`, 4 with `corners`, 4 to (2^K + 1)² with `adaptive`, where the image changes. The counts
+//! are the render's own (`Rendered::rays_per_pixel`); rows count from the bottom.
+
+use glam::DVec2;
+
+use super::Input;
+use crate::figure::drawing::{Drawing, Sample, Style};
+use crate::figure::labels::Label;
+use crate::figure::parts::num;
+use crate::figure::plane::Planar;
+use crate::figure::style::{self, Rgba};
+use crate::figure::FigureError;
+use crate::sample::Sampling;
+
+/// Viridis at five stops, dark (few rays) to light (many).
+const VIRIDIS: [Rgba; 5] = [
+    Rgba::rgb(0x44, 0x01, 0x54),
+    Rgba::rgb(0x3B, 0x52, 0x8B),
+    Rgba::rgb(0x21, 0x91, 0x8C),
+    Rgba::rgb(0x5E, 0xC9, 0x62),
+    Rgba::rgb(0xFD, 0xE7, 0x25),
+];
+
+/// The colour of `f` in [0, 1] on the scale (linear between the stops).
+fn scale_colour(f: f64) -> Rgba {
+    let f = f.clamp(0.0, 1.0) * (VIRIDIS.len() - 1) as f64;
+    // f lies in [0, 4], so the index is exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let k = (f.floor() as usize).min(VIRIDIS.len() - 2);
+    let t = f - k as f64;
+    let mix = |a: u8, b: u8| {
+        let v = f64::from(a) + (f64::from(b) - f64::from(a)) * t;
+        // v lies between two bytes.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let byte = v.round().clamp(0.0, 255.0) as u8;
+        byte
+    };
+    let (a, b) = (VIRIDIS[k], VIRIDIS[k + 1]);
+    Rgba::rgb(mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b))
+}
+
+/// Draws the figure.
+///
+/// # Errors
+/// When no render's counts were recorded.
+pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    let counts = input.traces.counts.as_ref().ok_or_else(|| FigureError("no render was counted".into()))?;
+    let cam = &input.scene.camera;
+    let (nx, ny) = (cam.nx, cam.ny);
+    let lo = counts.per_pixel.iter().copied().min().unwrap_or(0);
+    let hi = counts.per_pixel.iter().copied().max().unwrap_or(0);
+    let colour = |n: u32| {
+        if hi > lo {
+            scale_colour(f64::from(n - lo) / f64::from(hi - lo))
+        } else {
+            scale_colour(0.5)
+        }
+    };
+
+    d.set_title(input.t(Label::TitleHeatMap));
+    let mode = match counts.sampling {
+        Sampling::Center => "--aa center".to_owned(),
+        Sampling::Corners => "--aa corners".to_owned(),
+        Sampling::Adaptive { threshold, max_level } => {
+            format!("--aa adaptive, {} = {}, K = {max_level}", input.t(Label::Threshold), num(threshold))
+        }
+    };
+    let pixels = counts.per_pixel.len().max(1);
+    let sum: u64 = counts.per_pixel.iter().map(|n| u64::from(*n)).sum();
+    let rows = if V::DIM == 2 { String::new() } else { format!(" · {}", input.t(Label::RowsFromBottom)) };
+    d.set_caption(&format!(
+        "{} {} · {mode} · {}: {} · {}: {}{rows}",
+        input.t(Label::Scene),
+        crate::figure::labels::escape(&input.traces.scene_name),
+        input.t(Label::RaysTraced),
+        counts.traced,
+        input.t(Label::MeanPerPixel),
+        num(sum as f64 / pixels as f64),
+    ));
+    // The legend is the scale: every count when there are few, else five steps.
+    let mut values: Vec<u32> = counts.per_pixel.clone();
+    values.sort_unstable();
+    values.dedup();
+    if values.len() > 6 {
+        values = (0..5).map(|k| lo + (hi - lo) * k / 4).collect();
+        values.dedup();
+    }
+    let unit = input.t(Label::RaysPerPixel);
+    for n in &values {
+        d.legend_entry(&format!("{n} {unit}"), Style::NONE, Sample::Swatch(colour(*n)));
+    }
+    d.legend_place = crate::figure::drawing::LegendPlace::Outside;
+
+    // One cell per pixel, y up so that row j = 0 is the bottom; a 2D image is one row, drawn as
+    // tall as an eighth of its width. Equal neighbours in a row share one rectangle.
+    let row_h = if V::DIM == 2 { (nx as f64 / 8.0).max(1.0) } else { 1.0 };
+    d.fit_view(&[DVec2::ZERO, DVec2::new(nx as f64, row_h * ny as f64)], 0.02);
+    // Each rectangle reaches at least a pixel and a half into its right and upper neighbours,
+    // which are drawn after it and cover it: no anti-aliased seam shows between cells.
+    let (width, height) = (nx as f64, row_h * ny as f64);
+    let reach = 1.5 / d.transform().len_px(1.0).max(1e-9);
+    for j in 0..ny {
+        let row = &counts.per_pixel[j * nx..(j + 1) * nx];
+        let mut start = 0;
+        for i in 1..=nx {
+            if i == nx || row[i] != row[start] {
+                let y = j as f64 * row_h;
+                let fill = colour(row[start]);
+                let hi = DVec2::new((i as f64 + reach).min(width), (y + row_h + reach).min(height));
+                d.rect("cell", DVec2::new(start as f64, y), hi, Style::NONE, Some(fill));
+                start = i;
+            }
+        }
+    }
+    d.rect("image", DVec2::ZERO, DVec2::new(width, height), style::object(), None);
+    Ok(())
+}

@@ -1,0 +1,320 @@
+//! What `bvh` and `octree` share (lecture "Scena reprezentată printr-o ierarhie de volume
+//! încadratoare", "Scena divizată în volume încadratoare (3)", algorithm.md §9): the hierarchy's
+//! boxes over the scene, each drawn by what the recorded walk of one primary ray did with it —
+//! entered (numbered in the order the ray entered them), tested and passed by (the ray misses
+//! its box, so its whole subtree is skipped), or never tested — and the tree beside it with the
+//! same marks. Nodes are named A, B, C … in the structure's own numbering.
+
+use glam::DVec2;
+
+use super::Input;
+use crate::accel::{Layout, TreeNode};
+use crate::bounds::aabb::Aabb;
+use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::figure::labels::{self, Label};
+use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
+use crate::figure::plane::{PagePlane, Planar};
+use crate::figure::source::{first_hit, met, search_events};
+use crate::figure::style::{self, RayRole, Rgba, TextSize};
+use crate::figure::FigureError;
+use crate::record::event::Event;
+
+/// What the walk did with a node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Fate {
+    /// Its box was met: the k-th node entered (from 1).
+    Entered(usize),
+    /// Its box was tested and missed: its subtree was skipped.
+    Missed,
+    /// Never tested.
+    Untested,
+}
+
+/// The entered nodes' colour.
+const ENTERED: Rgba = style::BLUISH_GREEN;
+/// The missed nodes' colour.
+const MISSED: Rgba = style::REDDISH_PURPLE;
+
+/// `A`, `B`, … `Z`, `AA`, … for node number `k`.
+fn letter(k: usize) -> String {
+    let mut n = k + 1;
+    let mut out = Vec::new();
+    while n > 0 {
+        n -= 1;
+        // n % 26 < 26, so the cast is exact.
+        #[allow(clippy::cast_possible_truncation)]
+        out.push(char::from(b'A' + (n % 26) as u8));
+        n /= 26;
+    }
+    out.iter().rev().collect()
+}
+
+/// The page plane: 2D the scene's; 3D the plane of the two axes the ray moves most along
+/// (boxes project to rectangles), through the root box's centre.
+fn page<V: Planar>(centre: V, direction: V) -> (PagePlane<V>, Option<[usize; 2]>) {
+    let fallback = PagePlane { origin: V::ZERO, x: V::axis(0), y: V::axis(1), offset: DVec2::ZERO };
+    if V::DIM == 2 {
+        return (fallback, None);
+    }
+    let dropped = (0..3).fold(0, |m, a| if direction[a].abs() < direction[m].abs() { a } else { m });
+    let axes: Vec<usize> = (0..3).filter(|a| *a != dropped).collect();
+    let plane = PagePlane::spanned(centre, V::axis(axes[0]), V::axis(axes[1])).unwrap_or(fallback);
+    (plane, Some([axes[0], axes[1]]))
+}
+
+/// A box on the page: its projection's bounding rectangle (exact on an axis plane).
+fn rect<V: Planar>(plane: &PagePlane<V>, b: &Aabb<V>) -> (DVec2, DVec2) {
+    let corners: Vec<DVec2> = (0..1usize << V::DIM)
+        .map(|k| {
+            let mut p = b.min;
+            for a in 0..V::DIM {
+                if k & (1 << a) != 0 {
+                    p[a] = b.max[a];
+                }
+            }
+            plane.point(p)
+        })
+        .collect();
+    let lo = corners.iter().copied().fold(DVec2::splat(f64::INFINITY), DVec2::min);
+    let hi = corners.iter().copied().fold(DVec2::splat(f64::NEG_INFINITY), DVec2::max);
+    (lo, hi)
+}
+
+/// Draws a hierarchy figure for `structure` (`bvh` or `octree`) under `title`.
+///
+/// # Errors
+/// When the traces hold no hierarchy or no walk through it.
+pub fn draw<V: Planar>(
+    input: &Input<'_, V>,
+    d: &mut Drawing,
+    title: Label,
+    structure: &str,
+) -> Result<(), FigureError> {
+    let traced = input.main()?;
+    let Layout::Tree(nodes) = input.traces.accel.layout() else {
+        return Err(FigureError(format!("{structure}: the traces were not recorded with a hierarchy")));
+    };
+    if nodes.is_empty() {
+        return Err(FigureError(format!("{structure}: the scene has no bounded object to build it over")));
+    }
+    let (scene, log) = (input.scene, &traced.log);
+    // The walk of the primary ray: every node tested, in order.
+    let mut fate = vec![Fate::Untested; nodes.len()];
+    let mut entered = 0;
+    let mut tested = 0;
+    for e in search_events(log, 0) {
+        if let Event::NodeVisit { node, t_in, t_out, .. } = e {
+            tested += 1;
+            if *node < fate.len() && fate[*node] == Fate::Untested {
+                fate[*node] = if met(*t_in, *t_out) {
+                    entered += 1;
+                    Fate::Entered(entered)
+                } else {
+                    Fate::Missed
+                };
+            }
+        }
+    }
+    let object_tests = search_events(log, 0).filter(|e| matches!(e, Event::ObjectTest { .. })).count();
+    let root = log.nodes.first().ok_or_else(|| FigureError("no ray was traced".into()))?;
+    let hit = first_hit(log).filter(|k| *k == 0).and_then(|k| log.nodes[k].end.as_ref()?.hit);
+    let centre = (nodes[0].bounds.min + nodes[0].bounds.max) * 0.5;
+    let (plane, axes) = page(centre, root.start.direction);
+
+    d.set_title(input.t(title));
+    let mut caption = format!(
+        "{} · {}: {tested}, {}: {entered}, {}: {object_tests}",
+        input.traced(traced),
+        input.t(Label::NodesTested),
+        input.t(Label::NodesEntered),
+        input.t(Label::ObjectsTested)
+    );
+    if let Some([a, b]) = axes {
+        let names = ["x", "y", "z"];
+        caption.push_str(&format!(" · {} {}{}", input.t(Label::AxisPlane), names[a], names[b]));
+    }
+    d.set_caption(&caption);
+    legend_role_and_fates(d, input);
+    // The legend over the tree's column, whose top is kept free for it.
+    d.legend_place = crate::figure::drawing::LegendPlace::Inside(crate::figure::drawing::Corner::TopRight);
+    // The geometry on the left, the tree in the column on the right.
+    let mut points: Vec<DVec2> = nodes
+        .iter()
+        .flat_map(|n| {
+            let (lo, hi) = rect(&plane, &n.bounds);
+            [lo, hi]
+        })
+        .collect();
+    let from = plane.point(root.start.origin);
+    let to = hit.map(|h| plane.point(h.point));
+    let span = parts::span(&points);
+    let (lo, hi) = rect(&plane, &nodes[0].bounds);
+    let near = |p: DVec2| p.clamp(lo - DVec2::splat(0.6 * span), hi + DVec2::splat(0.6 * span));
+    points.push(near(from));
+    let column = parts::fit_with_column(d, &points, 0.05, 0.5);
+    let view = d.view;
+    let scene_part = View::new(view.xmin(), column.x, view.ymin(), view.ymax()).unwrap_or(view);
+
+    // Boxes: untested first (faint), then missed, then entered, so the walk reads on top.
+    let anchors = draw_objects(d, scene, &plane, &scene_part, &[], style::BLACK);
+    for pass in [Fate::Untested, Fate::Missed, Fate::Entered(0)] {
+        for (k, n) in nodes.iter().enumerate() {
+            let f = fate[k];
+            let same = matches!(
+                (pass, f),
+                (Fate::Untested, Fate::Untested)
+                    | (Fate::Missed, Fate::Missed)
+                    | (Fate::Entered(_), Fate::Entered(_))
+            );
+            if !same {
+                continue;
+            }
+            let (lo, hi) = rect(&plane, &n.bounds);
+            d.rect(&format!("node:{}", letter(k)), lo, hi, fate_style(f), None);
+        }
+    }
+    // The ray: from where it enters the picture to its hit (or out of the picture).
+    let start = if scene_part.xmin() <= from.x
+        && from.x <= scene_part.xmax()
+        && scene_part.ymin() <= from.y
+        && from.y <= scene_part.ymax()
+    {
+        from
+    } else {
+        let dir = plane.dir(root.start.direction);
+        parts::clip_line(from, dir.normalize_or_zero(), &scene_part).map_or(from, |(a, _)| a)
+    };
+    let end = to.unwrap_or_else(|| parts::exit_point(start, plane.dir(root.start.direction), &scene_part));
+    draw_ray(d, RayRole::Primary, start, end);
+    if let Some(p) = to {
+        d.dot("hit", p, style::HIT);
+    }
+    // Node names at their boxes' upper-left corners, inside.
+    for (k, n) in nodes.iter().enumerate() {
+        if fate[k] == Fate::Untested && nodes.len() > 40 {
+            continue;
+        }
+        let (lo, hi) = rect(&plane, &n.bounds);
+        let opts = TextOpts::NOTE
+            .size(TextSize::Small)
+            .align(Align { h: HAlign::Left, v: VAlign::Top })
+            .offset(6.0, -4.0)
+            .color(fate_colour(fate[k]));
+        d.text("node-name", DVec2::new(lo.x, hi.y), &letter(k), opts);
+    }
+    label_objects(d, scene, &anchors);
+    tree(d, &nodes, &fate, scene, column, &view);
+    Ok(())
+}
+
+/// The legend: the ray and the three fates.
+fn legend_role_and_fates<V: Planar>(d: &mut Drawing, input: &Input<'_, V>) {
+    parts::legend_role(d, RayRole::Primary, input.lang);
+    d.legend_entry(input.t(Label::NodeEntered), fate_style(Fate::Entered(1)), Sample::Line);
+    d.legend_entry(input.t(Label::NodeMissed), fate_style(Fate::Missed), Sample::Line);
+    d.legend_entry(input.t(Label::NodeUntested), fate_style(Fate::Untested), Sample::Line);
+}
+
+fn fate_colour(f: Fate) -> Rgba {
+    match f {
+        Fate::Entered(_) => ENTERED,
+        Fate::Missed => MISSED,
+        Fate::Untested => style::DARK_GREY,
+    }
+}
+
+fn fate_style(f: Fate) -> Style {
+    match f {
+        Fate::Entered(_) => Style::solid(ENTERED, style::OBJECT_WIDTH * 1.2),
+        Fate::Missed => Style::solid(MISSED, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH),
+        Fate::Untested => Style::solid(style::LIGHT_GREY, style::GRID_WIDTH),
+    }
+}
+
+/// The tree in the column whose top-left is `column`: leaves one unit apart, parents over their
+/// children, each node a disc of its fate's colour with its name, the entry order beside it and
+/// a leaf's objects under it.
+fn tree<V: Planar>(
+    d: &mut Drawing,
+    nodes: &[TreeNode<V>],
+    fate: &[Fate],
+    scene: &crate::scene::Scene<V>,
+    column: DVec2,
+    view: &View,
+) {
+    // Only the part of the tree the walk reached, plus the children of what it entered.
+    let shown: Vec<bool> = (0..nodes.len())
+        .map(|k| {
+            fate[k] != Fate::Untested
+                || nodes
+                    .iter()
+                    .enumerate()
+                    .any(|(p, n)| matches!(fate[p], Fate::Entered(_)) && n.children.contains(&k))
+        })
+        .collect();
+    let mut x = vec![0.0; nodes.len()];
+    let mut next = 0.0;
+    fn place<V>(k: usize, nodes: &[TreeNode<V>], shown: &[bool], x: &mut [f64], next: &mut f64) {
+        let kids: Vec<usize> = nodes[k].children.iter().copied().filter(|c| shown[*c]).collect();
+        if kids.is_empty() {
+            x[k] = *next;
+            *next += 1.0;
+        } else {
+            for &c in &kids {
+                place(c, nodes, shown, x, next);
+            }
+            x[k] = (x[kids[0]] + x[kids[kids.len() - 1]]) / 2.0;
+        }
+    }
+    place(0, nodes, &shown, &mut x, &mut next);
+    let depth = nodes.iter().zip(&shown).filter(|(_, s)| **s).map(|(n, _)| n.depth).max().unwrap_or(0);
+    let width = view.xmax() - column.x;
+    let (left, right) = (column.x + 0.08 * width, view.xmax() - 0.06 * width);
+    let (top, bottom) = (view.ymax() - 0.36 * view.height(), view.ymin() + 0.1 * view.height());
+    let at = |k: usize| {
+        let fx = if next > 1.0 { x[k] / (next - 1.0) } else { 0.5 };
+        let fy = if depth > 0 { f64::from(nodes[k].depth) / f64::from(depth) } else { 0.0 };
+        DVec2::new(left + fx * (right - left), top - fy * (top - bottom))
+    };
+    for (k, n) in nodes.iter().enumerate() {
+        if !shown[k] {
+            continue;
+        }
+        for &c in n.children.iter().filter(|c| shown[**c]) {
+            d.segment("tree-edge", at(k), at(c), Style::solid(style::DARK_GREY, style::GRID_WIDTH));
+        }
+    }
+    for (k, n) in nodes.iter().enumerate() {
+        if !shown[k] {
+            continue;
+        }
+        let f = fate[k];
+        let fill = match f {
+            Fate::Entered(_) => ENTERED,
+            Fate::Missed => style::WHITE,
+            Fate::Untested => style::WHITE,
+        };
+        d.marker("tree-node", at(k), 25.0, fill, fate_style(f).with_width(style::CONSTRUCTION_WIDTH));
+        let name = TextOpts::NOTE.size(TextSize::Small).align(Align::CENTER).no_halo();
+        d.text("tree-name", at(k), &letter(k), name);
+        if let Fate::Entered(order) = f {
+            let o = TextOpts::NOTE
+                .size(TextSize::Small)
+                .align(Align { h: HAlign::Left, v: VAlign::Bottom })
+                .offset(20.0, 16.0)
+                .color(ENTERED)
+                .bold();
+            d.text("tree-order", at(k), &order.to_string(), o);
+        }
+        if n.children.is_empty() && !n.prims.is_empty() {
+            let names: Vec<String> =
+                n.prims.iter().map(|p| labels::escape(&scene.object_label(p.object()))).collect();
+            let o = TextOpts::NOTE
+                .size(TextSize::Small)
+                .align(Align::BELOW)
+                .offset(0.0, -30.0)
+                .color(style::DARK_GREY);
+            d.text("tree-objects", at(k), &names.join(", "), o);
+        }
+    }
+}

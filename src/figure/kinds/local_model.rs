@@ -1,0 +1,157 @@
+//! `local-model` (lecture "Ray tracing – calculul culorii unui pixel (2), (3)", algorithm.md §5):
+//! at one recorded hit I, the normal N, the direction V towards the observer, and for each light
+//! the direction L towards it and the bisector H of L and V; beside them the terms of
+//! `I_local = Ia·Ka + Σ Isrc·fat·s·lum·[kd·(N·L) + ks·(N·H)^n]` with the recorded numbers
+//! (N·L, lum, fat, s, the diffuse and specular terms, I_local). In 3D the four vectors are not
+//! coplanar: each is drawn at its true angle to N, on the side of N it leans to (the page's
+//! x axis is the tangent part of L − V), so the angles the model uses (N·L, N·H) read true.
+
+use glam::DVec2;
+
+use super::Input;
+use crate::figure::drawing::{Drawing, Sample, Style};
+use crate::figure::labels::Label;
+use crate::figure::parts::{
+    self, label_outward, legend_normal, num, object_name, rgb_text, sub, swatch, text_column, Names,
+};
+use crate::figure::plane::{PagePlane, Planar};
+use crate::figure::source::first_hit;
+use crate::figure::style::{self, RayRole, TextSize};
+use crate::figure::FigureError;
+use crate::record::event::{LightTerm, ObjectRef};
+
+/// At most this many lights are told term by term; the others are summed in I_local only.
+const TOLD_LIGHTS: usize = 2;
+
+/// Draws the figure.
+///
+/// # Errors
+/// When the trace has no hit.
+pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    let traced = input.main()?;
+    let log = &traced.log;
+    let k = first_hit(log).ok_or_else(|| FigureError("the trace has no hit".into()))?;
+    let node = &log.nodes[k];
+    let (Some(end), Some(hit)) = (node.end.as_ref(), node.end.as_ref().and_then(|e| e.hit)) else {
+        return Err(FigureError("the trace has no hit".into()));
+    };
+    let scene = input.scene;
+    let names = Names::of(log);
+    let hit_name = names.hit_name(k).unwrap_or_default();
+    let n_f = if hit.entering { hit.normal } else { -hit.normal };
+    let view_dir = -node.start.direction;
+    let lit: Vec<&LightTerm<V>> = node.lights.iter().filter(|t| t.l.is_some()).collect();
+
+    // The plane of N and L − V (for the first light), so L and V fall on either side of N.
+    let tangent_of = |v: V| v - n_f * v.dot(n_f);
+    let spread =
+        lit.first().and_then(|t| t.l).map_or(-tangent_of(view_dir), |l| tangent_of(l) - tangent_of(view_dir));
+    let fallback = (0..V::DIM).map(V::axis).map(tangent_of).find(|a| a.length() > 0.5);
+    let x = if spread.length() > 1e-9 { Some(spread) } else { fallback };
+    let plane = x
+        .and_then(|x| PagePlane::spanned(hit.point, x, n_f))
+        .ok_or_else(|| FigureError("no plane holds N".into()))?;
+
+    let object = ObjectRef { index: hit.object.index, triangle: None };
+    let title = format!("{} {hit_name} ({})", input.t(Label::TitleLocalModel), object_name(scene, object));
+    d.set_title(&title);
+    let caption = format!(
+        "{} · {}",
+        input.traced(traced),
+        if V::DIM == 3 { input.t(Label::TrueAnglesToN) } else { input.t(Label::PlaneOfIncidence) }
+    );
+    d.set_caption(&caption);
+    let view_role = parts::role(node.start.kind);
+    legend_normal(d, input.lang);
+    d.legend_entry(input.t(Label::VectorV), view_role.style(), Sample::Arrow);
+    d.legend_entry(input.t(Label::VectorL), RayRole::Shadow.style(), Sample::Arrow);
+    d.legend_entry(input.t(Label::VectorH), h_style(), Sample::Arrow);
+    if let Some(local) = end.local {
+        d.legend_entry("I_{local}", style::outline(style::BLACK), Sample::Swatch(swatch(local)));
+    }
+    let column = parts::fit_with_column(d, &[DVec2::new(-1.5, -0.45), DVec2::new(1.5, 1.5)], 0.02, 0.5);
+
+    // The surface, the vectors, their names.
+    let i = plane.point(hit.point);
+    d.rect(
+        "object",
+        i + DVec2::new(-1.5, -0.4),
+        i + DVec2::new(1.5, 0.0),
+        Style::NONE,
+        Some(style::OBJECT_FILL),
+    );
+    d.segment("surface", i + DVec2::new(-1.5, 0.0), i + DVec2::new(1.5, 0.0), style::object());
+    // A vector at its true angle to N, on the side of N its tangent part leans to.
+    let unit = |v: V| {
+        let cos = v.dot(n_f).clamp(-1.0, 1.0);
+        let side = if plane.dir(v).x < 0.0 { -1.0 } else { 1.0 };
+        DVec2::new(side * (1.0 - cos * cos).sqrt(), cos)
+    };
+    let len = 1.2;
+    d.arrow("normal", i, i + DVec2::Y * len, style::normal());
+    d.arrow(view_role.tag(), i, i + unit(view_dir) * len, view_role.style());
+    let many = lit.len() > 1;
+    let name = |letter: &str, m: usize| if many { sub(letter, m + 1) } else { letter.to_owned() };
+    let mut tips = vec![(DVec2::Y, "N".to_owned()), (unit(view_dir), "V".to_owned())];
+    for (m, t) in lit.iter().enumerate() {
+        let Some(l) = t.l else { continue };
+        let role = if t.shadow.is_some_and(|s| s < 1.0) { RayRole::BlockedShadow } else { RayRole::Shadow };
+        d.arrow(role.tag(), i, i + unit(l) * len, role.style());
+        tips.push((unit(l), name("L", m)));
+        if let Some(h) = (l + view_dir).try_unit() {
+            d.arrow("vector:H", i, i + unit(h) * len * 0.85, h_style());
+            tips.push((unit(h) * 0.85, name("H", m)));
+        }
+    }
+    d.dot("hit", i, style::HIT);
+    for (dir, text) in &tips {
+        label_outward(d, i + *dir * len, *dir, text);
+    }
+    d.text("label", i, &hit_name, crate::figure::drawing::TextOpts::LABEL.avoid_overlap());
+
+    // The terms, with the recorded numbers.
+    let material = scene.material_of(hit.object.index);
+    let (ka, _) = material.colors_at(hit.point);
+    // The light's intensity as the lecture writes it: Isrc, in Romanian Isursa.
+    let src = input.t(Label::Isrc);
+    let mut lines = vec![
+        format!("I_{{local}} = Ia·Ka + Σ {src}·fat·s·lum·[kd·(N·L) + ks·(N·H)^n]"),
+        format!(
+            "Ia·Ka = {} · {} = {}",
+            rgb_text(scene.ambient),
+            rgb_text(ka),
+            rgb_text(scene.ambient.modulate(ka))
+        ),
+    ];
+    for (m, t) in node.lights.iter().enumerate().take(TOLD_LIGHTS) {
+        let l = name("L", m);
+        if t.lum == 0.0 {
+            lines.push(format!("{l}: N·L = {} ≤ 0 → lum = 0", num(t.n_dot_l)));
+            continue;
+        }
+        let s = t.shadow.map_or_else(|| "—".to_owned(), num);
+        lines.push(format!("{l}: N·L = {}, lum = 1, fat = {}, s = {s}", num(t.n_dot_l), num(t.fat)));
+        if let Some(h) = t.l.and_then(|l| (l + view_dir).try_unit()) {
+            let n_dot_h = n_f.dot(h);
+            lines.push(format!(
+                "{}: N·H = {}, (N·H)^n = {} (n = {})",
+                name("H", m),
+                num(n_dot_h),
+                num(n_dot_h.max(0.0).powf(material.n)),
+                num(material.n)
+            ));
+        }
+        lines.push(format!("{src}·fat·s·kd·(N·L) = {}", rgb_text(t.diffuse)));
+        lines.push(format!("{src}·fat·s·ks·(N·H)^n = {}", rgb_text(t.specular)));
+    }
+    if let Some(local) = end.local {
+        lines.push(format!("I_{{local}} = {}", rgb_text(local)));
+    }
+    text_column(d, column + DVec2::new(0.1, -0.05), &lines, TextSize::Body, 50.0);
+    Ok(())
+}
+
+/// The bisector H: black, a little thinner than a ray.
+fn h_style() -> Style {
+    Style::solid(style::BLACK, style::RAY_WIDTH * 0.8)
+}

@@ -1,0 +1,240 @@
+//! `projections` (lecture "Calculul razelor primare (2), (3)", algorithm.md §2): the primary rays of
+//! the same pixels traced with an orthographic camera (left: parallel rays from the window points
+//! S, D = [0, 0, −1] in camera space) and a perspective one (right: rays from the observer O
+//! through S, D = S − O), for the same window at distance p. Each panel is drawn on the plane that
+//! holds its row of rays: u to the right and the row's viewing direction up (in 2D, the camera's
+//! u and −w). Far hits on unbounded planes are left beyond the panel's edge, so the window stays
+//! large enough to read.
+
+use glam::DVec2;
+
+use super::Input;
+use crate::figure::drawing::{Align, Drawing, Sample, Style, TextOpts, View};
+use crate::figure::labels::Label;
+use crate::figure::parts::{
+    camera_plane, draw_objects, draw_observer, draw_ray, label, label_objects, legend_points, legend_role,
+    object_extent, plane_note,
+};
+use crate::figure::plane::{PagePlane, Planar};
+use crate::figure::source::{Target, Traced};
+use crate::figure::style::{self, RayRole, TextSize};
+use crate::figure::FigureError;
+use crate::scene::camera::{Camera, Projection};
+
+/// One primary ray on the page: where it starts and where it ends (a hit, or the far edge).
+struct Primary {
+    from: DVec2,
+    hit: Option<DVec2>,
+    dir: DVec2,
+}
+
+/// The primary rays of one trace (its roots), on `plane`.
+fn primaries<V: Planar>(traced: &Traced<V>, plane: &PagePlane<V>) -> Vec<Primary> {
+    traced
+        .log
+        .roots()
+        .map(|k| {
+            let n = &traced.log.nodes[k];
+            Primary {
+                from: plane.point(n.start.origin),
+                hit: n.end.as_ref().and_then(|e| e.hit).map(|h| plane.point(h.point)),
+                dir: plane.dir(n.start.direction),
+            }
+        })
+        .collect()
+}
+
+/// Where a ray reaches the far edge `y_far` of a panel shifted by `offset`.
+fn far_end(p: &Primary, y_far: f64, offset: DVec2) -> DVec2 {
+    if p.dir.y > 1e-12 {
+        p.from + p.dir * ((y_far - (p.from.y - offset.y)) / p.dir.y)
+    } else {
+        p.from + p.dir.normalize_or_zero() * y_far
+    }
+}
+
+/// Draws the figure.
+///
+/// # Errors
+/// When the two traces (orthographic, perspective) are not there.
+pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    let [ortho, persp] = input.traces.traces.as_slice() else {
+        return Err(FigureError("projections needs an orthographic and a perspective trace".into()));
+    };
+    let (scene, lang) = (input.scene, input.lang);
+    let cam = &scene.camera;
+    let v_row = match ortho.targets.first() {
+        Some(Target::Pixel { uv, .. }) => uv.get(1).copied().unwrap_or(0.0),
+        _ => 0.0,
+    };
+    // The plane of each panel's row of rays: the orthographic rays start on the window row and
+    // run along −w; the perspective ones fan out from O through the row.
+    let frame = &cam.frame;
+    let row_plane = |projection: Projection| {
+        let plane = match projection {
+            Projection::Orthographic => PagePlane::spanned(cam.eye + frame.v * v_row, frame.u, -frame.w),
+            Projection::Perspective => {
+                PagePlane::spanned(cam.eye, frame.u, frame.v * v_row - frame.w * cam.p)
+            }
+        };
+        plane.unwrap_or_else(|| camera_plane(scene, cam.eye, true))
+    };
+    let planes = [row_plane(Projection::Orthographic), row_plane(Projection::Perspective)];
+    let window = |plane: &PagePlane<V>| {
+        (
+            plane.point(cam.window_point(cam.window.l, v_row)),
+            plane.point(cam.window_point(cam.window.r, v_row)),
+        )
+    };
+
+    // One box that holds both panels' content, so that both are drawn at the same scale. It
+    // reaches as far as the bounded objects hit (at least 3p); a ray that goes farther leaves it.
+    let mut points = Vec::new();
+    let mut bounded = Vec::new();
+    for (traced, plane) in [ortho, persp].into_iter().zip(&planes) {
+        let (wl, wr) = window(plane);
+        points.extend([plane.point(cam.eye), wl, wr]);
+        for n in &traced.log.nodes {
+            if let Some(hit) = n.end.as_ref().and_then(|e| e.hit) {
+                if scene.objects[hit.object.index].shape.bounds().is_some() {
+                    bounded.push(plane.point(hit.point));
+                    points.extend(object_extent(scene, plane, &[hit.object.index]));
+                }
+            }
+        }
+    }
+    let y_near = points.iter().chain(&bounded).map(|p| p.y).fold(3.0 * cam.p, f64::max);
+    let y_far = y_near * 1.1;
+    // The end drawn for a ray: its hit when inside the box, else where it reaches y_far.
+    let end = |p: &Primary, offset: DVec2| match p.hit {
+        Some(h) if h.y <= y_far => h,
+        _ => far_end(p, y_far, offset),
+    };
+    for (traced, plane) in [ortho, persp].into_iter().zip(&planes) {
+        points.extend(primaries(traced, plane).iter().map(|p| end(p, DVec2::ZERO)));
+    }
+    let (lo, hi) = points.iter().fold((points[0], points[0]), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    let pad = 0.06 * (hi - lo).max_element();
+    let (lo, hi) = (lo - DVec2::splat(pad), hi + DVec2::splat(pad));
+    let width = hi.x - lo.x;
+    let shift = DVec2::new(width * 1.12, 0.0);
+
+    d.set_title(input.t(Label::TitleProjections));
+    let row = match ortho.targets.first() {
+        Some(Target::Pixel { j, .. }) if V::DIM == 3 => format!(" · {} j = {j}", input.t(Label::Row)),
+        _ => String::new(),
+    };
+    let columns: Vec<String> = ortho
+        .targets
+        .iter()
+        .filter_map(|t| match t {
+            Target::Pixel { i, .. } => Some(i.to_string()),
+            Target::Ray => None,
+        })
+        .collect();
+    d.set_caption(&format!(
+        "{} {}{row} · {} i = {} · {}{}",
+        input.t(Label::Scene),
+        crate::figure::labels::escape(&input.traces.scene_name),
+        input.t(Label::Columns),
+        columns.join(", "),
+        input.t(Label::PrimaryOnly),
+        plane_note(V::DIM, Label::PlaneOfRow, None, lang),
+    ));
+    legend_role(d, RayRole::Primary, lang);
+    legend_points(d, lang, true, false, false);
+    d.legend_entry(input.t(Label::ViewWindow), window_style(), Sample::Line);
+    // Room above the panels for their headings.
+    d.fit_view(&[lo, hi + shift + DVec2::new(0.0, 2.5 * pad)], 0.0);
+
+    let mut anchors = Vec::new();
+    for ((traced, offset), plane) in [(ortho, DVec2::ZERO), (persp, shift)].into_iter().zip(&planes) {
+        let panel = plane.shifted(offset);
+        let clip = View::new(lo.x + offset.x, hi.x + offset.x, lo.y, hi.y).unwrap_or(d.view);
+        anchors.push((draw_objects(d, scene, &panel, &clip, &[], style::BLACK), offset));
+        let (a, b) = window(&panel);
+        d.segment("window", a, b, window_style());
+        for p in primaries(traced, &panel) {
+            draw_ray(d, RayRole::Primary, p.from, end(&p, offset));
+        }
+        let eye = panel.point(cam.eye);
+        draw_observer(d, eye);
+        for p in primaries(traced, &panel) {
+            if let Some(h) = p.hit.filter(|h| h.y <= y_far) {
+                d.dot("hit", h, style::HIT);
+            }
+        }
+        // The window points S the rays start at (orthographic) or pass through (perspective).
+        for s in window_points(traced, &panel, cam) {
+            d.marker(
+                "window-point",
+                s,
+                style::DOT_RADIUS * 0.7,
+                style::WHITE,
+                style::outline(style::DARK_GREY),
+            );
+        }
+        let heading = if traced.projection == Projection::Orthographic {
+            Label::Orthographic
+        } else {
+            Label::Perspective
+        };
+        let title_at = DVec2::new((lo.x + hi.x) / 2.0 + offset.x, hi.y);
+        let opts = TextOpts::LABEL.align(Align::ABOVE).size(TextSize::Body).bold().offset(0.0, 12.0);
+        d.text("panel-title", title_at, input.t(heading), opts);
+    }
+    // Labels: O, S, D and p in each panel.
+    for ((traced, offset), plane) in [(ortho, DVec2::ZERO), (persp, shift)].into_iter().zip(&planes) {
+        let panel = plane.shifted(offset);
+        let eye = panel.point(cam.eye);
+        label(d, eye, "O");
+        if let Some(s) = window_points(traced, &panel, cam).last() {
+            let opts = TextOpts::LABEL.align(Align::RIGHT_OF).offset(18.0, -6.0);
+            d.text("label", *s, "S", opts);
+        }
+        let middle = primaries(traced, &panel);
+        if let Some(p) = middle.get(middle.len() / 2) {
+            let to = end(p, offset);
+            let text = if traced.projection == Projection::Orthographic {
+                "D = [0, 0, −1]"
+            } else {
+                "D = S − O"
+            };
+            label(d, p.from + (to - p.from) * 0.6, text);
+        }
+        if traced.projection == Projection::Perspective {
+            // The distance p, as a dimension line left of the window.
+            let (left, _) = window(&panel);
+            let x = left.x - 0.04 * width;
+            let (a, b) = (DVec2::new(x, eye.y), DVec2::new(x, left.y));
+            d.segment("p", a, b, style::normal());
+            let opts = TextOpts::LABEL.align(Align::LEFT_OF).offset(-10.0, 0.0);
+            d.text("label", (a + b) / 2.0, "p", opts);
+        }
+    }
+    for (list, _) in &anchors {
+        label_objects(d, scene, list);
+    }
+    Ok(())
+}
+
+/// The window points S of a trace's pixels, on `plane`.
+fn window_points<V: Planar>(traced: &Traced<V>, plane: &PagePlane<V>, cam: &Camera<V>) -> Vec<DVec2> {
+    traced
+        .targets
+        .iter()
+        .filter_map(|t| match t {
+            Target::Pixel { uv, .. } => {
+                let cam_v = uv.get(1).copied().unwrap_or(0.0);
+                Some((uv[0], cam_v))
+            }
+            Target::Ray => None,
+        })
+        .map(|(u, v)| plane.point(cam.window_point(u, v)))
+        .collect()
+}
+
+/// The view window's stroke: thick dark grey.
+fn window_style() -> Style {
+    Style::solid(style::DARK_GREY, style::OBJECT_WIDTH * 1.5)
+}

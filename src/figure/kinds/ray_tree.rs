@@ -1,0 +1,278 @@
+//! `ray-tree` (lecture "Ray tracing – arborele de raze", algorithm.md §4, §6): the recorded ray
+//! tree of one pixel as a graph. Each node is the ray that reached a hit — P, then R_k and T_k
+//! spawned at hit I_k — filled with the colour it returned and ringed in its kind's colour, with
+//! the object it hit (or the background) below it; the shadow rays L_k of each hit are leaves with
+//! their factor s. Rows are the levels n (P is level 1); the depth limit `max_depth` is drawn
+//! under the last level allowed to spawn, and nodes it stopped are marked.
+
+use glam::DVec2;
+
+use super::Input;
+use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
+use crate::figure::labels::{escape, Label};
+use crate::figure::parts::{self, legend_role, num, sub, swatch, Names};
+use crate::figure::plane::Planar;
+use crate::figure::style::{self, RayRole, TextSize};
+use crate::figure::FigureError;
+use crate::record::event::Event;
+use crate::record::EventLog;
+
+/// Above this many leaves the shadow-ray leaves are left out.
+const MAX_LEAVES: usize = 18;
+/// The aspect (width / height) the graph is laid out for: that of a slide's plot area beside
+/// the legend.
+const ASPECT: f64 = 1.25;
+
+/// A node of the drawn graph: a ray node of the log, or a shadow ray of one.
+#[derive(Clone, Debug)]
+enum Vertex {
+    /// A ray node (index into `log.nodes`).
+    Ray(usize),
+    /// Shadow ray `m` (the m-th shadow event) of ray node `parent`: light, s and whether blocked.
+    Shadow { parent: usize, light: usize, s: f64, blocked: bool },
+}
+
+/// The children of ray node `k`: its shadow rays (when shown), then R, then T.
+fn children<V>(log: &EventLog<V>, k: usize, shadows: bool) -> Vec<Vertex> {
+    let mut out = Vec::new();
+    if shadows {
+        for l in log.events.iter().filter(|l| l.ray == Some(k)) {
+            if let Event::ShadowRay { light, occluders, s, .. } = &l.event {
+                out.push(Vertex::Shadow { parent: k, light: *light, s: *s, blocked: !occluders.is_empty() });
+            }
+        }
+    }
+    out.extend(log.nodes[k].children.iter().map(|c| Vertex::Ray(*c)));
+    out
+}
+
+/// Lays the tree out: leaves one unit apart in order, each parent over the middle of its
+/// children, one row per level. Returns every vertex with its position and parent position.
+fn layout<V>(
+    log: &EventLog<V>,
+    root: usize,
+    shadows: bool,
+    row_h: f64,
+) -> Vec<(Vertex, DVec2, Option<DVec2>)> {
+    fn walk<V>(
+        log: &EventLog<V>,
+        v: Vertex,
+        row: f64,
+        (shadows, row_h): (bool, f64),
+        next: &mut f64,
+        out: &mut Vec<(Vertex, DVec2, Option<DVec2>)>,
+    ) -> DVec2 {
+        let kids = match v {
+            Vertex::Ray(k) => children(log, k, shadows),
+            Vertex::Shadow { .. } => Vec::new(),
+        };
+        let slot = out.len();
+        out.push((v.clone(), DVec2::ZERO, None));
+        let at = if kids.is_empty() {
+            let x = *next;
+            *next += 1.0;
+            DVec2::new(x, -row * row_h)
+        } else {
+            let xs: Vec<f64> =
+                kids.into_iter().map(|c| walk(log, c, row + 1.0, (shadows, row_h), next, out).x).collect();
+            DVec2::new((xs[0] + xs[xs.len() - 1]) / 2.0, -row * row_h)
+        };
+        out[slot].1 = at;
+        at
+    }
+    let mut out = Vec::new();
+    let mut next = 0.0;
+    walk(log, Vertex::Ray(root), 0.0, (shadows, row_h), &mut next, &mut out);
+    // Each vertex's parent position, from the tree's own structure.
+    let positions: Vec<(Vertex, DVec2)> = out.iter().map(|(v, p, _)| (v.clone(), *p)).collect();
+    let of_ray =
+        |k: usize| positions.iter().find(|(v, _)| matches!(v, Vertex::Ray(j) if *j == k)).map(|(_, p)| *p);
+    out.into_iter()
+        .map(|(v, p, _)| {
+            let parent = match &v {
+                Vertex::Ray(k) => log.nodes[*k].parent.and_then(of_ray),
+                Vertex::Shadow { parent, .. } => of_ray(*parent),
+            };
+            (v, p, parent)
+        })
+        .collect()
+}
+
+/// Draws the figure.
+///
+/// # Errors
+/// When the trace has no ray.
+pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    let traced = input.main()?;
+    let log = &traced.log;
+    let root = log.roots().next().ok_or_else(|| FigureError("the trace has no ray".into()))?;
+    let scene = input.scene;
+    let names = Names::of(log);
+    let full = layout(log, root, true, 1.0);
+    let leaves = full
+        .iter()
+        .filter(|(v, _, _)| match v {
+            Vertex::Ray(k) => children(log, *k, true).is_empty(),
+            Vertex::Shadow { .. } => true,
+        })
+        .count();
+    let shadows = leaves <= MAX_LEAVES;
+    // Rows as tall as make the graph about as wide as the plot (within reason).
+    let probe = if shadows { full } else { layout(log, root, false, 1.0) };
+    let width = probe.iter().map(|(_, p, _)| p.x).fold(0.0, f64::max) + 1.7;
+    let rows = probe.iter().map(|(_, p, _)| -p.y).fold(0.0, f64::max) + 1.5;
+    let natural = width / ASPECT / rows;
+    let row_h = natural.clamp(0.55, 1.3);
+    // A deep, narrow tree: rows too close for a word under each node.
+    let deep = natural < 0.55;
+    let graph = layout(log, root, shadows, row_h);
+    let deepest = log.nodes.iter().map(|n| n.start.level).max().unwrap_or(1);
+    let stopped: Vec<usize> = log
+        .events
+        .iter()
+        .filter(|l| matches!(l.event, Event::DepthLimit { .. }))
+        .filter_map(|l| l.ray)
+        .collect();
+
+    d.set_title(input.t(Label::TitleRayTree));
+    let limit = if stopped.is_empty() { format!(" ({})", input.t(Label::NotReached)) } else { String::new() };
+    let omitted =
+        if shadows { String::new() } else { format!(" · {}", input.t(Label::ShadowLeavesOmitted)) };
+    d.set_caption(&format!(
+        "{} · {}: max\\_depth = {}{limit}{omitted}",
+        input.traced(traced),
+        input.t(Label::DepthLimit),
+        traced.max_depth
+    ));
+    d.legend_entry(
+        input.t(Label::NodeColour),
+        Style::solid(style::BLACK, 3.0),
+        Sample::Swatch(style::LIGHT_GREY),
+    );
+    let mut roles = vec![RayRole::Primary];
+    if log.nodes.iter().any(|n| n.start.kind == crate::record::event::RayKind::Reflected) {
+        roles.push(RayRole::Reflected);
+    }
+    if log.nodes.iter().any(|n| n.start.kind == crate::record::event::RayKind::Transmitted) {
+        roles.push(RayRole::Transmitted);
+    }
+    if shadows {
+        for (blocked, role) in [(false, RayRole::Shadow), (true, RayRole::BlockedShadow)] {
+            if graph.iter().any(|(v, _, _)| matches!(v, Vertex::Shadow { blocked: b, .. } if *b == blocked)) {
+                roles.push(role);
+            }
+        }
+    }
+    for role in roles {
+        legend_role(d, role, input.lang);
+    }
+    if !stopped.is_empty() {
+        d.legend_entry(input.t(Label::StoppedByDepth), stop_style(), Sample::Dot(style::WHITE));
+    }
+
+    // The legend beside the graph, which fills the rest: its corners are rarely free.
+    d.legend_place = crate::figure::drawing::LegendPlace::Outside;
+    // The view: the graph, a column for the level names on the left, the limit line below.
+    let mut points: Vec<DVec2> = graph.iter().map(|(_, p, _)| *p).collect();
+    let left = points.iter().map(|p| p.x).fold(f64::INFINITY, f64::min) - 1.5;
+    let right = points.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max) + 0.6;
+    let bottom = points.iter().map(|p| p.y).fold(0.0, f64::min) - 0.5 * row_h;
+    points.extend([DVec2::new(left, 0.4 * row_h), DVec2::new(right, bottom)]);
+    // Below the last level that may spawn children: level max_depth + 1 is the deepest.
+    let limit_y = -(f64::from(traced.max_depth) + 0.5) * row_h;
+    if !stopped.is_empty() {
+        points.push(DVec2::new(left, limit_y - 0.3 * row_h));
+    }
+    d.fit_view(&points, 0.03);
+
+    for level in 1..=deepest {
+        let y = -f64::from(level - 1) * row_h;
+        let opts = TextOpts::NOTE.align(Align::RIGHT_OF).color(style::DARK_GREY);
+        d.text("level", DVec2::new(left, y), &format!("n = {level}"), opts);
+    }
+    if !stopped.is_empty() {
+        let line =
+            Style::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH);
+        d.segment("depth-limit", DVec2::new(left, limit_y), DVec2::new(right, limit_y), line);
+        let opts = TextOpts::NOTE
+            .align(Align { h: HAlign::Left, v: VAlign::Top })
+            .offset(0.0, -8.0)
+            .color(style::VERMILLION);
+        let text = format!("{}: max\\_depth = {}", input.t(Label::DepthLimit), traced.max_depth);
+        d.text("label", DVec2::new(left, limit_y), &text, opts);
+    }
+    // Edges first, then the nodes over them, then the words.
+    for (v, p, parent) in &graph {
+        let Some(from) = parent else { continue };
+        let role = match v {
+            Vertex::Ray(k) => parts::role(log.nodes[*k].start.kind),
+            Vertex::Shadow { blocked: true, .. } => RayRole::BlockedShadow,
+            Vertex::Shadow { .. } => RayRole::Shadow,
+        };
+        d.segment(role.tag(), *from, *p, role.style());
+    }
+    for (v, p, _) in &graph {
+        match v {
+            Vertex::Ray(k) => {
+                let node = &log.nodes[*k];
+                let role = parts::role(node.start.kind);
+                let fill = node.end.as_ref().map_or(style::WHITE, |e| swatch(e.color));
+                let ring = Style::solid(role.color(), style::RAY_WIDTH);
+                d.marker("node", *p, 28.0, fill, ring);
+                if stopped.contains(k) {
+                    d.marker("stopped", *p, 40.0, style::WHITE.with_alpha(0.0), stop_style());
+                }
+            }
+            Vertex::Shadow { blocked, .. } => {
+                let role = if *blocked { RayRole::BlockedShadow } else { RayRole::Shadow };
+                d.marker(
+                    "node:shadow",
+                    *p,
+                    14.0,
+                    style::WHITE,
+                    Style::solid(role.color(), style::RAY_WIDTH * 0.8),
+                );
+            }
+        }
+    }
+    for (v, p, _) in &graph {
+        let beside = TextOpts::LABEL.align(Align::LEFT_OF).offset(-36.0, 0.0);
+        // Under the node, or beside it when the rows are too close (a deep, narrow tree).
+        let below = if deep {
+            TextOpts::NOTE.align(Align::RIGHT_OF).offset(38.0, 0.0).size(TextSize::Small)
+        } else {
+            TextOpts::NOTE.align(Align::BELOW).offset(0.0, -34.0).size(TextSize::Small)
+        };
+        match v {
+            Vertex::Ray(k) => {
+                d.text("name", *p, &names.ray[*k], beside);
+                let what = match log.nodes[*k].end.as_ref().and_then(|e| e.hit) {
+                    Some(h) => escape(&scene.object_label(h.object.index)),
+                    None => input.t(Label::Background).to_owned(),
+                };
+                // Fixed under the node: the halo keeps it readable over an edge.
+                d.text("object", *p, &what, below);
+            }
+            Vertex::Shadow { parent, light, s, .. } => {
+                let k = names.hit[*parent].unwrap_or(0);
+                let name =
+                    if scene.lights.len() > 1 { format!("L_{{{k},{}}}", light + 1) } else { sub("L", k) };
+                d.text("name", *p, &name, beside.offset(-22.0, 0.0));
+                let s_text = format!("s = {}", num(*s));
+                d.text(
+                    "object",
+                    *p,
+                    &s_text,
+                    if below.align == Align::BELOW { below.offset(0.0, -20.0) } else { below },
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The mark of a node stopped by the depth limit: a dashed vermillion ring.
+fn stop_style() -> Style {
+    Style::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH)
+        .dashed(crate::figure::drawing::Dash { on: 10.0, off: 7.0 })
+}

@@ -1,0 +1,187 @@
+//! `shadows` (lecture "Ray tracing – calculul culorii unui pixel (2)", algorithm.md §5, §11
+//! "Shadow rays are segments"): at one recorded hit I, the shadow ray L towards every light — a
+//! segment from the offset origin to the light — with the objects it meets marked where it meets
+//! them, and the shadow factor s: 1 when nothing is in between, 0 behind an opaque object, the
+//! product of the kt of the transparent ones otherwise. A 3D trace is drawn in the plane of N and
+//! the first blocked L.
+
+use glam::DVec2;
+
+use super::Input;
+use crate::figure::drawing::{Drawing, Style};
+use crate::figure::labels::Label;
+use crate::figure::parts::{
+    self, camera_plane, draw_light, draw_objects, draw_ray, label, label_objects, legend_normal,
+    legend_points, legend_role, num, object_name, plane_note, shadow_block_t, sub, text_column, Names,
+};
+use crate::figure::plane::{PagePlane, Planar};
+use crate::figure::source::shadow_node;
+use crate::figure::style::{self, RayRole, TextSize};
+use crate::figure::FigureError;
+use crate::record::event::{Event, Occluder};
+
+/// One recorded shadow ray of the node.
+struct Shadow<'a, V> {
+    light: usize,
+    origin: V,
+    direction: V,
+    occluders: &'a [Occluder],
+    s: f64,
+    /// The t where it first meets an occluder (from the recorded object tests).
+    block: Option<f64>,
+}
+
+/// Draws the figure.
+///
+/// # Errors
+/// When the trace has no shadow ray.
+pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    let traced = input.main()?;
+    let log = &traced.log;
+    let (node_index, _) =
+        shadow_node(log).ok_or_else(|| FigureError("the trace has no shadow ray".into()))?;
+    let node = &log.nodes[node_index];
+    let hit = node.end.as_ref().and_then(|e| e.hit).ok_or_else(|| FigureError("no hit".into()))?;
+    let (scene, lang) = (input.scene, input.lang);
+    let names = Names::of(log);
+    let hit_name = names.hit_name(node_index).unwrap_or_default();
+    let n_f = if hit.entering { hit.normal } else { -hit.normal };
+    let shadows: Vec<Shadow<'_, V>> = log
+        .events
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.ray == Some(node_index))
+        .filter_map(|(index, l)| match &l.event {
+            Event::ShadowRay { light, origin, direction, occluders, s, .. } => Some(Shadow {
+                light: *light,
+                origin: *origin,
+                direction: *direction,
+                occluders,
+                s: *s,
+                block: shadow_block_t(log, index),
+            }),
+            _ => None,
+        })
+        .collect();
+
+    // 2D: the scene's plane. 3D: the plane of N and the first blocked shadow ray through I.
+    let plane = if V::DIM == 2 {
+        camera_plane(scene, hit.point, false)
+    } else {
+        let along = shadows.iter().find(|s| !s.occluders.is_empty()).or(shadows.first()).map(|s| s.direction);
+        along
+            .and_then(|l| PagePlane::spanned(hit.point, l, n_f))
+            .unwrap_or_else(|| camera_plane(scene, hit.point, false))
+    };
+    let i = plane.point(hit.point);
+
+    d.set_title(input.t(Label::TitleShadows));
+    d.set_caption(&format!(
+        "{} · {hit_name} ({}){}",
+        input.traced(traced),
+        object_name(scene, hit.object),
+        plane_note(V::DIM, Label::PlaneOfNL, Some(&hit_name), lang)
+    ));
+    legend_role(d, parts::role(node.start.kind), lang);
+    if shadows.iter().any(|s| s.occluders.is_empty()) {
+        legend_role(d, RayRole::Shadow, lang);
+    }
+    if shadows.iter().any(|s| !s.occluders.is_empty()) {
+        legend_role(d, RayRole::BlockedShadow, lang);
+        d.legend_entry(
+            input.t(Label::OccluderPoint),
+            Style::NONE,
+            crate::figure::drawing::Sample::Dot(RayRole::BlockedShadow.color()),
+        );
+    }
+    legend_points(d, lang, false, true, false);
+    legend_normal(d, lang);
+
+    // The view: I, the lights, the occluders, and where the incoming ray came from (clipped).
+    let occluding: Vec<usize> =
+        shadows.iter().flat_map(|s| s.occluders.iter().map(|o| o.object.index)).collect();
+    let mut points = vec![i];
+    points.extend(scene.lights.iter().map(|l| plane.point(l.position)));
+    points.extend(parts::object_extent(scene, &plane, &occluding));
+    points.extend(parts::object_extent(scene, &plane, &[hit.object.index]));
+    let span = parts::span(&points);
+    let from = plane.point(node.start.origin);
+    let incoming =
+        if (from - i).length() > 0.6 * span { i + (from - i).normalize() * 0.6 * span } else { from };
+    points.push(incoming);
+    let column = parts::fit_with_column(d, &points, 0.08, 0.4);
+    let view = d.view;
+    // Unbounded lines stop where the text column begins, leaving its lower part to the legend.
+    let scene_part =
+        crate::figure::drawing::View::new(view.xmin(), column.x, view.ymin(), view.ymax()).unwrap_or(view);
+
+    let anchors = draw_objects(d, scene, &plane, &scene_part, &occluding, RayRole::BlockedShadow.color());
+    draw_ray(d, parts::role(node.start.kind), incoming, i);
+    for s in &shadows {
+        let role = if s.occluders.is_empty() { RayRole::Shadow } else { RayRole::BlockedShadow };
+        d.segment(
+            role.tag(),
+            plane.point(s.origin),
+            plane.point(scene.lights[s.light].position),
+            role.style(),
+        );
+    }
+    let normal_len = 0.12 * view.height();
+    if let Some(dir) = plane.dir(n_f).try_normalize() {
+        d.segment("normal", i, i + dir * normal_len, style::normal());
+        label(d, i + dir * normal_len, "N");
+    }
+    for s in &shadows {
+        if let Some(t) = s.block {
+            let at = plane.point(s.origin + s.direction * t);
+            d.marker("occluder-point", at, style::DOT_RADIUS, RayRole::BlockedShadow.color(), Style::NONE);
+        }
+    }
+    for l in &scene.lights {
+        draw_light(d, plane.point(l.position));
+    }
+    d.dot("hit", i, style::HIT);
+    label(d, i, &hit_name);
+    let light_name = |k: usize| if scene.lights.len() == 1 { "S".to_owned() } else { sub("S", k + 1) };
+    for (k, l) in scene.lights.iter().enumerate() {
+        label(d, plane.point(l.position), &light_name(k));
+    }
+    label_objects(d, scene, &anchors);
+
+    // s for every light, with the recorded occluders.
+    let mut lines = Vec::new();
+    for term in &node.lights {
+        let name = light_name(term.light);
+        let Some(s) = shadows.iter().find(|s| s.light == term.light) else {
+            lines.push(format!("{name}: N·L = {} ≤ 0 → lum = 0", num(term.n_dot_l)));
+            continue;
+        };
+        if s.occluders.is_empty() {
+            lines.push(format!("{name}: {} → s = 1", input.t(Label::NothingBetween)));
+            continue;
+        }
+        let list: Vec<String> = s
+            .occluders
+            .iter()
+            .map(|o| {
+                let what = object_name(scene, o.object);
+                if o.kt == 0.0 {
+                    format!("{what} ({})", input.t(Label::Opaque))
+                } else {
+                    format!("{what} (kt = {})", num(o.kt))
+                }
+            })
+            .collect();
+        lines.push(format!("{name}: {}", list.join(", ")));
+        let product: Vec<String> = s.occluders.iter().map(|o| num(o.kt)).collect();
+        lines.push(if s.occluders.iter().any(|o| o.kt == 0.0) {
+            "   → s = 0".to_owned()
+        } else if product.len() == 1 {
+            format!("   → s = kt = {}", num(s.s))
+        } else {
+            format!("   → s = Π kt = {} = {}", product.join(" · "), num(s.s))
+        });
+    }
+    text_column(d, column + DVec2::new(0.02 * view.width(), 0.0), &lines, TextSize::Body, 50.0);
+    Ok(())
+}

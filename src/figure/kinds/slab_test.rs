@@ -1,0 +1,33 @@
+//! `slab-test` (lecture "Utilizarea de volume încadratoare (3), (4)", algorithm.md §9 "Axis-aligned
+//! box (slab test)"): the box of one object, a ray that meets it (the lecture's red ray) and one
+//! that misses it (the blue one), each crossing the planes x = xmin, x = xmax, y = ymin, … at
+//! the recorded t, with the per-axis intervals [t_ix, t_ex] and the verdict
+//! max(t_i) ≤ min(t_e). Traced with `--accel bounds --bounds aabb`.
+
+use super::slabs::{self, axis_name, Slab};
+use super::Input;
+use crate::accel::Layout;
+use crate::bounds::BoundingVolume;
+use crate::figure::drawing::Drawing;
+use crate::figure::labels::Label;
+use crate::figure::plane::Planar;
+use crate::figure::FigureError;
+
+/// Draws the figure.
+///
+/// # Errors
+/// When the traces hold no box test of the object.
+pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    let focus = input.traces.focus.ok_or_else(|| FigureError("no object was tested".into()))?;
+    let Layout::Volumes(entries) = input.traces.accel.layout() else {
+        return Err(FigureError("slab-test reads per-object volumes (--accel bounds)".into()));
+    };
+    let volume = entries.iter().find(|(p, _)| p.object() == focus).map(|(_, v)| *v);
+    let Some(BoundingVolume::Aabb(b)) = volume else {
+        return Err(FigureError("the object has no box (--bounds aabb)".into()));
+    };
+    let slabs: Vec<Slab<V>> = (0..V::DIM)
+        .map(|a| Slab { normal: V::axis(a), lo: b.min[a], hi: b.max[a], name: axis_name(a).to_owned() })
+        .collect();
+    slabs::draw(input, d, Label::TitleSlabTest, &slabs)
+}

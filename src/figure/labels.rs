@@ -1,0 +1,510 @@
+//! Every word a figure shows, in English and Romanian, in the lecture's notation (algorithm.md's
+//! "Romanian terms worth keeping": rază primară, rază reflectată, rază transmisă, arborele de raze,
+//! fereastra vizuală, volum încadrator, subdivizare adaptivă). Labels are markup for
+//! `figure::text` (`n_1` → n₁, `θ_i` → θᵢ); the kinds compose them with numbers, never with words
+//! of their own.
+
+use super::source::{Pick, Target};
+use super::Lang;
+
+/// A fixed label or caption piece.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Label {
+    // Titles.
+    /// Title of `uv-map`.
+    TitleUvMap,
+    /// Title of `projections`.
+    TitleProjections,
+    /// Title of `rays`.
+    TitleRays,
+    /// Title of `refraction`.
+    TitleRefraction,
+    /// Title of `local-model` (followed by the hit's name).
+    TitleLocalModel,
+    /// Title of `ray-tree`.
+    TitleRayTree,
+    /// Title of `shadows`.
+    TitleShadows,
+    /// Title of `slab-test`.
+    TitleSlabTest,
+    /// Title of `kay-kajiya`.
+    TitleKayKajiya,
+    /// Title of `bvh`.
+    TitleBvh,
+    /// Title of `grid-dda`.
+    TitleGridDda,
+    /// Title of `octree`.
+    TitleOctree,
+    /// Title of `adaptive`.
+    TitleAdaptive,
+    /// Title of `heat-map`.
+    TitleHeatMap,
+
+    // Rays and points.
+    /// The primary ray P.
+    PrimaryRay,
+    /// The reflected ray R.
+    ReflectedRay,
+    /// The transmitted ray T.
+    TransmittedRay,
+    /// A shadow ray that reaches its light.
+    ShadowRay,
+    /// A shadow ray stopped by an occluder.
+    BlockedShadowRay,
+    /// A hit point.
+    HitPoint,
+    /// Where a shadow ray meets an occluder.
+    OccluderPoint,
+    /// A light source.
+    LightSource,
+    /// The observer O.
+    Observer,
+    /// The normal N.
+    Normal,
+    /// The view window.
+    ViewWindow,
+    /// The image (viewport).
+    Image,
+    /// The background (a miss).
+    Background,
+    /// The chosen pixel.
+    ChosenPixel,
+    /// The pixel's cell mapped into the window.
+    PixelInWindow,
+    /// The window–viewport transform.
+    WindowViewport,
+    /// Orthographic projection.
+    Orthographic,
+    /// Perspective projection.
+    Perspective,
+    /// L: towards the light.
+    VectorL,
+    /// V: towards the viewer.
+    VectorV,
+    /// H: the bisector of L and V.
+    VectorH,
+    /// The surface (tangent at I).
+    Surface,
+    /// The depth limit.
+    DepthLimit,
+    /// A node stopped by the depth limit.
+    StoppedByDepth,
+    /// A ray-tree node: its colour.
+    NodeColour,
+    /// Total internal reflection.
+    Tir,
+    /// No transmitted ray.
+    NoT,
+    /// The scene (caption).
+    Scene,
+    /// A ray given by hand (caption).
+    GivenRay,
+    /// Nothing in between (s = 1).
+    NothingBetween,
+    /// Opaque occluder (s = 0).
+    Opaque,
+    /// The plane of the camera's u and w axes (3D projection note).
+    PlaneUw,
+    /// Sections vs projection outlines (3D note).
+    SectionsNote,
+    /// Plane of incidence (refraction).
+    PlaneOfIncidence,
+    /// Plane of N and L (shadows).
+    PlaneOfNL,
+    /// Vectors at their true angles to N (local model, 3D).
+    TrueAnglesToN,
+    /// Primary rays only (projections caption).
+    PrimaryOnly,
+    /// Rows counted from the bottom.
+    RowsFromBottom,
+    /// The level n of a node.
+    Level,
+    /// "not reached" (depth limit).
+    NotReached,
+    /// "shadow rays omitted" (crowded tree).
+    ShadowLeavesOmitted,
+    /// The critical angle.
+    CriticalAngle,
+    /// "light" (numbered in lists).
+    Light,
+    /// "picked" (caption).
+    Picked,
+    /// "row" (caption).
+    Row,
+    /// "columns" (caption).
+    Columns,
+    /// Each panel on the plane of its row of rays.
+    PlaneOfRow,
+    /// The inside of an object.
+    Inside,
+    /// A light's intensity in the local model's formula.
+    Isrc,
+    /// A traced sample (legend of `adaptive`).
+    SampleTraced,
+    /// A sample read again by another square.
+    SampleReused,
+    /// A leaf square's colour.
+    LeafColour,
+    /// "split while" (the rule of `adaptive`).
+    SplitWhen,
+    /// "samples traced".
+    SamplesTraced,
+    /// "reused".
+    Reused,
+    /// "pixel" (its colour).
+    PixelColour,
+    /// "primary rays traced" (heat-map caption).
+    RaysTraced,
+    /// "mean per pixel".
+    MeanPerPixel,
+    /// "rays" after a count in the legend.
+    RaysPerPixel,
+    /// The adaptive threshold.
+    Threshold,
+    /// K = 0: the corners, no subdivision.
+    CornersOnly,
+    /// A ray meets the volume.
+    MeetsVolume,
+    /// A ray misses the volume.
+    MissesVolume,
+    /// Drawn in the plane of two axes (followed by their names).
+    AxisPlane,
+    /// Legend: the ray that meets the volume.
+    RayMeets,
+    /// Legend: the ray that misses it.
+    RayMisses,
+    /// Legend: a slab's planes (followed by its name).
+    SlabPlanes,
+    /// Caption: nodes tested.
+    NodesTested,
+    /// Caption: nodes entered.
+    NodesEntered,
+    /// Caption: objects tested.
+    ObjectsTested,
+    /// Legend: a node whose box the ray met.
+    NodeEntered,
+    /// Legend: a node whose box it missed.
+    NodeMissed,
+    /// Legend: a node never tested.
+    NodeUntested,
+    /// "grid" (caption, before its cells).
+    Grid,
+    /// "cells visited".
+    CellsVisited,
+    /// Legend: a visited cell.
+    CellVisited,
+    /// Legend: where the ray leaves a cell.
+    CellExit,
+    /// Legend: a hit found beyond its cell.
+    FoundBeyond,
+    /// "cell" (table head).
+    Cell,
+    /// The pitfall: "found while visiting cell".
+    PitfallIn,
+    /// The cell's exit t.
+    CellExitT,
+    /// The pitfall's rule.
+    PitfallRule,
+}
+
+impl Label {
+    /// The label in `lang`.
+    #[must_use]
+    pub fn text(self, lang: Lang) -> &'static str {
+        let (en, ro) = self.both();
+        match lang {
+            Lang::En => en,
+            Lang::Ro => ro,
+        }
+    }
+
+    /// The English and the Romanian text.
+    #[must_use]
+    pub const fn both(self) -> (&'static str, &'static str) {
+        match self {
+            Self::TitleUvMap => (
+                "From pixel (i, j) to window point (u, v)",
+                "De la pixelul (i, j) la punctul (u, v) al ferestrei",
+            ),
+            Self::TitleProjections => (
+                "Primary rays: orthographic and perspective projection",
+                "Raze primare: proiecția ortografică și proiecția perspectivă",
+            ),
+            Self::TitleRays => ("All the rays of one pixel", "Toate razele unui pixel"),
+            Self::TitleRefraction => (
+                "Reflection and refraction at a hit point",
+                "Reflexia și refracția într-un punct de intersecție",
+            ),
+            Self::TitleLocalModel => ("The local illumination model at", "Modelul de iluminare locală în"),
+            Self::TitleRayTree => ("The ray tree", "Arborele de raze"),
+            Self::TitleShadows => {
+                ("Shadow rays and the shadow factor s", "Raze de umbră și factorul de umbră s")
+            }
+            Self::TitleSlabTest => {
+                ("The slab test of an axis-aligned box", "Testul cu plăci al unui paralelipiped")
+            }
+            Self::TitleKayKajiya => (
+                "Kay–Kajiya slabs: a bounding volume of plane pairs",
+                "Volumul încadrator Kay–Kajiya: perechi de plane paralele",
+            ),
+            Self::TitleBvh => (
+                "Bounding volume hierarchy: the nodes a ray visits",
+                "Ierarhia de volume încadratoare: nodurile vizitate de rază",
+            ),
+            Self::TitleGridDda => {
+                ("Regular grid: the voxels the DDA visits", "Grila regulată: voxelii parcurși de DDA")
+            }
+            Self::TitleOctree => {
+                ("Octree: adaptive subdivision of the scene", "Arborele octal: divizarea adaptivă a scenei")
+            }
+            Self::TitleAdaptive => {
+                ("Adaptive subdivision of one pixel", "Subdivizarea adaptivă a unui pixel")
+            }
+            Self::TitleHeatMap => ("Primary rays per pixel", "Raze primare pe pixel"),
+
+            Self::PrimaryRay => ("primary ray P", "rază primară P"),
+            Self::ReflectedRay => ("reflected ray R", "rază reflectată R"),
+            Self::TransmittedRay => ("transmitted ray T", "rază transmisă T"),
+            Self::ShadowRay => ("shadow ray L, free (s = 1)", "rază de umbră L, liberă (s = 1)"),
+            Self::BlockedShadowRay => {
+                ("shadow ray L with obstacles (s < 1)", "rază de umbră L cu obstacole (s < 1)")
+            }
+            Self::HitPoint => ("hit point I", "punct de intersecție I"),
+            Self::OccluderPoint => ("L meets an object", "L întâlnește un obiect"),
+            Self::LightSource => ("light source S", "sursă de lumină S"),
+            Self::Observer => ("observer O", "observatorul O"),
+            Self::Normal => ("normal N", "normala N"),
+            Self::ViewWindow => ("view window", "fereastra vizuală"),
+            Self::Image => ("image", "imaginea"),
+            Self::Background => ("background", "fond"),
+            Self::ChosenPixel => ("the pixel", "pixelul"),
+            Self::PixelInWindow => ("the pixel in the window", "pixelul în fereastră"),
+            Self::WindowViewport => ("window–viewport transform", "transformarea fereastră–poartă"),
+            Self::Orthographic => ("orthographic projection", "proiecția ortografică"),
+            Self::Perspective => ("perspective projection", "proiecția perspectivă"),
+            Self::VectorL => ("L: towards the light", "L: spre sursa de lumină"),
+            Self::VectorV => ("V: towards the observer", "V: spre observator"),
+            Self::VectorH => ("H: bisector of L and V", "H: bisectoarea lui L și V"),
+            Self::Surface => ("surface", "suprafața"),
+            Self::DepthLimit => ("depth limit", "adâncimea maximă"),
+            Self::StoppedByDepth => ("stopped by the depth limit", "oprit de adâncimea maximă"),
+            Self::NodeColour => ("node: the colour it returns", "nod: culoarea întoarsă"),
+            Self::Tir => ("total internal reflection", "reflexie totală internă"),
+            Self::NoT => ("no transmitted ray T", "nicio rază transmisă T"),
+            Self::Scene => ("scene", "scena"),
+            Self::GivenRay => ("a given ray", "o rază dată"),
+            Self::NothingBetween => ("nothing in between", "nimic între ele"),
+            Self::Opaque => ("opaque", "opac"),
+            Self::PlaneUw => (
+                "3D trace projected onto the camera's (u, w) plane",
+                "traseu 3D proiectat pe planul (u, w) al camerei",
+            ),
+            Self::SectionsNote => (
+                "solid outlines: sections by that plane; dashed: outlines of the projections",
+                "contur plin: secțiunea cu acest plan; punctat: conturul proiecției",
+            ),
+            Self::PlaneOfIncidence => {
+                ("drawn in the plane of incidence (N, D)", "desenat în planul de incidență (N, D)")
+            }
+            Self::PlaneOfNL => ("drawn in the plane of N and L", "desenat în planul lui N și L"),
+            Self::TrueAnglesToN => (
+                "each vector drawn at its true angle to N, on the side it leans to",
+                "fiecare vector desenat la unghiul său real față de N, de partea spre care se înclină",
+            ),
+            Self::PrimaryOnly => ("primary rays only", "numai razele primare"),
+            Self::RowsFromBottom => ("rows j count from the bottom", "rândurile j se numără de jos"),
+            Self::Level => ("level", "nivelul"),
+            Self::NotReached => ("not reached", "neatinsă"),
+            Self::ShadowLeavesOmitted => {
+                ("shadow rays L left out (crowded tree)", "razele de umbră L omise (arbore aglomerat)")
+            }
+            Self::CriticalAngle => ("critical angle", "unghiul critic"),
+            Self::Light => ("light", "sursa"),
+            Self::Picked => ("picked", "ales"),
+            Self::Row => ("row", "rândul"),
+            Self::Columns => ("columns", "coloanele"),
+            Self::Inside => ("inside the object", "interiorul obiectului"),
+            Self::Isrc => ("Isrc", "Isursa"),
+            Self::SampleTraced => ("sample: one primary ray", "eșantion: o rază primară"),
+            Self::SampleReused => ("read again by another square", "refolosit de alt pătrat"),
+            Self::LeafColour => ("leaf: the mean of its corners", "frunză: media colțurilor"),
+            Self::SplitWhen => ("a square splits while", "un pătrat se divide cât timp"),
+            Self::SamplesTraced => ("samples traced", "eșantioane trasate"),
+            Self::Reused => ("reused", "refolosite"),
+            Self::PixelColour => ("pixel", "pixelul"),
+            Self::RaysTraced => ("primary rays traced", "raze primare trasate"),
+            Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
+            Self::RaysPerPixel => ("rays", "raze"),
+            Self::Threshold => ("threshold", "pragul"),
+            Self::MeetsVolume => ("meets the volume", "intersectează volumul"),
+            Self::MissesVolume => ("misses the volume", "ratează volumul"),
+            Self::AxisPlane => ("drawn in the plane", "desenat în planul"),
+            Self::RayMeets => ("the ray that meets the volume", "raza care intersectează volumul"),
+            Self::RayMisses => ("a ray that misses it", "o rază care îl ratează"),
+            Self::SlabPlanes => ("planes", "planele"),
+            Self::NodesTested => ("nodes tested", "noduri testate"),
+            Self::NodesEntered => ("met", "intersectate"),
+            Self::ObjectsTested => ("objects tested", "obiecte testate"),
+            Self::NodeEntered => ("box met (n: test order)", "volum intersectat (n: ordinea testului)"),
+            Self::NodeMissed => ("box missed: subtree skipped", "volum ratat: subarbore sărit"),
+            Self::NodeUntested => ("never tested", "netestat"),
+            Self::Grid => ("grid", "grila"),
+            Self::CellsVisited => ("cells visited", "voxeli parcurși"),
+            Self::CellVisited => ("cell visited (k: order)", "voxel parcurs (k: ordinea)"),
+            Self::CellExit => ("ray leaves the cell (min tMax)", "raza iese din voxel (min tMax)"),
+            Self::FoundBeyond => ("hit found beyond its cell", "intersecție găsită dincolo de voxel"),
+            Self::Cell => ("cell", "voxel"),
+            Self::PitfallIn => ("the pitfall: hit found in cell", "capcana: intersecție găsită în voxelul"),
+            Self::CellExitT => ("its exit", "ieșirea lui"),
+            Self::PitfallRule => (
+                "a hit counts only within its cell:\nthe walk goes on",
+                "o intersecție contează numai în voxelul ei:\nparcurgerea continuă",
+            ),
+            Self::CornersOnly => {
+                ("K = 0: the 4 corners, no subdivision", "K = 0: cele 4 colțuri, fără subdivizare")
+            }
+            Self::PlaneOfRow => (
+                "each panel drawn in the plane of its row of rays (u and the row's direction)",
+                "fiecare panou desenat în planul rândului său de raze (u și direcția rândului)",
+            ),
+        }
+    }
+}
+
+/// Why the figure picked its pixel, as a caption phrase.
+#[must_use]
+pub fn pick_reason(pick: Pick, lang: Lang) -> Option<&'static str> {
+    let (en, ro) = match pick {
+        Pick::Given => return None,
+        Pick::Walk => {
+            ("its walk through the structure shows the most", "parcurgerea structurii arată cel mai mult")
+        }
+        Pick::VolumeHit => ("its ray meets the volume", "raza sa intersectează volumul"),
+        Pick::VolumeMiss => {
+            ("its ray misses the volume by a little", "raza sa ratează volumul la mică distanță")
+        }
+        Pick::Subdivided => {
+            ("its subdivision mixes the most levels", "subdivizarea sa amestecă cele mai multe niveluri")
+        }
+        Pick::Default => ("the centre pixel", "pixelul din centru"),
+        Pick::OffCentre => ("off the centre, in the upper right", "în afara centrului, sus în dreapta"),
+        Pick::OffCentreRow => ("right of the centre", "la dreapta centrului"),
+        Pick::Refraction => ("its first refraction is the clearest", "are cea mai clară refracție"),
+        Pick::Tir => {
+            ("its trace has a total internal reflection", "traseul său are o reflexie totală internă")
+        }
+        Pick::BlockedShadow => {
+            ("a shadow ray of its trace meets an object", "o rază de umbră a traseului întâlnește un obiect")
+        }
+        Pick::Rich => ("its trace has the most kinds of rays", "traseul are cele mai multe tipuri de raze"),
+        Pick::Lit => {
+            ("its hit is lit, N, L, H, V well apart", "intersecția e luminată, N, L, H, V distincte")
+        }
+    };
+    Some(match lang {
+        Lang::En => en,
+        Lang::Ro => ro,
+    })
+}
+
+/// The traced pixel or ray as a caption phrase: `pixel (3, 2)` (`pixel 5` in 2D).
+#[must_use]
+pub fn target(target: &Target, dim: usize, lang: Lang) -> String {
+    match target {
+        Target::Pixel { i, j, .. } => {
+            let word = match lang {
+                Lang::En => "pixel",
+                Lang::Ro => "pixelul",
+            };
+            if dim == 2 {
+                format!("{word} {i}")
+            } else {
+                format!("{word} ({i}, {j})")
+            }
+        }
+        Target::Ray => Label::GivenRay.text(lang).to_owned(),
+    }
+}
+
+/// `scene NAME · pixel (i, j) (picked: …)`: the caption's first part.
+#[must_use]
+pub fn traced(scene_name: &str, what: &Target, pick: Pick, dim: usize, lang: Lang) -> String {
+    let mut out = format!("{} {} · {}", Label::Scene.text(lang), escape(scene_name), target(what, dim, lang));
+    if let Some(why) = pick_reason(pick, lang) {
+        out.push_str(&format!(" ({}: {why})", Label::Picked.text(lang)));
+    }
+    out
+}
+
+/// A name made safe for the markup (`_`, `^`, `{`, `}`, `\` become literal).
+#[must_use]
+pub fn escape(name: &str) -> String {
+    let mut out = String::with_capacity(name.len());
+    for c in name.chars() {
+        if matches!(c, '_' | '^' | '{' | '}' | '\\') {
+            out.push('\\');
+        }
+        out.push(c);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::figure::text::has_glyph;
+
+    /// Every variant, for the checks below (kept in step with the enum by the match in `both`).
+    const ALL: &[Label] = &[
+        Label::TitleUvMap,
+        Label::TitleProjections,
+        Label::TitleRays,
+        Label::TitleRefraction,
+        Label::TitleLocalModel,
+        Label::TitleRayTree,
+        Label::TitleShadows,
+        Label::TitleSlabTest,
+        Label::TitleKayKajiya,
+        Label::TitleBvh,
+        Label::TitleGridDda,
+        Label::TitleOctree,
+        Label::TitleAdaptive,
+        Label::TitleHeatMap,
+        Label::PrimaryRay,
+        Label::ReflectedRay,
+        Label::TransmittedRay,
+        Label::ShadowRay,
+        Label::BlockedShadowRay,
+        Label::HitPoint,
+        Label::LightSource,
+        Label::Observer,
+        Label::Normal,
+        Label::ViewWindow,
+        Label::Tir,
+        Label::SectionsNote,
+    ];
+
+    #[test]
+    fn both_languages_differ_and_every_character_has_a_glyph() {
+        for label in ALL {
+            let (en, ro) = label.both();
+            assert!(!en.is_empty() && !ro.is_empty());
+            assert_ne!(en, ro, "{label:?}");
+            for c in en.chars().chain(ro.chars()) {
+                assert!(has_glyph(c) || c == ' ', "{label:?}: {c:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn romanian_uses_the_lecture_terms() {
+        assert_eq!(Label::PrimaryRay.text(Lang::Ro), "rază primară P");
+        assert_eq!(Label::TitleRayTree.text(Lang::Ro), "Arborele de raze");
+        assert_eq!(Label::ViewWindow.text(Lang::Ro), "fereastra vizuală");
+    }
+
+    #[test]
+    fn names_are_escaped() {
+        assert_eq!(escape("glass_ball^2"), "glass\\_ball\\^2");
+    }
+}

@@ -1,0 +1,452 @@
+//! Pieces every diagram shares (product.md "Diagrams"): the names of a trace's rays and hits in the
+//! lecture's notation (P, R₁, T₁, I₁ …), numbers as a slide shows them, the scene's objects on a
+//! page plane, rays clipped to the view, the observer, the lights, the legend rows of the ray kinds,
+//! and a view that leaves a column free for text. Drawing only: nothing here traces.
+
+use glam::DVec2;
+
+use super::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use super::labels::{escape, Label};
+use super::plane::{ObjectOutline, Outline, PagePlane, Planar};
+use super::style::{self, RayRole, Rgba, TextSize};
+use super::Lang;
+use crate::image::to_byte;
+use crate::record::event::{Event, ObjectRef, RayKind};
+use crate::record::EventLog;
+use crate::scene::material::Rgb;
+use crate::scene::Scene;
+
+/// A number as a slide shows it: at most 3 decimals, trailing zeros dropped, no `-0`, a true
+/// minus sign; `∞` for infinities.
+#[must_use]
+pub fn num(x: f64) -> String {
+    if x.is_infinite() {
+        return if x > 0.0 { "∞".into() } else { "−∞".into() };
+    }
+    if x != 0.0 && x.abs() < 1e-3 {
+        // Tiny values as a·10^e, two significant digits.
+        let e = x.abs().log10().floor();
+        let m = x / 10f64.powf(e);
+        let m = format!("{m:.1}").replace('-', "−");
+        return format!("{m}·10^{{{}}}", num(e));
+    }
+    let decimals = if x.abs() >= 100.0 { 1 } else { 3 };
+    let s = format!("{x:.decimals$}");
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_owned() } else { s };
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.replace('-', "−")
+    }
+}
+
+/// An angle in degrees, one decimal: `30.0°`.
+#[must_use]
+pub fn deg(radians: f64) -> String {
+    format!("{:.1}°", radians.to_degrees()).replace('-', "−")
+}
+
+/// `(0.1, 0.2, 0.3)`; a grey as one number.
+#[must_use]
+pub fn rgb_text(c: Rgb) -> String {
+    let [r, g, b] = c.0;
+    if num(r) == num(g) && num(g) == num(b) {
+        num(r)
+    } else {
+        format!("({}, {}, {})", num(r), num(g), num(b))
+    }
+}
+
+/// A linear colour as the image file would show it: `round(255·clamp(c, 0, 1))` per channel.
+#[must_use]
+pub fn swatch(c: Rgb) -> Rgba {
+    Rgba::rgb(to_byte(c.0[0]), to_byte(c.0[1]), to_byte(c.0[2]))
+}
+
+/// The colour role of a ray node's kind.
+#[must_use]
+pub fn role(kind: RayKind) -> RayRole {
+    match kind {
+        RayKind::Primary => RayRole::Primary,
+        RayKind::Reflected => RayRole::Reflected,
+        RayKind::Transmitted => RayRole::Transmitted,
+    }
+}
+
+/// The lecture's names of a trace's rays and hit points: the hits numbered I₁, I₂ … in the order
+/// the tracer reached them (pre-order), the primary ray P, and the R and T spawned at I_k named
+/// R_k and T_k; the shadow ray from I_k is L_k.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Names {
+    /// Per node, the number k of its hit I_k.
+    pub hit: Vec<Option<usize>>,
+    /// Per node, its name as markup.
+    pub ray: Vec<String>,
+}
+
+impl Names {
+    /// The names of every node of `log`.
+    #[must_use]
+    pub fn of<V>(log: &EventLog<V>) -> Self {
+        let mut hit = Vec::with_capacity(log.nodes.len());
+        let mut next = 0;
+        for node in &log.nodes {
+            if node.end.as_ref().is_some_and(|e| e.hit.is_some()) {
+                next += 1;
+                hit.push(Some(next));
+            } else {
+                hit.push(None);
+            }
+        }
+        let ray = log
+            .nodes
+            .iter()
+            .map(|node| match (node.parent, node.start.kind) {
+                (None, _) | (_, RayKind::Primary) => "P".to_owned(),
+                (Some(p), kind) => {
+                    let letter = if kind == RayKind::Reflected { "R" } else { "T" };
+                    sub(letter, hit[p].unwrap_or(0))
+                }
+            })
+            .collect();
+        Self { hit, ray }
+    }
+
+    /// `I_k` of a node with a hit.
+    #[must_use]
+    pub fn hit_name(&self, node: usize) -> Option<String> {
+        self.hit[node].map(|k| sub("I", k))
+    }
+}
+
+/// `X_k` in markup (`X_{12}` for two digits).
+#[must_use]
+pub fn sub(letter: &str, k: usize) -> String {
+    if k < 10 {
+        format!("{letter}_{k}")
+    } else {
+        format!("{letter}_{{{k}}}")
+    }
+}
+
+/// An object's name as the trace calls it, safe for the markup.
+#[must_use]
+pub fn object_name<V: Planar>(scene: &Scene<V>, object: ObjectRef) -> String {
+    escape(&scene.object_label(object.index))
+}
+
+/// Where a shadow ray first meets an occluder: the least accepted t below `d_L` among the object
+/// tests recorded just before the `shadow_ray` event at `index` in `log.events`.
+#[must_use]
+pub fn shadow_block_t<V>(log: &EventLog<V>, index: usize) -> Option<f64> {
+    let Event::ShadowRay { distance, .. } = log.events[index].event else {
+        return None;
+    };
+    log.events[..index]
+        .iter()
+        .rev()
+        .map_while(|l| match l.event {
+            Event::ObjectTest { accepted, .. } => Some(accepted),
+            _ => None,
+        })
+        .flatten()
+        .filter(|t| *t < distance)
+        .reduce(f64::min)
+}
+
+/// The part of the line through `point` along `dir` inside `view`, or `None`.
+#[must_use]
+pub fn clip_line(point: DVec2, dir: DVec2, view: &View) -> Option<(DVec2, DVec2)> {
+    let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
+    for (axis, lo, hi) in [(0, view.xmin(), view.xmax()), (1, view.ymin(), view.ymax())] {
+        let (p, d) = (point[axis], dir[axis]);
+        if d.abs() < 1e-15 {
+            if p < lo || p > hi {
+                return None;
+            }
+        } else {
+            let (a, b) = ((lo - p) / d, (hi - p) / d);
+            t0 = t0.max(a.min(b));
+            t1 = t1.min(a.max(b));
+        }
+    }
+    (t0 < t1).then(|| (point + dir * t0, point + dir * t1))
+}
+
+/// Where a ray from `from` along `dir` leaves `view` (`from` itself if it never enters or the
+/// direction is zero on the page).
+#[must_use]
+pub fn exit_point(from: DVec2, dir: DVec2, view: &View) -> DVec2 {
+    if dir.length() < 1e-12 {
+        return from;
+    }
+    match clip_line(from, dir, view) {
+        Some((_, b)) if (b - from).dot(dir) > 0.0 => b,
+        _ => from,
+    }
+}
+
+/// Draws every object of `scene` on `plane` (sections solid and filled, projection outlines faint
+/// and dashed), unbounded lines clipped to `clip`; objects in `emphasis` get a thick outline in
+/// `emphasis_color`. Returns where each visible object's name goes, for [`label_objects`] once
+/// the rays are drawn.
+pub fn draw_objects<V: Planar>(
+    d: &mut Drawing,
+    scene: &Scene<V>,
+    plane: &PagePlane<V>,
+    clip: &View,
+    emphasis: &[usize],
+    emphasis_color: Rgba,
+) -> Vec<(usize, DVec2)> {
+    let mut anchors = Vec::new();
+    for (index, object) in scene.objects.iter().enumerate() {
+        let tag = format!("object:{index}");
+        let strong = emphasis.contains(&index);
+        let section_style = if strong {
+            style::outline(emphasis_color).with_width(style::OBJECT_WIDTH * 1.6)
+        } else {
+            style::object()
+        };
+        let faint = Style::solid(style::DARK_GREY.with_alpha(0.7), style::GRID_WIDTH)
+            .dashed(style::CONSTRUCTION_DASH);
+        let mut anchor = None;
+        for ObjectOutline { outline, section } in V::outlines(&object.shape, plane) {
+            let (st, fill) = if section { (section_style, Some(style::OBJECT_FILL)) } else { (faint, None) };
+            match outline {
+                Outline::Circle { center, radius } => {
+                    let c = center;
+                    d.circle(&tag, c, radius, st, fill);
+                    anchor.get_or_insert(c + DVec2::new(radius * 0.72, radius * 0.72));
+                }
+                Outline::Polygon(points) => {
+                    let pts: Vec<DVec2> = points;
+                    anchor.get_or_insert(top_point(&pts));
+                    d.polygon(&tag, pts, st, fill);
+                }
+                Outline::Path(points) => {
+                    let pts: Vec<DVec2> = points;
+                    anchor.get_or_insert(pts.iter().copied().sum::<DVec2>() / pts.len().max(1) as f64);
+                    d.line(&tag, pts, st);
+                }
+                Outline::Line { point, dir } => {
+                    if let Some((a, b)) = clip_line(point, dir, clip) {
+                        d.segment(&tag, a, b, st);
+                        anchor.get_or_insert(a + (b - a) * 0.12);
+                    }
+                }
+            }
+        }
+        if let Some(a) = anchor {
+            if clip.xmin() <= a.x && a.x <= clip.xmax() && clip.ymin() <= a.y && a.y <= clip.ymax() {
+                anchors.push((index, a));
+            }
+        }
+    }
+    anchors
+}
+
+/// The objects' names at the anchors of [`draw_objects`], clear of lines and labels.
+pub fn label_objects<V: Planar>(d: &mut Drawing, scene: &Scene<V>, anchors: &[(usize, DVec2)]) {
+    for &(index, a) in anchors {
+        let name = escape(&scene.object_label(index));
+        let opts = TextOpts::NOTE.color(style::DARK_GREY).avoid_overlap();
+        d.text(&format!("object-name:{index}"), a, &name, opts);
+    }
+}
+
+/// The highest vertex (for a label).
+fn top_point(points: &[DVec2]) -> DVec2 {
+    points.iter().copied().fold(DVec2::new(0.0, f64::NEG_INFINITY), |a, b| if b.y > a.y { b } else { a })
+}
+
+/// The page points that bound the objects in `indices` on `plane` (unbounded lines add none).
+#[must_use]
+pub fn object_extent<V: Planar>(scene: &Scene<V>, plane: &PagePlane<V>, indices: &[usize]) -> Vec<DVec2> {
+    indices
+        .iter()
+        .flat_map(|i| V::outlines(&scene.objects[*i].shape, plane))
+        .filter(|o| o.section)
+        .flat_map(|o| o.outline.extent())
+        .collect()
+}
+
+/// The page plane of a scene's traces: the plane of the camera's u and w axes through `through`,
+/// u to the right and the viewing direction −w upwards; a 2D scene keeps its own axes unless
+/// `camera_space` asks for the camera's in 2D too.
+#[must_use]
+pub fn camera_plane<V: Planar>(scene: &Scene<V>, through: V, camera_space: bool) -> PagePlane<V> {
+    let world = PagePlane::spanned(V::ZERO, V::axis(0), V::axis(1));
+    let frame = &scene.camera.frame;
+    let camera = PagePlane::spanned(through, frame.u, -frame.w);
+    let plane = if V::DIM == 2 && !camera_space { world } else { camera };
+    // Both are built from orthonormal axes, so neither is ever refused.
+    plane.unwrap_or(PagePlane { origin: through, x: V::axis(0), y: V::axis(1), offset: DVec2::ZERO })
+}
+
+/// A ray on the page: a line from `from` to `to` in the role's style with its arrow head halfway.
+pub fn draw_ray(d: &mut Drawing, role: RayRole, from: DVec2, to: DVec2) {
+    let mid = from + (to - from) * 0.55;
+    d.arrow(role.tag(), from, mid, role.style());
+    d.segment(role.tag(), mid, to, role.style());
+}
+
+/// An angle's arc at `centre` of `radius`, from direction `a` to direction `b` (the shorter way),
+/// as a polyline; returns the point halfway along it, for the angle's label.
+pub fn draw_arc(d: &mut Drawing, centre: DVec2, radius: f64, a: DVec2, b: DVec2, style: Style) -> DVec2 {
+    let (start, mut sweep) = (a.y.atan2(a.x), b.y.atan2(b.x) - a.y.atan2(a.x));
+    if sweep > std::f64::consts::PI {
+        sweep -= std::f64::consts::TAU;
+    } else if sweep < -std::f64::consts::PI {
+        sweep += std::f64::consts::TAU;
+    }
+    let at = |f: f64| centre + DVec2::from_angle(start + sweep * f) * radius;
+    d.line("angle", (0..=24).map(|k| at(f64::from(k) / 24.0)), style);
+    at(0.5)
+}
+
+/// A label just outside `at`, on the side that `away` points to (from a centre: an angle's arc,
+/// a vector's tip), aligned so that it grows away from the centre.
+pub fn label_outward(d: &mut Drawing, at: DVec2, away: DVec2, markup: &str) {
+    let dir = away.try_normalize().unwrap_or(DVec2::Y);
+    let h = if dir.x > 0.3 {
+        HAlign::Left
+    } else if dir.x < -0.3 {
+        HAlign::Right
+    } else {
+        HAlign::Center
+    };
+    let v = if dir.y > 0.3 {
+        VAlign::Bottom
+    } else if dir.y < -0.3 {
+        VAlign::Top
+    } else {
+        VAlign::Middle
+    };
+    let opts = TextOpts::LABEL.align(Align { h, v }).offset(dir.x * 12.0, dir.y * 12.0).avoid_overlap();
+    d.text("label", at, markup, opts);
+}
+
+/// The observer O: a black dot and its label.
+pub fn draw_observer(d: &mut Drawing, at: DVec2) {
+    d.marker("observer", at, style::DOT_RADIUS * 1.3, style::BLACK, Style::NONE);
+}
+
+/// A light: a yellow dot outlined in black.
+pub fn draw_light(d: &mut Drawing, at: DVec2) {
+    d.marker("light", at, style::LIGHT_RADIUS, style::LIGHT, style::outline(style::BLACK));
+}
+
+/// A label placed clear of lines and other labels near `at`.
+pub fn label(d: &mut Drawing, at: DVec2, markup: &str) {
+    d.text("label", at, markup, TextOpts::LABEL.avoid_overlap());
+}
+
+/// The legend row of a ray role.
+pub fn legend_role(d: &mut Drawing, role: RayRole, lang: Lang) {
+    let text = match role {
+        RayRole::Primary => Label::PrimaryRay,
+        RayRole::Reflected => Label::ReflectedRay,
+        RayRole::Transmitted => Label::TransmittedRay,
+        RayRole::Shadow => Label::ShadowRay,
+        RayRole::BlockedShadow => Label::BlockedShadowRay,
+    };
+    d.legend_entry(text.text(lang), role.style(), Sample::Arrow);
+}
+
+/// The legend rows of the points: hit points, lights, the observer (those asked for).
+pub fn legend_points(d: &mut Drawing, lang: Lang, hits: bool, lights: bool, observer: bool) {
+    if hits {
+        d.legend_entry(Label::HitPoint.text(lang), Style::NONE, Sample::Dot(style::HIT));
+    }
+    if lights {
+        d.legend_entry(
+            Label::LightSource.text(lang),
+            style::outline(style::BLACK),
+            Sample::Dot(style::LIGHT),
+        );
+    }
+    if observer {
+        d.legend_entry(Label::Observer.text(lang), Style::NONE, Sample::Dot(style::BLACK));
+    }
+}
+
+/// The legend row of normals.
+pub fn legend_normal(d: &mut Drawing, lang: Lang) {
+    d.legend_entry(Label::Normal.text(lang), style::normal(), Sample::Line);
+}
+
+/// The larger side of the points' bounding box (1 when there are none or they are one point).
+#[must_use]
+pub fn span(points: &[DVec2]) -> f64 {
+    let Some(first) = points.first() else { return 1.0 };
+    let (lo, hi) = points.iter().fold((*first, *first), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    let e = (hi - lo).max_element();
+    if e > 0.0 {
+        e
+    } else {
+        1.0
+    }
+}
+
+/// Fits the view so that `points` fill the left `1 − column` of the plot area, leaving a free
+/// column on the right for text; returns the world point at the top left of that column.
+pub fn fit_with_column(d: &mut Drawing, points: &[DVec2], margin: f64, column: f64) -> DVec2 {
+    let aspect = d.plot_aspect();
+    let Some(left) = View::fit(points, margin, aspect * (1.0 - column)) else {
+        return DVec2::ZERO;
+    };
+    let width = left.width() / (1.0 - column);
+    if let Some(view) = View::new(left.xmin(), left.xmin() + width, left.ymin(), left.ymax()) {
+        d.set_view(view);
+    }
+    DVec2::new(left.xmax(), left.ymax())
+}
+
+/// Stacked lines of text from `top_left` downwards (one line every `step` reference pixels).
+pub fn text_column(d: &mut Drawing, top_left: DVec2, lines: &[String], size: TextSize, step: f64) {
+    for (k, line) in lines.iter().enumerate() {
+        let opts = TextOpts::LABEL
+            .size(size)
+            .align(Align { h: HAlign::Left, v: VAlign::Top })
+            .offset(0.0, -step * k as f64)
+            .no_halo();
+        d.text("text", top_left, line, opts);
+    }
+}
+
+/// The caption's tail for a 3D trace drawn on a plane: which plane, and what the outlines mean.
+#[must_use]
+pub fn plane_note(dim: usize, plane: Label, through: Option<&str>, lang: Lang) -> String {
+    if dim == 2 {
+        return String::new();
+    }
+    let through = through.map(|t| format!(" ({} {t})", if lang == Lang::Ro { "prin" } else { "through" }));
+    format!(" · {}{}; {}", plane.text(lang), through.unwrap_or_default(), Label::SectionsNote.text(lang))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_for_slides() {
+        assert_eq!(num(0.5), "0.5");
+        assert_eq!(num(-0.0001), "−1.0·10^{−4}");
+        assert_eq!(num(2.5e-7), "2.5·10^{−7}");
+        assert_eq!(num(-1.23456), "−1.235");
+        assert_eq!(num(123.456), "123.5");
+        assert_eq!(num(f64::INFINITY), "∞");
+        assert_eq!(deg(std::f64::consts::FRAC_PI_6), "30.0°");
+        assert_eq!(rgb_text(Rgb([0.5, 0.5, 0.5])), "0.5");
+        assert_eq!(sub("R", 12), "R_{12}");
+    }
+
+    #[test]
+    fn lines_clip_to_the_view() {
+        let view = View::new(-1.0, 1.0, -1.0, 1.0).unwrap();
+        let (a, b) = clip_line(DVec2::ZERO, DVec2::X, &view).unwrap();
+        assert_eq!((a.x, b.x), (-1.0, 1.0));
+        assert!(clip_line(DVec2::new(0.0, 2.0), DVec2::X, &view).is_none());
+        assert_eq!(exit_point(DVec2::ZERO, DVec2::new(0.0, 2.0), &view), DVec2::new(0.0, 1.0));
+    }
+}

@@ -1,0 +1,688 @@
+//! What a figure reads (product.md "Diagrams": drawn from a recorded trace): the traces of the
+//! pixels or rays a figure shows, recorded with `EventLog`. This is the only part of `figure` that
+//! runs the tracer; the kinds (`figure::kinds`) only read what it recorded. A kind that needs a
+//! pixel and is given none gets a telling one, found by scanning recorded traces of a grid of
+//! pixels for the events it draws (a refraction, a blocked shadow ray, a large ray tree).
+
+use crate::accel::{Accel, AccelKind, AccelOptions};
+use crate::bounds::VolumeKind;
+use crate::geom::ray::Ray;
+use crate::geom::slab::culling_hit;
+use crate::geom::Vector;
+use crate::record::event::{Event, RayKind};
+use crate::record::{EventLog, RayNode};
+use crate::render::{render, RenderConfig};
+use crate::sample::{trace_pixel, PixelTrace, Sampling};
+use crate::scene::camera::Projection;
+use crate::scene::material::Rgb;
+use crate::scene::Scene;
+use crate::shape::Dim;
+use crate::trace::Tracer;
+
+use super::{FigureError, FigureKind};
+
+/// What to trace for a figure: the pixel or ray asked for, or none (the figure picks).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Aim<V> {
+    /// Nothing given: the figure picks a telling pixel.
+    Auto,
+    /// Pixel `(i, j)`: column from the left, row from the bottom (`j = 0` in 2D); inside the image.
+    Pixel(usize, usize),
+    /// A ray given by hand, traced as a primary ray.
+    Ray(Ray<V>),
+}
+
+/// How the traced pixel was chosen; the caption says it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pick {
+    /// Given on the command line or in the lesson.
+    Given,
+    /// The figure's default pixel (no scan needed).
+    Default,
+    /// A pixel off the centre, in the upper right.
+    OffCentre,
+    /// A 2D pixel right of the centre.
+    OffCentreRow,
+    /// The pixel whose primary hit refracts at the clearest angle.
+    Refraction,
+    /// A pixel whose trace has a total internal reflection.
+    Tir,
+    /// The pixel whose trace has a shadow ray stopped by an occluder.
+    BlockedShadow,
+    /// The pixel whose trace shows the most kinds of rays.
+    Rich,
+    /// The pixel whose primary hit is lit with the clearest N, L, H, V.
+    Lit,
+    /// The pixel whose adaptive subdivision mixes the most levels.
+    Subdivided,
+    /// The pixel whose primary ray's walk through the structure is the most telling.
+    Walk,
+    /// A pixel whose primary ray meets the volume.
+    VolumeHit,
+    /// A pixel whose primary ray misses the volume, nearest to meeting it.
+    VolumeMiss,
+}
+
+/// Where a traced primary ray came from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Target {
+    /// A pixel centre and its `(u, v)` (`[u]` in 2D).
+    Pixel {
+        /// Column, from the left.
+        i: usize,
+        /// Row, from the bottom.
+        j: usize,
+        /// The window coordinates of its centre.
+        uv: Vec<f64>,
+    },
+    /// A ray given by hand.
+    Ray,
+}
+
+/// One recorded trace: one or several primary rays (the roots of `log`).
+#[derive(Clone, Debug)]
+pub struct Traced<V> {
+    /// The primary rays' targets, one per root of `log`, in order.
+    pub targets: Vec<Target>,
+    /// Every event and ray node.
+    pub log: EventLog<V>,
+    /// The colour of each root.
+    pub colors: Vec<Rgb>,
+    /// The depth limit the trace ran with.
+    pub max_depth: u32,
+    /// The projection the primary rays were made with.
+    pub projection: Projection,
+    /// How the pixel was chosen.
+    pub pick: Pick,
+    /// A pixel traced with samples (`adaptive`): its samples and squares.
+    pub samples: Option<PixelTrace>,
+}
+
+/// Everything a figure reads besides the scene.
+#[derive(Clone, Debug)]
+pub struct Traces<V: Dim> {
+    /// The scene's name (its file stem), for the caption.
+    pub scene_name: String,
+    /// The traces: the main one first; `projections` has the orthographic then the perspective
+    /// one; `refraction` may add a second trace that shows a total internal reflection.
+    pub traces: Vec<Traced<V>>,
+    /// The primary rays of every pixel of a whole render (`heat-map`).
+    pub counts: Option<Counts>,
+    /// The structure the traces were recorded with (its volumes, nodes or cells are drawn).
+    pub accel: Accel<V>,
+    /// The object a figure is about (`slab-test`, `kay-kajiya`: the bounded object tested).
+    pub focus: Option<usize>,
+}
+
+/// The primary rays that entered each pixel of a render.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Counts {
+    /// The sampling mode rendered with.
+    pub sampling: Sampling,
+    /// Per pixel, `[j·Nx + i]` with j from the bottom: the distinct samples whose colour entered it.
+    pub per_pixel: Vec<u32>,
+    /// The primary rays traced for the whole image (shared samples once).
+    pub traced: u64,
+}
+
+/// Options of the tracing a figure reads.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tracing {
+    /// Overrides the scene's `max_depth`.
+    pub depth: Option<u32>,
+    /// The structure that finds hits; the kinds that draw one (`slab-test`, `kay-kajiya`, `bvh`,
+    /// `grid-dda`, `octree`) use theirs, keeping only the grid's cells.
+    pub accel: AccelOptions,
+    /// How pixels become primary rays, for the kinds that show sampling (`adaptive`, `heat-map`);
+    /// the others trace the pixel's centre.
+    pub sampling: Sampling,
+}
+
+impl Tracing {
+    /// The scene's own depth, brute force, one ray through each pixel centre.
+    pub const SCENE: Self = Self {
+        depth: None,
+        accel: AccelOptions { kind: AccelKind::None, volume: VolumeKind::Aabb, grid: None },
+        sampling: Sampling::Center,
+    };
+    /// The adaptive subdivision of the lecture's figure: threshold 0.1, at most 2 levels.
+    pub const ADAPTIVE: Sampling = Sampling::Adaptive { threshold: 0.1, max_level: 2 };
+}
+
+/// Records the traces that figure `kind` reads, for `aim` in `scene` (named `scene_name`).
+///
+/// # Errors
+/// A pixel outside the image, or a given pixel (or a whole scan) whose trace lacks what the
+/// kind draws (a refraction for `refraction`, a hit for `local-model` and `shadows`).
+pub fn record<V: Dim>(
+    kind: FigureKind,
+    scene: &Scene<V>,
+    scene_name: &str,
+    aim: &Aim<V>,
+    tracing: &Tracing,
+) -> Result<Traces<V>, FigureError> {
+    let cam = &scene.camera;
+    if let Aim::Pixel(i, j) = *aim {
+        if i >= cam.nx || j >= cam.ny {
+            return Err(FigureError(format!(
+                "pixel ({i}, {j}) is outside the image: i must be < {}, j < {}",
+                cam.nx, cam.ny
+            )));
+        }
+    }
+    let structure =
+        |kind: AccelKind, volume: VolumeKind| AccelOptions { kind, volume, grid: tracing.accel.grid.clone() };
+    let options = match kind {
+        FigureKind::SlabTest => structure(AccelKind::Bounds, VolumeKind::Aabb),
+        FigureKind::KayKajiya => structure(AccelKind::Bounds, VolumeKind::Kdop),
+        FigureKind::Bvh => structure(AccelKind::Bvh, VolumeKind::Aabb),
+        FigureKind::GridDda => structure(AccelKind::Grid, VolumeKind::Aabb),
+        FigureKind::Octree => structure(AccelKind::Octree, VolumeKind::Aabb),
+        _ => tracing.accel.clone(),
+    };
+    let accel = Accel::build_with(scene, &options);
+    let depth = tracing.depth.unwrap_or(scene.max_depth);
+    let tracer = Recording { scene, accel: &accel, depth };
+    let (mut counts, mut focus) = (None, None);
+    let traces = match kind {
+        FigureKind::Projections => projections(&tracer, aim),
+        FigureKind::UvMap => match aim {
+            Aim::Auto => {
+                // Off the centre and in the upper half, so that the rows visibly count from the bottom.
+                let (i, j) = ((3 * cam.nx) / 4, (2 * cam.ny) / 3);
+                let pick = if V::DIM == 2 { Pick::OffCentreRow } else { Pick::OffCentre };
+                vec![tracer.pixel(i, j, pick)]
+            }
+            _ => vec![tracer.aimed(aim, Pick::Default, |_| None)],
+        },
+        FigureKind::Refraction => {
+            let main = tracer.aimed(aim, Pick::Refraction, refraction_score);
+            if !has(&main.log, |e| matches!(e, Event::Refract { .. } | Event::TotalInternalReflection { .. }))
+            {
+                return Err(FigureError(missing(aim, "refraction or total internal reflection")));
+            }
+            let mut traces = vec![main];
+            if !has(&traces[0].log, |e| matches!(e, Event::TotalInternalReflection { .. })) {
+                if let Some((i, j)) = tracer.scan(tir_score) {
+                    traces.push(tracer.pixel(i, j, Pick::Tir));
+                }
+            }
+            traces
+        }
+        FigureKind::LocalModel => {
+            let main = tracer.aimed(aim, Pick::Lit, |log| lit_score(scene, log));
+            if first_hit(&main.log).is_none() {
+                return Err(FigureError(missing(aim, "hit")));
+            }
+            vec![main]
+        }
+        FigureKind::Shadows => {
+            let main = tracer.aimed(aim, Pick::BlockedShadow, shadow_score);
+            if !has(&main.log, |e| matches!(e, Event::ShadowRay { .. })) {
+                return Err(FigureError(missing(aim, "shadow ray")));
+            }
+            vec![main]
+        }
+        FigureKind::Rays | FigureKind::RayTree => vec![tracer.aimed(aim, Pick::Rich, rich_score)],
+        FigureKind::Adaptive => {
+            // The centre alone has nothing to subdivide: the figure's own adaptive rule then.
+            let sampling = match tracing.sampling {
+                Sampling::Center => Tracing::ADAPTIVE,
+                other => other,
+            };
+            vec![tracer.sampled(aim, sampling)?]
+        }
+        FigureKind::HeatMap => {
+            let config = RenderConfig {
+                sampling: tracing.sampling,
+                rays_per_pixel: true,
+                ..RenderConfig::centers(depth)
+            };
+            let rendered = render(scene, &accel, &config);
+            let per_pixel = rendered.rays_per_pixel.unwrap_or_default();
+            counts =
+                Some(Counts { sampling: tracing.sampling, per_pixel, traced: rendered.stats.rays.primary });
+            Vec::new()
+        }
+        FigureKind::SlabTest | FigureKind::KayKajiya => {
+            let (traces, object) = bound_pair(&tracer, aim)?;
+            focus = Some(object);
+            traces
+        }
+        FigureKind::Bvh | FigureKind::Octree => vec![tracer.aimed(aim, Pick::Walk, tree_score)],
+        FigureKind::GridDda => vec![tracer.aimed(aim, Pick::Walk, grid_score)],
+    };
+    Ok(Traces { scene_name: scene_name.to_owned(), traces, counts, accel, focus })
+}
+
+/// The message for a trace that lacks what a figure draws.
+fn missing<V>(aim: &Aim<V>, what: &str) -> String {
+    match aim {
+        Aim::Pixel(i, j) => {
+            format!("the trace of pixel ({i}, {j}) has no {what}; omit --pixel to let the figure pick one")
+        }
+        Aim::Ray(_) => format!("the trace of the given ray has no {what}"),
+        Aim::Auto => format!("no pixel of the scene has {what} in its trace"),
+    }
+}
+
+/// True iff some event of `log` satisfies `test`.
+fn has<V>(log: &EventLog<V>, test: impl Fn(&Event<V>) -> bool) -> bool {
+    log.events.iter().any(|l| test(&l.event))
+}
+
+/// The first node with a hit (the primary ray's, when it hits).
+#[must_use]
+pub fn first_hit<V>(log: &EventLog<V>) -> Option<usize> {
+    log.nodes.iter().position(|n| n.end.as_ref().is_some_and(|e| e.hit.is_some()))
+}
+
+/// The events of node `node`, in order.
+pub fn node_events<V>(log: &EventLog<V>, node: usize) -> impl Iterator<Item = &Event<V>> {
+    log.events.iter().filter(move |l| l.ray == Some(node)).map(|l| &l.event)
+}
+
+/// The angle of incidence at a node's hit, in degrees: between `−D` and the facing normal.
+#[must_use]
+pub fn incidence_deg<V: Vector>(node: &RayNode<V>) -> Option<f64> {
+    let hit = node.end.as_ref()?.hit?;
+    let cos = node.start.direction.dot(hit.normal).abs().min(1.0);
+    Some(cos.acos().to_degrees())
+}
+
+/// The tracer, set up once for all the pixels a figure traces.
+struct Recording<'a, V: Dim> {
+    scene: &'a Scene<V>,
+    accel: &'a Accel<V>,
+    depth: u32,
+}
+
+impl<V: Dim> Recording<'_, V> {
+    /// Traces the primary rays of `targets` into one log.
+    fn trace(&self, scene: &Scene<V>, rays: &[(Ray<V>, Target)], depth: u32, pick: Pick) -> Traced<V> {
+        let mut tracer = Tracer::new(scene, self.accel, EventLog::new());
+        tracer.max_depth = depth;
+        let mut colors = Vec::new();
+        for (ray, target) in rays {
+            let uv = match target {
+                Target::Pixel { uv, .. } => uv.clone(),
+                Target::Ray => Vec::new(),
+            };
+            colors.push(tracer.trace_primary(ray, &uv));
+        }
+        Traced {
+            targets: rays.iter().map(|(_, t)| t.clone()).collect(),
+            log: tracer.recorder,
+            colors,
+            max_depth: depth,
+            projection: scene.camera.projection,
+            pick,
+            samples: None,
+        }
+    }
+
+    /// Pixel `(i, j)` traced with its samples (`sampling` samples corners).
+    fn pixel_samples(&self, i: usize, j: usize, sampling: Sampling, pick: Pick) -> Traced<V> {
+        let mut tracer = Tracer::new(self.scene, self.accel, EventLog::new());
+        tracer.max_depth = self.depth;
+        let traced = trace_pixel(&mut tracer, sampling, i, j);
+        let (u, v) = self.scene.camera.pixel_center(i, j);
+        let uv = if V::DIM == 2 { vec![u] } else { vec![u, v] };
+        Traced {
+            targets: vec![Target::Pixel { i, j, uv }],
+            colors: vec![traced.color],
+            log: tracer.recorder,
+            max_depth: self.depth,
+            projection: self.scene.camera.projection,
+            pick,
+            samples: Some(traced),
+        }
+    }
+
+    /// `adaptive`: the given pixel, or the one whose subdivision splits the most squares.
+    fn sampled(&self, aim: &Aim<V>, sampling: Sampling) -> Result<Traced<V>, FigureError> {
+        match aim {
+            Aim::Pixel(i, j) => Ok(self.pixel_samples(*i, *j, sampling, Pick::Given)),
+            Aim::Ray(_) => Err(FigureError("adaptive subdivides a pixel: give --pixel, not --ray".into())),
+            Aim::Auto => {
+                // A subdivision that mixes levels (some squares split, some not) shows the rule
+                // best: the most distinct leaf levels, then the most splits.
+                let best = self.best_pixel(|i, j| {
+                    let t = self.pixel_samples(i, j, sampling, Pick::Given);
+                    let squares = t.samples.as_ref().map_or(&[][..], |s| &s.squares[..]);
+                    let splits = squares.iter().filter(|q| q.split).count();
+                    let mut levels: Vec<u32> = squares.iter().filter(|q| !q.split).map(|q| q.level).collect();
+                    levels.sort_unstable();
+                    levels.dedup();
+                    (splits > 0).then_some(100.0 * levels.len() as f64 + splits as f64)
+                });
+                Ok(match best {
+                    Some((i, j)) => self.pixel_samples(i, j, sampling, Pick::Subdivided),
+                    None => {
+                        let (i, j) = default_pixel(self.scene);
+                        self.pixel_samples(i, j, sampling, Pick::Default)
+                    }
+                })
+            }
+        }
+    }
+
+    /// The primary ray of pixel `(i, j)` of `scene`'s camera and its target.
+    fn pixel_ray(scene: &Scene<V>, i: usize, j: usize) -> (Ray<V>, Target) {
+        let cam = &scene.camera;
+        let (u, v) = cam.pixel_center(i, j);
+        let uv = if V::DIM == 2 { vec![u] } else { vec![u, v] };
+        (cam.primary_ray(u, v), Target::Pixel { i, j, uv })
+    }
+
+    /// The trace of one pixel.
+    fn pixel(&self, i: usize, j: usize, pick: Pick) -> Traced<V> {
+        self.trace(self.scene, &[Self::pixel_ray(self.scene, i, j)], self.depth, pick)
+    }
+
+    /// The trace of `aim`; with [`Aim::Auto`], of the pixel with the best `score` (picked as
+    /// `why`), or the default pixel when no pixel scores.
+    fn aimed(&self, aim: &Aim<V>, why: Pick, score: impl Fn(&EventLog<V>) -> Option<f64>) -> Traced<V> {
+        match aim {
+            Aim::Pixel(i, j) => self.pixel(*i, *j, Pick::Given),
+            Aim::Ray(ray) => self.trace(self.scene, &[(*ray, Target::Ray)], self.depth, Pick::Given),
+            Aim::Auto => match self.scan(score) {
+                Some((i, j)) => self.pixel(i, j, why),
+                None => {
+                    let (i, j) = default_pixel(self.scene);
+                    self.pixel(i, j, Pick::Default)
+                }
+            },
+        }
+    }
+
+    /// The pixel of a coarse grid (at most 48 × 36 candidates) whose trace scores highest; ties
+    /// go to the pixel nearest the image's centre.
+    fn scan(&self, score: impl Fn(&EventLog<V>) -> Option<f64>) -> Option<(usize, usize)> {
+        self.best_pixel(|i, j| score(&self.pixel(i, j, Pick::Given).log))
+    }
+
+    /// The pixel of a coarse grid (at most 48 × 36 candidates) with the highest `score`; ties go
+    /// to the pixel nearest the image's centre.
+    fn best_pixel(&self, score: impl Fn(usize, usize) -> Option<f64>) -> Option<(usize, usize)> {
+        let cam = &self.scene.camera;
+        let (sx, sy) = ((cam.nx / 48).max(1), (cam.ny / 36).max(1));
+        let centre = (cam.nx as f64 / 2.0, cam.ny as f64 / 2.0);
+        let mut best: Option<(f64, f64, (usize, usize))> = None;
+        for j in (sy / 2..cam.ny).step_by(sy) {
+            for i in (sx / 2..cam.nx).step_by(sx) {
+                let Some(s) = score(i, j) else { continue };
+                let d = (i as f64 + 0.5 - centre.0).hypot(j as f64 + 0.5 - centre.1);
+                if best.is_none_or(|(bs, bd, _)| s > bs || ((s - bs).abs() < 1e-12 && d < bd)) {
+                    best = Some((s, d, (i, j)));
+                }
+            }
+        }
+        best.map(|(_, _, p)| p)
+    }
+}
+
+/// The default pixel: the centre one, `(⌊Nx/2⌋, ⌊Ny/2⌋)`.
+#[must_use]
+pub fn default_pixel<V: Dim>(scene: &Scene<V>) -> (usize, usize) {
+    (scene.camera.nx / 2, scene.camera.ny / 2)
+}
+
+/// At most this many primary rays per projection in `projections`.
+const PROJECTION_RAYS: usize = 9;
+
+/// `projections`: the same pixels traced (primary rays only) with an orthographic and a
+/// perspective camera of the same window: evenly spread columns of the given pixel's row (the
+/// middle row by default).
+fn projections<V: Dim>(rec: &Recording<'_, V>, aim: &Aim<V>) -> Vec<Traced<V>> {
+    let cam = &rec.scene.camera;
+    let row = match aim {
+        Aim::Pixel(_, j) => *j,
+        _ => cam.ny / 2,
+    };
+    let n = cam.nx.min(PROJECTION_RAYS);
+    let columns: Vec<usize> = (0..n)
+        .map(|k| {
+            // Evenly spread over [0, Nx − 1], ends included.
+            if n == 1 {
+                cam.nx / 2
+            } else {
+                (k * (cam.nx - 1) + (n - 1) / 2) / (n - 1)
+            }
+        })
+        .collect();
+    [Projection::Orthographic, Projection::Perspective]
+        .into_iter()
+        .map(|projection| {
+            let mut scene = rec.scene.clone();
+            scene.camera.projection = projection;
+            let rays: Vec<(Ray<V>, Target)> =
+                columns.iter().map(|&i| Recording::pixel_ray(&scene, i, row)).collect();
+            let pick = if matches!(aim, Aim::Pixel(..)) { Pick::Given } else { Pick::Default };
+            rec.trace(&scene, &rays, 0, pick)
+        })
+        .collect()
+}
+
+/// The node whose refraction shows best: θᵢ near 40°, the primary hit first.
+#[must_use]
+pub fn refraction_node<V: Dim>(log: &EventLog<V>) -> Option<(usize, f64)> {
+    log.nodes
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| node_events(log, *k).any(|e| matches!(e, Event::Refract { .. })))
+        .filter_map(|(k, n)| {
+            let theta = incidence_deg(n)?;
+            let primary = if n.start.kind == RayKind::Primary { 30.0 } else { 0.0 };
+            Some((k, primary + 60.0 - (theta - 40.0).abs()))
+        })
+        .fold(None, |best: Option<(usize, f64)>, (k, s)| match best {
+            Some((_, b)) if b >= s => best,
+            _ => Some((k, s)),
+        })
+}
+
+/// The first node (in pre-order, nearest the root) with a total internal reflection.
+#[must_use]
+pub fn tir_node<V>(log: &EventLog<V>) -> Option<usize> {
+    log.events
+        .iter()
+        .filter(|l| matches!(l.event, Event::TotalInternalReflection { .. }))
+        .filter_map(|l| l.ray)
+        .min()
+}
+
+/// `refraction`: the score of [`refraction_node`].
+fn refraction_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
+    refraction_node(log).map(|(_, s)| s)
+}
+
+/// A total internal reflection anywhere in the trace.
+fn tir_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
+    has(log, |e| matches!(e, Event::TotalInternalReflection { .. })).then_some(1.0)
+}
+
+/// The node whose shadow rays show best: a blocked one, best at the primary hit and through
+/// transparent objects (`0 < s < 1`, the product of kt), then opaque (`s = 0`); else the first
+/// node with a shadow ray.
+#[must_use]
+pub fn shadow_node<V>(log: &EventLog<V>) -> Option<(usize, f64)> {
+    let blocked = log
+        .events
+        .iter()
+        .filter_map(|l| match &l.event {
+            Event::ShadowRay { occluders, s, .. } if !occluders.is_empty() => {
+                let at_primary = if l.ray == Some(0) { 10.0 } else { 0.0 };
+                let transparent = if *s > 0.0 { 5.0 } else { 0.0 };
+                Some((l.ray?, at_primary + transparent + occluders.len() as f64))
+            }
+            _ => None,
+        })
+        .fold(None, |best: Option<(usize, f64)>, (k, s)| match best {
+            Some((_, b)) if b >= s => best,
+            _ => Some((k, s)),
+        });
+    blocked.or_else(|| {
+        log.events
+            .iter()
+            .find(|l| matches!(l.event, Event::ShadowRay { .. }))
+            .and_then(|l| Some((l.ray?, 0.0)))
+    })
+}
+
+/// `shadows`: the score of a blocked shadow ray of [`shadow_node`] (none when nothing blocks).
+fn shadow_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
+    shadow_node(log).filter(|(_, s)| *s > 0.0).map(|(_, s)| s)
+}
+
+/// `rays` and `ray-tree`: the most kinds of rays, then the fewest nodes that show them (a smaller
+/// tree makes a clearer figure).
+fn rich_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
+    let kinds = [RayKind::Primary, RayKind::Reflected, RayKind::Transmitted]
+        .iter()
+        .filter(|k| log.nodes.iter().any(|n| n.start.kind == **k))
+        .count();
+    let blocked = has(log, |e| matches!(e, Event::ShadowRay { occluders, .. } if !occluders.is_empty()));
+    let shadows = has(log, |e| matches!(e, Event::ShadowRay { .. }));
+    let roles = kinds + usize::from(blocked) + usize::from(shadows);
+    first_hit(log)?;
+    Some(100.0 * roles as f64 - log.nodes.len().min(60) as f64)
+}
+
+/// `local-model`: the primary hit lit by a light, on an opaque object with a highlight (ks > 0)
+/// if there is one and a visible specular term, with N·L near 0.6 and N·V near 0.8, so that N,
+/// L, H and V fan out.
+fn lit_score<V: Dim>(scene: &Scene<V>, log: &EventLog<V>) -> Option<f64> {
+    let node = log.nodes.first()?;
+    let hit = node.end.as_ref()?.hit?;
+    let material = scene.material_of(hit.object.index);
+    let kind = if material.transmits() { 0.0 } else { 1.0 } + if material.ks > 0.0 { 1.0 } else { 0.0 };
+    let n_dot_v = node.start.direction.dot(hit.normal).abs();
+    node.lights
+        .iter()
+        .filter(|t| t.lum > 0.0 && t.shadow.is_some_and(|s| s > 0.0))
+        .map(|t| {
+            // A visible highlight: the specular term (N·H)^n·ks·… of at least 0.2 counts fully.
+            let highlight = (t.specular.0.iter().copied().fold(0.0, f64::max) * 5.0).min(1.0);
+            2.0 * kind + 3.0 * highlight + 2.0 - (t.n_dot_l - 0.6).abs() - (n_dot_v - 0.8).abs()
+        })
+        .reduce(f64::max)
+}
+
+/// The events of root `root`'s search for its nearest hit: those of its node before its `hit`
+/// or `miss` (the shadow rays' tests come after).
+pub fn search_events<V>(log: &EventLog<V>, root: usize) -> impl Iterator<Item = &Event<V>> {
+    node_events(log, root).take_while(|e| !matches!(e, Event::Hit { .. } | Event::Miss { .. }))
+}
+
+/// Whether a recorded box interval counts as met, by the structures' own closed rule.
+#[must_use]
+pub fn met(t_in: f64, t_out: f64) -> bool {
+    culling_hit(t_in, t_out)
+}
+
+/// The `bound_test` of object `object` in root 0's search: `(intervals, t_in, t_out, hit)`.
+#[must_use]
+pub fn bound_test_of<V>(log: &EventLog<V>, object: usize) -> Option<(&[[f64; 2]], f64, f64, bool)> {
+    search_events(log, 0).find_map(|e| match e {
+        Event::BoundTest { object: Some(o), intervals, t_in, t_out, hit, .. } if o.index == object => {
+            Some((intervals.as_slice(), *t_in, *t_out, *hit))
+        }
+        _ => None,
+    })
+}
+
+/// `slab-test` and `kay-kajiya`: a pixel whose primary ray meets an object's volume and one whose
+/// primary ray misses the same volume by a little (its gap max t_i − min t_e near a tenth of its
+/// distance), and that object. A given pixel is the first
+/// of the two (its hit object, or the first volume it meets, is the one drawn).
+fn bound_pair<V: Dim>(rec: &Recording<'_, V>, aim: &Aim<V>) -> Result<(Vec<Traced<V>>, usize), FigureError> {
+    let first = match aim {
+        Aim::Auto => {
+            // The pixel nearest the centre whose primary ray hits an object inside its volume.
+            let best = rec.best_pixel(|i, j| {
+                let t = rec.pixel(i, j, Pick::Given);
+                let object = first_hit(&t.log)
+                    .and_then(|k| t.log.nodes[k].end.as_ref()?.hit)
+                    .map(|h| h.object.index)?;
+                bound_test_of(&t.log, object).filter(|b| b.3).map(|_| 1.0)
+            });
+            let (i, j) = best.unwrap_or_else(|| default_pixel(rec.scene));
+            rec.pixel(i, j, if best.is_some() { Pick::VolumeHit } else { Pick::Default })
+        }
+        Aim::Pixel(i, j) => rec.pixel(*i, *j, Pick::Given),
+        Aim::Ray(ray) => rec.trace(rec.scene, &[(*ray, Target::Ray)], rec.depth, Pick::Given),
+    };
+    let hit_object =
+        first_hit(&first.log).and_then(|k| first.log.nodes[k].end.as_ref()?.hit).map(|h| h.object.index);
+    let focus = hit_object.filter(|o| bound_test_of(&first.log, *o).is_some()).or_else(|| {
+        search_events(&first.log, 0).find_map(|e| match e {
+            Event::BoundTest { object: Some(o), hit: true, .. } => Some(o.index),
+            _ => None,
+        })
+    });
+    let Some(focus) = focus else {
+        return Err(FigureError(missing(aim, "bounding volume it meets (give a pixel whose ray meets one)")));
+    };
+    // The partner: a near miss of the same volume (the lecture's blue ray).
+    let near_miss = rec.best_pixel(|i, j| {
+        let t = rec.pixel(i, j, Pick::Given);
+        let (_, t_in, t_out, hit) = bound_test_of(&t.log, focus)?;
+        let finite = t_in.is_finite() && t_out.is_finite() && t_out > 0.0;
+        // A clear miss, but a near one: the gap max t_i − min t_e about a tenth of the distance.
+        (!hit && finite).then(|| -((t_in - t_out) / t_out.abs().max(1e-12) - 0.1).abs())
+    });
+    let mut traces = vec![first];
+    if let Some((i, j)) = near_miss {
+        traces.push(rec.pixel(i, j, Pick::VolumeMiss));
+    }
+    Ok((traces, focus))
+}
+
+/// `bvh` and `octree`: a primary ray that enters several nodes and passes others by.
+fn tree_score<V>(log: &EventLog<V>) -> Option<f64> {
+    let (mut entered, mut missed) = (0usize, 0usize);
+    for e in search_events(log, 0) {
+        if let Event::NodeVisit { t_in, t_out, .. } = e {
+            if met(*t_in, *t_out) {
+                entered += 1;
+            } else {
+                missed += 1;
+            }
+        }
+    }
+    (entered > 1).then(|| 10.0 * entered.min(6) as f64 + missed.min(6) as f64)
+}
+
+/// `grid-dda`: a walk of several cells, best one that shows the pitfall (a hit found in a cell
+/// that lies beyond it).
+fn grid_score<V>(log: &EventLog<V>) -> Option<f64> {
+    let steps = search_events(log, 0).filter(|e| matches!(e, Event::VoxelStep { .. })).count();
+    let pitfall = grid_pitfall(log).is_some();
+    (steps > 1).then(|| if pitfall { 100.0 } else { 0.0 } + steps.min(12) as f64)
+}
+
+/// The lecture's pitfall in root 0's grid walk: the first step whose cell found a hit (an
+/// accepted `object_test` of an object the cell lists) lying beyond the cell's exit `min tMax`:
+/// `(step, object, t, exit)`. Unbounded objects, tested before the walk, do not count.
+#[must_use]
+pub fn grid_pitfall<V>(log: &EventLog<V>) -> Option<(usize, usize, f64, f64)> {
+    let mut found: Vec<(usize, f64)> = Vec::new();
+    let mut step = 0;
+    for e in search_events(log, 0) {
+        match e {
+            Event::ObjectTest { object, accepted: Some(t), .. } => found.push((object.index, *t)),
+            Event::VoxelStep { t_max, objects, .. } => {
+                let exit = t_max.iter().copied().fold(f64::INFINITY, f64::min);
+                let listed = |o: usize| objects.iter().any(|x| x.index == o);
+                if let Some((object, t)) = found.iter().find(|(o, t)| listed(*o) && *t > exit) {
+                    return Some((step, *object, *t, exit));
+                }
+                found.clear();
+                step += 1;
+            }
+            _ => {}
+        }
+    }
+    None
+}

@@ -1,0 +1,394 @@
+//! A lesson (product.md "Lessons"): one section of the lecture as a small JSON file naming its
+//! figures — each a kind, a scene, optionally a pixel or a ray and a depth, and a caption in both
+//! languages — and the static page per language (`index.html`) that shows every lesson's figures
+//! with their captions and the command that regenerates each. Reads text and returns values; the
+//! command line (`cli::lessons`) reads the files and writes the outputs.
+//!
+//! # Format
+//!
+//! ```json
+//! { "name": "secondary-rays",
+//!   "title": { "en": "Secondary rays R and T", "ro": "Razele secundare R și T" },
+//!   "text":  { "en": "At the hit I …", "ro": "În punctul I …" },
+//!   "figures": [
+//!     { "kind": "refraction", "scene": "scenes/glass.json", "pixel": [4, 2], "depth": 4,
+//!       "caption": { "en": "…", "ro": "…" } } ] }
+//! ```
+//! `scene` is relative to the lesson file; `pixel` is `[i, j]` (`[i]` in 2D), `ray` is
+//! `{ "origin": [...], "direction": [...] }`; `aa` is `center`, `corners` or `adaptive` (with
+//! `threshold`, default 0.1, and `max_level`, default 2) for `adaptive` and `heat-map`; `grid`
+//! (cells per axis) for `grid-dda`; `text`, `pixel`, `ray`, `depth`, `aa` and `grid` may be left
+//! out. An unknown field is an error.
+
+use serde_json::{Map, Value};
+
+use crate::figure::{FigureKind, Lang};
+use crate::sample::Sampling;
+
+/// A text in both languages.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct Both {
+    /// English.
+    pub en: String,
+    /// Romanian.
+    pub ro: String,
+}
+
+impl Both {
+    /// The text in `lang`.
+    #[must_use]
+    pub fn get(&self, lang: Lang) -> &str {
+        match lang {
+            Lang::En => &self.en,
+            Lang::Ro => &self.ro,
+        }
+    }
+}
+
+/// One figure of a lesson.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FigureSpec {
+    /// The diagram.
+    pub kind: FigureKind,
+    /// The scene file, relative to the lesson file.
+    pub scene: String,
+    /// The pixel `(i, j)` (`j` absent in 2D); none lets the figure pick.
+    pub pixel: Option<(usize, Option<usize>)>,
+    /// A ray given by hand: origin and direction components.
+    pub ray: Option<(Vec<f64>, Vec<f64>)>,
+    /// Overrides the scene's `max_depth`.
+    pub depth: Option<u32>,
+    /// The sampling of `adaptive` and `heat-map` (`aa`, `threshold`, `max_level`).
+    pub sampling: Option<Sampling>,
+    /// The grid's cells per axis (`grid`), for `grid-dda`.
+    pub grid: Option<Vec<usize>>,
+    /// What the figure shows, in both languages.
+    pub caption: Both,
+}
+
+/// A lesson: one section of the lecture.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lesson {
+    /// Its name, for `--only` and file names (lowercase letters, digits and `-`).
+    pub name: String,
+    /// Its title.
+    pub title: Both,
+    /// An introduction (may be empty).
+    pub text: Both,
+    /// Its figures, in order.
+    pub figures: Vec<FigureSpec>,
+}
+
+impl Lesson {
+    /// The file stem of figure `index` (from 0): `NAME-K-KIND`.
+    #[must_use]
+    pub fn file_stem(&self, index: usize) -> String {
+        format!("{}-{}-{}", self.name, index + 1, self.figures[index].kind.name())
+    }
+}
+
+/// Reads a lesson file's text; every problem is reported, each naming its field.
+///
+/// # Errors
+/// The list of problems: invalid JSON, a missing or unknown field, a wrong type, an unknown kind.
+pub fn parse(text: &str) -> Result<Lesson, Vec<String>> {
+    let value: Value = serde_json::from_str(text).map_err(|e| vec![format!("invalid JSON: {e}")])?;
+    let mut errors = Vec::new();
+    let Some(root) = value.as_object() else {
+        return Err(vec!["a lesson is a JSON object".into()]);
+    };
+    unknown(root, "", &["name", "title", "text", "figures"], &mut errors);
+    let name = match root.get("name").and_then(Value::as_str) {
+        Some(n)
+            if !n.is_empty()
+                && n.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-') =>
+        {
+            n.to_owned()
+        }
+        _ => {
+            errors.push("name: must be lowercase letters, digits and `-`".into());
+            String::new()
+        }
+    };
+    let title = both(root.get("title"), "title", &mut errors);
+    let text = root.get("text").map_or_else(Both::default, |t| both(Some(t), "text", &mut errors));
+    let mut figures = Vec::new();
+    match root.get("figures").and_then(Value::as_array) {
+        Some(list) if !list.is_empty() => {
+            for (k, f) in list.iter().enumerate() {
+                if let Some(spec) = figure(f, &format!("figures[{k}]"), &mut errors) {
+                    figures.push(spec);
+                }
+            }
+        }
+        _ => errors.push("figures: must be a non-empty array".into()),
+    }
+    if errors.is_empty() {
+        Ok(Lesson { name, title, text, figures })
+    } else {
+        Err(errors)
+    }
+}
+
+/// Reports every field of `map` not in `known`.
+fn unknown(map: &Map<String, Value>, path: &str, known: &[&str], errors: &mut Vec<String>) {
+    for key in map.keys().filter(|k| !known.contains(&k.as_str())) {
+        errors.push(format!("{path}{key}: unknown field; the fields are {}", known.join(", ")));
+    }
+}
+
+/// `{ "en": …, "ro": … }`.
+fn both(value: Option<&Value>, path: &str, errors: &mut Vec<String>) -> Both {
+    let Some(map) = value.and_then(Value::as_object) else {
+        errors.push(format!("{path}: must be {{ \"en\": \"…\", \"ro\": \"…\" }}"));
+        return Both::default();
+    };
+    unknown(map, &format!("{path}."), &["en", "ro"], errors);
+    let mut get = |lang: &str| match map.get(lang).and_then(Value::as_str) {
+        Some(s) => s.to_owned(),
+        None => {
+            errors.push(format!("{path}.{lang}: must be a string"));
+            String::new()
+        }
+    };
+    Both { en: get("en"), ro: get("ro") }
+}
+
+/// One figure spec at `path`.
+fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureSpec> {
+    let Some(map) = value.as_object() else {
+        errors.push(format!("{path}: must be an object"));
+        return None;
+    };
+    let fields =
+        ["kind", "scene", "pixel", "ray", "depth", "aa", "threshold", "max_level", "grid", "caption"];
+    unknown(map, &format!("{path}."), &fields, errors);
+    let kind = map.get("kind").and_then(Value::as_str).and_then(FigureKind::from_name);
+    if kind.is_none() {
+        let names: Vec<&str> = FigureKind::ALL.iter().map(|k| k.name()).collect();
+        errors.push(format!("{path}.kind: must be one of {}", names.join(", ")));
+    }
+    let scene = map.get("scene").and_then(Value::as_str).map(str::to_owned);
+    if scene.is_none() {
+        errors.push(format!("{path}.scene: must be the path of a scene file"));
+    }
+    let whole = |v: &Value| v.as_u64().and_then(|n| usize::try_from(n).ok());
+    let pixel =
+        match map.get("pixel").map(|p| p.as_array().map(|a| a.iter().map(whole).collect::<Option<Vec<_>>>()))
+        {
+            None => None,
+            Some(Some(Some(p))) if p.len() == 1 => Some((p[0], None)),
+            Some(Some(Some(p))) if p.len() == 2 => Some((p[0], Some(p[1]))),
+            Some(_) => {
+                errors.push(format!("{path}.pixel: must be [i, j] (or [i] in 2D) with whole numbers"));
+                None
+            }
+        };
+    let numbers = |v: Option<&Value>| -> Option<Vec<f64>> {
+        v?.as_array()?.iter().map(|x| x.as_f64().filter(|f| f.is_finite())).collect()
+    };
+    let ray = match map.get("ray") {
+        None => None,
+        Some(r) => {
+            let origin = numbers(r.get("origin"));
+            let direction = numbers(r.get("direction"));
+            match (origin, direction) {
+                (Some(o), Some(d)) if o.len() == d.len() && (2..=3).contains(&o.len()) => Some((o, d)),
+                _ => {
+                    errors.push(format!("{path}.ray: must be {{ \"origin\": [..], \"direction\": [..] }}, 2 or 3 numbers each"));
+                    None
+                }
+            }
+        }
+    };
+    if pixel.is_some() && ray.is_some() {
+        errors.push(format!("{path}: give pixel or ray, not both"));
+    }
+    let depth = match map.get("depth") {
+        None => None,
+        Some(d) => match d.as_u64().and_then(|n| u32::try_from(n).ok()).filter(|n| *n <= 64) {
+            Some(n) => Some(n),
+            None => {
+                errors.push(format!("{path}.depth: must be an integer in [0, 64]"));
+                None
+            }
+        },
+    };
+    let sampling = sampling(map, path, errors);
+    let grid = match map.get("grid") {
+        None => None,
+        Some(g) => {
+            let cells: Option<Vec<usize>> = g.as_array().and_then(|a| {
+                a.iter()
+                    .map(|x| {
+                        x.as_u64().and_then(|n| usize::try_from(n).ok()).filter(|n| (1..=256).contains(n))
+                    })
+                    .collect()
+            });
+            if cells.as_ref().is_none_or(|c| !(2..=3).contains(&c.len())) {
+                errors.push(format!("{path}.grid: must be 2 or 3 cell counts in [1, 256]"));
+            }
+            cells
+        }
+    };
+    let caption = both(map.get("caption"), &format!("{path}.caption"), errors);
+    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, grid, caption })
+}
+
+/// `aa` (`center`, `corners`, `adaptive`) with `threshold` (default 0.1) and `max_level` (default 2).
+fn sampling(map: &Map<String, Value>, path: &str, errors: &mut Vec<String>) -> Option<Sampling> {
+    let aa = map.get("aa")?;
+    let threshold = match map.get("threshold") {
+        None => 0.1,
+        Some(t) => t.as_f64().unwrap_or(-1.0),
+    };
+    let max_level = match map.get("max_level") {
+        None => 2,
+        Some(k) => k.as_u64().and_then(|k| u32::try_from(k).ok()).unwrap_or(u32::MAX),
+    };
+    let made = match aa.as_str() {
+        Some("center") => Ok(Sampling::Center),
+        Some("corners") => Ok(Sampling::Corners),
+        Some("adaptive") => Sampling::adaptive(threshold, max_level).map_err(|e| e.to_string()),
+        _ => Err("must be center, corners or adaptive".to_owned()),
+    };
+    made.map_err(|e| errors.push(format!("{path}.aa: {e}"))).ok()
+}
+
+/// What the index page shows for one written figure.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Shown {
+    /// The PNG, relative to the page.
+    pub png: String,
+    /// The SVG, relative to the page.
+    pub svg: String,
+    /// The command that regenerates the PNG.
+    pub command: String,
+    /// Why it could not be drawn, if it could not.
+    pub error: Option<String>,
+}
+
+/// The static page of every lesson in `lang`: titles, introductions, each figure with its
+/// caption, its SVG and the command that regenerates it; `other` links to the other language's
+/// page. `shown[l][f]` is figure f of lesson l.
+#[must_use]
+pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &str) -> String {
+    let (title, other_name, regenerate, vector) = match lang {
+        Lang::En => {
+            ("whitted — the lecture's figures, drawn from traces", "Română", "Regenerate", "SVG for print")
+        }
+        Lang::Ro => {
+            ("whitted — figurile cursului, desenate din trasee", "English", "Regenerare", "SVG pentru tipar")
+        }
+    };
+    let code = match lang {
+        Lang::En => "en",
+        Lang::Ro => "ro",
+    };
+    let mut out = format!(
+        "<!DOCTYPE html>\n<html lang=\"{code}\">\n<head>\n<meta charset=\"utf-8\">\n<title>{title}</title>\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<style>\n\
+         body {{ font-family: 'Noto Sans', sans-serif; max-width: 1100px; margin: 2em auto; padding: 0 1em; color: #1a1a1a; }}\n\
+         figure {{ margin: 1.5em 0; }} img {{ width: 100%; border: 1px solid #ccc; }}\n\
+         code {{ background: #f3f3f3; padding: 0.1em 0.3em; font-size: 0.9em; }}\n\
+         nav a {{ margin-right: 1em; }} .error {{ color: #d55e00; }}\n\
+         @media print {{ nav, .cmd {{ display: none; }} figure {{ page-break-inside: avoid; }} }}\n\
+         </style>\n</head>\n<body>\n<h1>{title}</h1>\n<nav><a href=\"{}\">{other_name}</a></nav>\n<ol>\n",
+        esc(other)
+    );
+    for lesson in lessons {
+        out.push_str(&format!("<li><a href=\"#{}\">{}</a></li>\n", lesson.name, esc(lesson.title.get(lang))));
+    }
+    out.push_str("</ol>\n");
+    for (lesson, figures) in lessons.iter().zip(shown) {
+        out.push_str(&format!(
+            "<section id=\"{}\">\n<h2>{}</h2>\n",
+            lesson.name,
+            esc(lesson.title.get(lang))
+        ));
+        if !lesson.text.get(lang).is_empty() {
+            out.push_str(&format!("<p>{}</p>\n", esc(lesson.text.get(lang))));
+        }
+        for (spec, s) in lesson.figures.iter().zip(figures) {
+            let caption = esc(spec.caption.get(lang));
+            match &s.error {
+                None => out.push_str(&format!(
+                    "<figure>\n<a href=\"{svg}\"><img src=\"{png}\" alt=\"{caption}\"></a>\n<figcaption>{caption} \
+                     (<a href=\"{svg}\">{vector}</a>)<br><span class=\"cmd\">{regenerate}: <code>{cmd}</code></span>\
+                     </figcaption>\n</figure>\n",
+                    svg = esc(&s.svg),
+                    png = esc(&s.png),
+                    cmd = esc(&s.command),
+                )),
+                Some(e) => out.push_str(&format!(
+                    "<figure>\n<figcaption>{caption}<br><span class=\"error\">{}</span><br><code>{}</code></figcaption>\n</figure>\n",
+                    esc(e),
+                    esc(&s.command)
+                )),
+            }
+        }
+        out.push_str("</section>\n");
+    }
+    out.push_str("</body>\n</html>\n");
+    out
+}
+
+/// Escapes text for HTML.
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"{ "name": "rays", "title": { "en": "Rays", "ro": "Raze" },
+        "figures": [ { "kind": "rays", "scene": "s.json", "pixel": [3], "aa": "adaptive", "max_level": 3,
+                       "caption": { "en": "a", "ro": "b" } },
+                     { "kind": "refraction", "scene": "t.json", "ray": { "origin": [0, 0], "direction": [1, 0] },
+                       "depth": 2, "caption": { "en": "c", "ro": "d" } } ] }"#;
+
+    #[test]
+    fn a_lesson_reads() {
+        let lesson = parse(GOOD).unwrap();
+        assert_eq!(lesson.name, "rays");
+        assert_eq!(lesson.figures[0].pixel, Some((3, None)));
+        assert_eq!(lesson.figures[1].ray, Some((vec![0.0, 0.0], vec![1.0, 0.0])));
+        assert_eq!(lesson.figures[1].depth, Some(2));
+        assert_eq!(lesson.figures[0].sampling, Some(Sampling::Adaptive { threshold: 0.1, max_level: 3 }));
+        assert_eq!(lesson.figures[1].sampling, None);
+        assert_eq!(lesson.file_stem(1), "rays-2-refraction");
+        assert_eq!(lesson.title.get(Lang::Ro), "Raze");
+    }
+
+    #[test]
+    fn every_problem_is_named() {
+        let bad = r#"{ "name": "A b", "title": { "en": "x" }, "extra": 1,
+            "figures": [ { "kind": "rainbow", "scene": "s.json", "pixel": [-1], "caption": { "en": "a", "ro": "b" } } ] }"#;
+        let errors = parse(bad).unwrap_err();
+        let all = errors.join("\n");
+        for expected in
+            ["name:", "title.ro:", "extra: unknown field", "figures[0].kind:", "figures[0].pixel:"]
+        {
+            assert!(all.contains(expected), "{expected} in {all}");
+        }
+    }
+
+    #[test]
+    fn the_page_has_every_figure_and_escapes_text() {
+        let lesson = parse(GOOD).unwrap();
+        let shown: Vec<Shown> = (0..2)
+            .map(|k| Shown {
+                png: format!("{k}.png"),
+                svg: format!("{k}.svg"),
+                command: "whitted figure rays s.json --lang ro -o <x>".into(),
+                error: None,
+            })
+            .collect();
+        let page = index_html(&[lesson], &[shown], Lang::Ro, "../index.html");
+        assert!(page.contains("<html lang=\"ro\">"));
+        assert!(page.contains("src=\"1.png\""));
+        assert!(page.contains("-o &lt;x&gt;"));
+        assert!(page.contains("href=\"../index.html\""));
+    }
+}

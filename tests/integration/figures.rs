@@ -1,0 +1,505 @@
+//! The diagrams (issue 6 item 5): a snapshot of each kind's display list on fixture scenes; every
+//! SVG parses and holds one tagged group per item; every PNG has its size, is not blank and shows
+//! the colour of each ray kind its trace holds; labels come in both languages.
+
+use crate::support::fixture;
+use glam::DVec2;
+use whitted::figure::drawing::{Drawing, Sample, Shape};
+use whitted::figure::labels::Label;
+use whitted::figure::plane::Planar;
+use whitted::figure::source::{record, Aim, Tracing};
+use whitted::figure::style::{RayRole, Rgba};
+use whitted::figure::{draw, skia, svg, FigureKind, Lang, Options};
+use whitted::geom::ray::Ray;
+use whitted::record::event::{Event, RayKind};
+use whitted::scene::load::load_str;
+use whitted::scene::{AnyScene, Scene};
+
+/// Every kind.
+const DRAWN: [FigureKind; 14] = FigureKind::ALL;
+
+/// How a kind is traced in the tests: the sampling kinds adaptively (threshold 0.1, K = 2); the
+/// grid of the pitfall fixture with its 4 × 4 × 4 cells.
+fn tracing_for(kind: FigureKind, scene: &str) -> Tracing {
+    let mut t = Tracing::SCENE;
+    if matches!(kind, FigureKind::HeatMap | FigureKind::Adaptive) {
+        t.sampling = Tracing::ADAPTIVE;
+    }
+    if kind == FigureKind::GridDda && scene.starts_with("grid_pitfall") {
+        t.accel.grid = Some(vec![4, 4, 4]);
+    }
+    t
+}
+
+fn tracing(kind: FigureKind) -> Tracing {
+    tracing_for(kind, "")
+}
+
+/// A small canvas for the fast tests.
+const SMALL: (u32, u32) = (480, 270);
+
+fn figure_in<V: Planar>(
+    scene: &Scene<V>,
+    name: &str,
+    kind: FigureKind,
+    aim: &Aim<V>,
+    lang: Lang,
+    size: (u32, u32),
+) -> Drawing {
+    let traces = record(kind, scene, name, aim, &tracing_for(kind, name))
+        .unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
+    let opts = Options { lang, width: size.0, height: size.1 };
+    draw(kind, &traces, scene, &opts).unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"))
+}
+
+/// Figure `kind` of a fixture, the figure picking its pixel.
+fn figure(kind: FigureKind, name: &str, lang: Lang, size: (u32, u32)) -> Drawing {
+    let stem = name.trim_end_matches(".json");
+    match load_str(&fixture(name)).expect("fixture loads") {
+        AnyScene::Flat(s) => figure_in(&s, stem, kind, &Aim::Auto, lang, size),
+        AnyScene::Space(s) => figure_in(&s, stem, kind, &Aim::Auto, lang, size),
+    }
+}
+
+/// The fixtures each kind is snapshot on: one 3D and one 2D scene where both make sense.
+fn fixtures(kind: FigureKind) -> &'static [&'static str] {
+    match kind {
+        FigureKind::LocalModel => &["ortho_box.json", "lens_2d.json"],
+        FigureKind::RayTree => &["glass.json", "corridor.json"],
+        FigureKind::Refraction => &["glass.json", "lens_2d.json"],
+        FigureKind::Bvh | FigureKind::Octree => &["glass.json", "groups_2d.json"],
+        FigureKind::GridDda => &["grid_pitfall.json", "groups_2d.json"],
+        FigureKind::KayKajiya => &["ortho_box.json", "lens_2d.json"],
+        _ => &["glass.json", "lens_2d.json"],
+    }
+}
+
+/// A coordinate for snapshots: 3 decimals, no `-0`.
+fn c(x: f64) -> String {
+    let s = format!("{x:.3}");
+    if s == "-0.000" {
+        "0.000".into()
+    } else {
+        s
+    }
+}
+
+fn p(v: DVec2) -> String {
+    format!("({}, {})", c(v.x), c(v.y))
+}
+
+fn colour(rgba: Rgba) -> String {
+    if rgba.a == 255 {
+        rgba.hex()
+    } else {
+        format!("{}@{}", rgba.hex(), rgba.a)
+    }
+}
+
+/// One line per item: tag, geometry (world coordinates, rounded), stroke.
+fn item_line(item: &whitted::figure::drawing::Item) -> String {
+    let st = &item.style;
+    let stroke = if st.strokes() {
+        format!(" {} w{}{}", colour(st.color), c(st.width), if st.dash.is_some() { " dashed" } else { "" })
+    } else {
+        String::new()
+    };
+    let fill = |f: &Option<Rgba>| f.map(|f| format!(" fill {}", colour(f))).unwrap_or_default();
+    let geometry = match &item.shape {
+        Shape::Line { points } => {
+            format!("line {}", points.iter().map(|q| p(*q)).collect::<Vec<_>>().join(" "))
+        }
+        Shape::Arrow { from, to, .. } => format!("arrow {} → {}", p(*from), p(*to)),
+        Shape::Circle { center, radius, fill: f } => {
+            format!("circle {} r {}{}", p(*center), c(*radius), fill(f))
+        }
+        Shape::Dot { center, radius, fill: f } => {
+            format!("dot {} r{}px fill {}", p(*center), c(*radius), colour(*f))
+        }
+        Shape::Polygon { points, fill: f } => {
+            format!("polygon {}{}", points.iter().map(|q| p(*q)).collect::<Vec<_>>().join(" "), fill(f))
+        }
+        Shape::Rect { min, max, fill: f } => format!("rect {} {}{}", p(*min), p(*max), fill(f)),
+        Shape::Text(t) => format!("text {:?} at {} + {}px", t.text, p(t.anchor), p(t.offset)),
+    };
+    format!("{}: {geometry}{stroke}", item.tag)
+}
+
+/// The display list as JSON for a snapshot.
+fn dump(d: &Drawing) -> serde_json::Value {
+    serde_json::json!({
+        "title": d.title,
+        "caption": d.caption,
+        "view": [c(d.view.xmin()), c(d.view.xmax()), c(d.view.ymin()), c(d.view.ymax())],
+        "legend": d.legend.iter().map(|e| e.label.clone()).collect::<Vec<_>>(),
+        "items": d.items.iter().map(item_line).collect::<Vec<_>>(),
+    })
+}
+
+#[test]
+fn display_list_snapshots() {
+    for kind in DRAWN {
+        for name in fixtures(kind) {
+            let d = figure(kind, name, Lang::En, (1920, 1080));
+            insta::with_settings!({ snapshot_suffix => format!("{}@{name}", kind.name()), omit_expression => true }, {
+                insta::assert_json_snapshot!("figure", dump(&d));
+            });
+        }
+    }
+}
+
+#[test]
+fn refraction_draws_the_total_internal_reflection_of_a_given_ray() {
+    let AnyScene::Flat(scene) = load_str(&fixture("tir_slab_2d.json")).unwrap() else { panic!("2D") };
+    // numerics.md E3: inside the slab at 30° to the wall, θᵢ = 60° > θ_c ≈ 41.8°.
+    let ray = Ray::new(DVec2::new(-0.5, 0.0), DVec2::new(3f64.sqrt() / 2.0, 0.5));
+    let d = figure_in(&scene, "tir_slab_2d", FigureKind::Refraction, &Aim::Ray(ray), Lang::En, SMALL);
+    let texts: Vec<&str> = d
+        .items
+        .iter()
+        .filter_map(|i| match &i.shape {
+            Shape::Text(t) => Some(t.text.as_str()),
+            _ => None,
+        })
+        .collect();
+    assert!(texts.iter().any(|t| t.contains("θ_c = asin(n_2/n_1) = 41.8°")), "{texts:?}");
+    assert!(texts.iter().any(|t| t.contains("θ_i = 60.0°")), "{texts:?}");
+    assert!(texts.iter().any(|t| t.contains(Label::NoT.text(Lang::En))), "{texts:?}");
+    // No T ray is drawn for a total internal reflection.
+    assert_eq!(d.tagged(RayRole::Transmitted.tag()).count(), 0);
+    insta::assert_json_snapshot!("figure_refraction_tir", dump(&d));
+}
+
+#[test]
+fn every_svg_parses_and_has_one_tagged_group_per_item() {
+    for kind in DRAWN {
+        for name in fixtures(kind) {
+            for lang in [Lang::En, Lang::Ro] {
+                let d = figure(kind, name, lang, SMALL);
+                let text = svg::to_svg(&d);
+                let doc =
+                    roxmltree::Document::parse(&text).unwrap_or_else(|e| panic!("{kind:?} {name}: {e}"));
+                let groups =
+                    doc.descendants().filter(|n| n.has_tag_name("g") && n.attribute("data-tag").is_some());
+                assert_eq!(groups.count(), d.items.len(), "{kind:?} {name} {lang:?}");
+            }
+        }
+    }
+}
+
+/// The PNG's pixels as RGBA rows.
+fn pixels(d: &Drawing) -> (u32, u32, Vec<[u8; 4]>) {
+    let png = skia::to_png(d).expect("png");
+    let img = image::load_from_memory(&png).expect("decode").to_rgba8();
+    let (w, h) = img.dimensions();
+    (w, h, img.pixels().map(|p| p.0).collect())
+}
+
+/// How many pixels are within `tolerance` per channel of `colour`.
+fn count(pixels: &[[u8; 4]], colour: Rgba, tolerance: i32) -> usize {
+    pixels
+        .iter()
+        .filter(|p| {
+            (i32::from(p[0]) - i32::from(colour.r)).abs() <= tolerance
+                && (i32::from(p[1]) - i32::from(colour.g)).abs() <= tolerance
+                && (i32::from(p[2]) - i32::from(colour.b)).abs() <= tolerance
+        })
+        .count()
+}
+
+#[test]
+fn every_png_has_its_size_and_is_not_blank() {
+    for kind in DRAWN {
+        for name in fixtures(kind) {
+            let d = figure(kind, name, Lang::Ro, SMALL);
+            let (w, h, px) = pixels(&d);
+            assert_eq!((w, h), SMALL, "{kind:?} {name}");
+            let white = count(&px, Rgba::rgb(255, 255, 255), 0);
+            assert!(white < px.len() * 97 / 100, "{kind:?} {name}: almost blank");
+        }
+    }
+}
+
+/// The ray roles a trace holds, read from its events.
+fn roles_of<V: Planar>(scene: &Scene<V>, pixel: (usize, usize)) -> Vec<RayRole> {
+    let traces =
+        record(FigureKind::Rays, scene, "s", &Aim::Pixel(pixel.0, pixel.1), &Tracing::SCENE).unwrap();
+    let log = &traces.traces[0].log;
+    let mut roles = vec![RayRole::Primary];
+    if log.nodes.iter().any(|n| n.start.kind == RayKind::Reflected) {
+        roles.push(RayRole::Reflected);
+    }
+    if log.nodes.iter().any(|n| n.start.kind == RayKind::Transmitted) {
+        roles.push(RayRole::Transmitted);
+    }
+    for l in &log.events {
+        if let Event::ShadowRay { occluders, .. } = &l.event {
+            let role = if occluders.is_empty() { RayRole::Shadow } else { RayRole::BlockedShadow };
+            if !roles.contains(&role) {
+                roles.push(role);
+            }
+        }
+    }
+    roles
+}
+
+#[test]
+fn a_slide_size_rays_png_shows_the_colour_of_every_ray_kind_in_its_trace() {
+    let AnyScene::Space(scene) = load_str(&fixture("glass.json")).unwrap() else { panic!("3D") };
+    let pixel = (4, 2);
+    let roles = roles_of(&scene, pixel);
+    assert!(roles.len() >= 4, "the fixture pixel shows most kinds: {roles:?}");
+    let d =
+        figure_in(&scene, "glass", FigureKind::Rays, &Aim::Pixel(pixel.0, pixel.1), Lang::En, (1920, 1080));
+    let (w, h, px) = pixels(&d);
+    assert_eq!((w, h), (1920, 1080));
+    for role in RayRole::ALL {
+        let n = count(&px, role.color(), 6);
+        if roles.contains(&role) {
+            assert!(n > 50, "{role:?}: {n} pixels of its colour");
+        }
+    }
+    // The legend names exactly the roles present.
+    let legend: Vec<&str> =
+        d.legend.iter().filter(|e| e.sample == Sample::Arrow).map(|e| e.label.as_str()).collect();
+    assert_eq!(legend.len(), roles.len(), "{legend:?} vs {roles:?}");
+}
+
+#[test]
+fn labels_come_in_both_languages() {
+    let titles = [
+        (FigureKind::UvMap, Label::TitleUvMap),
+        (FigureKind::Projections, Label::TitleProjections),
+        (FigureKind::Rays, Label::TitleRays),
+        (FigureKind::Refraction, Label::TitleRefraction),
+        (FigureKind::RayTree, Label::TitleRayTree),
+        (FigureKind::Shadows, Label::TitleShadows),
+        (FigureKind::Adaptive, Label::TitleAdaptive),
+        (FigureKind::HeatMap, Label::TitleHeatMap),
+        (FigureKind::SlabTest, Label::TitleSlabTest),
+        (FigureKind::KayKajiya, Label::TitleKayKajiya),
+        (FigureKind::Bvh, Label::TitleBvh),
+        (FigureKind::GridDda, Label::TitleGridDda),
+        (FigureKind::Octree, Label::TitleOctree),
+    ];
+    for (kind, title) in titles {
+        for lang in [Lang::En, Lang::Ro] {
+            let d = figure(kind, "glass.json", lang, SMALL);
+            assert_eq!(d.title.as_deref(), Some(title.text(lang)), "{kind:?}");
+            let scene_word = Label::Scene.text(lang);
+            assert!(d.caption.as_deref().is_some_and(|c| c.starts_with(scene_word)), "{kind:?} {lang:?}");
+        }
+    }
+    let ro = figure(FigureKind::Rays, "glass.json", Lang::Ro, SMALL);
+    assert!(ro.legend.iter().any(|e| e.label == "rază primară P"));
+    assert!(ro.legend.iter().any(|e| e.label == "rază transmisă T"));
+    let tree = figure(FigureKind::RayTree, "glass.json", Lang::Ro, SMALL);
+    assert!(tree.caption.as_deref().is_some_and(|c| c.contains("adâncimea maximă")));
+}
+
+#[test]
+fn every_kind_is_listed_with_a_description_and_unknown_names_are_refused() {
+    assert_eq!(FigureKind::ALL.len(), 14);
+    for kind in FigureKind::ALL {
+        assert_eq!(FigureKind::from_name(kind.name()), Some(kind));
+        assert!(!kind.description().is_empty());
+    }
+    assert_eq!(FigureKind::from_name("ray_tree"), None);
+}
+
+#[test]
+fn a_figure_reads_the_trace_it_was_given() {
+    // The uv-map's (u, v) is the primary ray's recorded one, and the pixel the one asked for.
+    let AnyScene::Space(scene) = load_str(&fixture("glass.json")).unwrap() else { panic!("3D") };
+    let d = figure_in(&scene, "glass", FigureKind::UvMap, &Aim::Pixel(1, 5), Lang::En, SMALL);
+    let (u, v) = scene.camera.pixel_center(1, 5);
+    let expected =
+        format!("(u, v) = ({}, {})", whitted::figure::parts::num(u), whitted::figure::parts::num(v));
+    assert!(d.items.iter().any(|i| matches!(&i.shape, Shape::Text(t) if t.text == expected)), "{expected}");
+    // A pixel outside the image is an error, not a panic.
+    assert!(record(FigureKind::Rays, &scene, "glass", &Aim::Pixel(8, 0), &Tracing::SCENE).is_err());
+    // A kind that needs a refraction refuses a pixel without one.
+    let AnyScene::Space(boxes) = load_str(&fixture("ortho_box.json")).unwrap() else { panic!("3D") };
+    let err =
+        record(FigureKind::Refraction, &boxes, "ortho_box", &Aim::Pixel(0, 0), &Tracing::SCENE).unwrap_err();
+    assert!(err.0.contains("has no refraction or total internal reflection"), "{err}");
+}
+
+fn whitted(args: &[&str]) -> (i32, String, String) {
+    let out =
+        std::process::Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
+    let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
+    (out.status.code().unwrap_or(-1), text(&out.stdout), text(&out.stderr))
+}
+
+#[test]
+fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
+    let (code, out, _) = whitted(&["figure", "--list"]);
+    assert_eq!(code, 0);
+    assert_eq!(out.lines().count(), 14);
+    assert!(out.lines().any(|l| l.starts_with("ray-tree")));
+
+    let dir = std::env::temp_dir().join(format!("whitted-figure-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = format!("{}/tests/data/scenes/lens_2d.json", env!("CARGO_MANIFEST_DIR"));
+    let svg_path = dir.join("rays.svg");
+    let (code, _, err) = whitted(&[
+        "figure",
+        "rays",
+        &scene,
+        "--pixel",
+        "3",
+        "--lang",
+        "ro",
+        "--size",
+        "640x360",
+        "-o",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&svg_path).unwrap();
+    assert!(roxmltree::Document::parse(&text).is_ok());
+    assert!(text.contains("width=\"640\" height=\"360\""));
+    assert!(text.contains("rază primară P"));
+    let png_path = dir.join("tree.png");
+    let (code, _, err) =
+        whitted(&["figure", "ray-tree", &scene, "--size", "480x270", "-o", png_path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let img = image::open(&png_path).unwrap();
+    assert_eq!((img.width(), img.height()), (480, 270));
+
+    for (args, expected) in [
+        (vec!["figure", "rainbow", scene.as_str()], "unknown figure kind `rainbow`"),
+        (vec!["figure", "rays", scene.as_str(), "--pixel", "99"], "outside the image"),
+        (vec!["figure", "rays", scene.as_str(), "-o", "x.gif"], "must end in .png or .svg"),
+        (vec!["figure", "rays"], "SCENE"),
+    ] {
+        let (code, _, err) = whitted(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(expected), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn the_lessons_command_writes_both_languages_and_the_pages() {
+    let out = std::env::temp_dir().join(format!("whitted-lessons-{}", std::process::id()));
+    let lessons = format!("{}/lessons", env!("CARGO_MANIFEST_DIR"));
+    let args = [
+        "lessons",
+        "--lessons",
+        &lessons,
+        "--only",
+        "pixel-uv",
+        "--size",
+        "480x270",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let (code, stdout, err) = whitted(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("1 lessons"), "{stdout}");
+    for lang in ["en", "ro"] {
+        for ext in ["png", "svg"] {
+            assert!(out.join(lang).join(format!("pixel-uv-1-uv-map.{ext}")).exists(), "{lang} {ext}");
+        }
+    }
+    let en = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let ro = std::fs::read_to_string(out.join("ro").join("index.html")).unwrap();
+    assert!(en.contains("src=\"en/pixel-uv-1-uv-map.png\"") && en.contains("whitted figure uv-map"));
+    assert!(ro.contains("src=\"pixel-uv-1-uv-map.png\"") && ro.contains("--lang ro"));
+    assert!(ro.contains("Calculul coordonatelor (u, v)"));
+    let (code, _, err) =
+        whitted(&["lessons", "--lessons", &lessons, "--only", "nothing", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("no lesson is named `nothing`"));
+}
+
+#[test]
+fn every_lesson_file_reads() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "json") {
+            let lesson = whitted::lesson::parse(&std::fs::read_to_string(&path).unwrap())
+                .unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+            for spec in &lesson.figures {
+                let scene = std::fs::read_to_string(dir.join(&spec.scene)).unwrap();
+                assert!(load_str(&scene).is_ok(), "{}: {}", path.display(), spec.scene);
+            }
+            names.push(lesson.name);
+        }
+    }
+    let count = names.len();
+    names.sort();
+    names.dedup();
+    assert_eq!(names.len(), count, "lesson names are unique");
+}
+
+/// Every finite coordinate of a display list (a NaN or an infinity is a bug).
+fn assert_finite_items(d: &Drawing, what: &str) {
+    let finite = |p: &DVec2| p.is_finite();
+    for item in &d.items {
+        let ok = match &item.shape {
+            Shape::Line { points } | Shape::Polygon { points, .. } => points.iter().all(finite),
+            Shape::Arrow { from, to, .. } => finite(from) && finite(to),
+            Shape::Circle { center, radius, .. } => finite(center) && radius.is_finite(),
+            Shape::Dot { center, .. } => finite(center),
+            Shape::Rect { min, max, .. } => finite(min) && finite(max),
+            Shape::Text(t) => finite(&t.anchor) && finite(&t.offset),
+        };
+        assert!(ok, "{what}: {}", item_line(item));
+    }
+}
+
+#[test]
+fn every_kind_draws_or_says_why_on_every_scene() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut scenes: Vec<(String, String)> = Vec::new();
+    for dir in ["tests/data/scenes", "lessons/scenes", "scenes"] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            scenes.push((path.display().to_string(), std::fs::read_to_string(&path).unwrap()));
+        }
+    }
+    // Edge cases: nothing in the scene, no light, a ray that leaves at once.
+    let empty3 = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [4,3]}}"#;
+    let dark2 = r#"{"camera": {"eye": [0,5], "center": [0,0], "window": {"l":-1,"r":1}, "resolution": [3]},
+                   "objects": [{"type": "sphere", "center": [0,0], "radius": 1, "material": {"kt": 0.5, "ior": 1.3}}]}"#;
+    scenes.push(("empty3".into(), empty3.into()));
+    scenes.push(("dark2".into(), dark2.into()));
+    for (name, text) in &scenes {
+        let scene = load_str(text).unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        for kind in DRAWN {
+            let made = match &scene {
+                AnyScene::Flat(s) => try_figure(s, kind),
+                AnyScene::Space(s) => try_figure(s, kind),
+            };
+            match made {
+                Ok(d) => assert_finite_items(&d, &format!("{name} {kind:?}")),
+                // Only the kinds that need a refraction, a hit or a shadow ray may refuse.
+                // Only the kinds that need a refraction, a hit, a shadow ray or a bounded object
+                // may refuse.
+                Err(e) => assert!(
+                    matches!(
+                        kind,
+                        FigureKind::Refraction
+                            | FigureKind::LocalModel
+                            | FigureKind::Shadows
+                            | FigureKind::SlabTest
+                            | FigureKind::KayKajiya
+                            | FigureKind::Bvh
+                            | FigureKind::Octree
+                            | FigureKind::GridDda
+                    ),
+                    "{name} {kind:?}: {e}"
+                ),
+            }
+        }
+    }
+}
+
+fn try_figure<V: Planar>(scene: &Scene<V>, kind: FigureKind) -> Result<Drawing, String> {
+    let traces = record(kind, scene, "s", &Aim::Auto, &tracing(kind)).map_err(|e| e.0)?;
+    draw(kind, &traces, scene, &Options { lang: Lang::Ro, width: 480, height: 270 }).map_err(|e| e.0)
+}
