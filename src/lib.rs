@@ -16,6 +16,7 @@ pub mod geom;
 pub mod image;
 pub mod record;
 pub mod render;
+pub mod sample;
 pub mod scene;
 pub mod shape;
 pub mod trace;

@@ -6,6 +6,7 @@ mod accel;
 mod check;
 mod parse;
 mod render;
+mod sampling;
 mod trace;
 
 use clap::{Parser, Subcommand};
@@ -25,7 +26,7 @@ pub struct Cli {
 /// The commands.
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Render an image: one ray through each pixel centre; a one-line summary on stderr.
+    /// Render an image (one ray per pixel centre, or --aa corners|adaptive); a one-line summary on stderr.
     Render(render::RenderArgs),
     /// Trace one pixel (or one ray) and tell every step, or print the trace document with --json.
     Trace(trace::TraceArgs),

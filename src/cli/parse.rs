@@ -1,4 +1,5 @@
-//! Value parsers for the command line: `--pixel I,J`, `--ray OX,OY,OZ:DX,DY,DZ`, `--size WxH`.
+//! Value parsers for the command line: `--pixel I,J`, `--ray OX,OY,OZ:DX,DY,DZ`, `--size WxH`,
+//! `--threshold X`.
 
 /// `I,J` or `I` (2D) → column and optional row.
 ///
@@ -51,6 +52,20 @@ pub fn size(text: &str) -> Result<(usize, Option<usize>), String> {
     }
 }
 
+/// `X`: a number ≥ 0 or `inf` (numerics.md H1: a NaN would never split, a negative threshold
+/// always).
+///
+/// # Errors
+/// A message naming `--threshold`.
+pub fn threshold(text: &str) -> Result<f64, String> {
+    let x: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("--threshold: expected a number ≥ 0 or inf, got `{text}`"))?;
+    whitted::sample::Sampling::adaptive(x, 0).map_err(|e| e.to_string())?;
+    Ok(x)
+}
+
 #[cfg(test)]
 // These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
 #[allow(clippy::float_cmp)]
@@ -73,6 +88,17 @@ mod tests {
         assert!(ray("0,0,5:0,0").is_err());
         assert!(ray("0,0,5:0,0,0").is_err());
         assert!(ray("0,0,nan:0,0,1").is_err());
+    }
+
+    #[test]
+    fn thresholds() {
+        assert_eq!(threshold("0.1"), Ok(0.1));
+        assert_eq!(threshold("0"), Ok(0.0));
+        assert_eq!(threshold("inf"), Ok(f64::INFINITY));
+        for bad in ["nan", "NaN", "-0.1", "-inf", "x"] {
+            let e = threshold(bad).unwrap_err();
+            assert!(e.starts_with("--threshold"), "{e}");
+        }
     }
 
     #[test]

@@ -1,14 +1,20 @@
-//! `whitted render`: load → build the acceleration structure → render → PNG → the one-line
-//! summary (rays by kind, tests, time) on stderr, `--json` statistics on stdout.
+//! `whitted render`: load → build the acceleration structure → render (with the `--aa` sampling,
+//! a progress bar on stderr when it is a terminal) → PNG → the one-line summary (pixels, samples,
+//! rays by kind, tests, Mrays/s, time) on stderr, `--json` statistics on stdout.
 
 use super::accel::AccelArgs;
+use super::sampling::SamplingArgs;
 use super::{default_output, load_scene, parse, print_out, write_file, Failure};
 use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 use whitted::accel::{Accel, AccelOptions};
-use whitted::render::{render_centers, Rendered};
+use whitted::doc::float;
+use whitted::render::{render, RenderConfig, Rendered};
+use whitted::sample::Sampling;
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
 
@@ -33,6 +39,8 @@ pub struct RenderArgs {
     #[arg(long)]
     json: bool,
     #[command(flatten)]
+    sampling: SamplingArgs,
+    #[command(flatten)]
     accel: AccelArgs,
 }
 
@@ -55,6 +63,7 @@ pub fn resize<V: Dim>(scene: &mut Scene<V>, size: Option<(usize, Option<usize>)>
 
 /// Runs `whitted render`.
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
+    let sampling = args.sampling.sampling()?;
     let start = Instant::now();
     let scene = load_scene(&args.scene)?;
     let load_seconds = start.elapsed().as_secs_f64();
@@ -74,11 +83,11 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let outcome = match scene {
         AnyScene::Flat(mut s) => {
             let rows = resize(&mut s, args.size);
-            pool.install(|| render_scene(&s, args, &options, rows))
+            pool.install(|| render_scene(&s, args, sampling, &options, rows))
         }
         AnyScene::Space(mut s) => {
             let rows = resize(&mut s, args.size);
-            pool.install(|| render_scene(&s, args, &options, rows))
+            pool.install(|| render_scene(&s, args, sampling, &options, rows))
         }
     };
     let output = args.output.clone().unwrap_or_else(|| default_output(&args.scene, "png"));
@@ -88,12 +97,13 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let rays = stats.rays;
     let mrays = rays.total() as f64 / outcome.seconds.max(1e-9) / 1e6;
     eprintln!(
-        "whitted: {}x{} → {} | {} pixels, {} samples | rays: {} primary, {} reflected, {} transmitted, {} shadow | tests: {} object, {} bound, {} node, {} voxel | {} | {:.3} s trace, {:.2} Mrays/s, {} threads",
+        "whitted: {}x{} → {} | {} pixels, {} samples ({}) | rays: {} primary, {} reflected, {} transmitted, {} shadow | tests: {} object, {} bound, {} node, {} voxel | {} | {:.3} s trace, {:.2} Mrays/s, {} threads",
         outcome.rendered.image.width,
         outcome.rendered.image.height,
         output.display(),
         outcome.rendered.pixels,
         rays.primary,
+        describe(sampling),
         rays.primary,
         rays.reflected,
         rays.transmitted,
@@ -116,6 +126,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             "seconds": outcome.seconds,
             "threads": threads,
             "accel": outcome.accel,
+            "aa": sampling.name(),
             "width": outcome.rendered.image.width,
             "height": outcome.rendered.image.height,
             "output": output.display().to_string(),
@@ -123,6 +134,10 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         let st = whitted::doc::stats(stats);
         doc["rays"] = st["rays"].clone();
         doc["tests"] = st["tests"].clone();
+        if let Sampling::Adaptive { threshold, max_level } = sampling {
+            doc["threshold"] = float(threshold);
+            doc["max_level"] = json!(max_level);
+        }
         print_out(&format!("{doc}\n"));
     }
     Ok(())
@@ -135,9 +150,20 @@ struct Outcome {
     accel: &'static str,
 }
 
+/// The sampling mode as the summary line shows it.
+fn describe(sampling: Sampling) -> String {
+    match sampling {
+        Sampling::Adaptive { threshold, max_level } => {
+            format!("adaptive, threshold {threshold}, max level {max_level}")
+        }
+        other => other.name().to_string(),
+    }
+}
+
 fn render_scene<V: Dim>(
     scene: &Scene<V>,
     args: &RenderArgs,
+    sampling: Sampling,
     options: &AccelOptions,
     strip_rows: Option<usize>,
 ) -> Outcome {
@@ -145,8 +171,33 @@ fn render_scene<V: Dim>(
     let accel = Accel::build_with(scene, options);
     let build_seconds = build.elapsed().as_secs_f64();
     let max_depth = args.depth.unwrap_or(scene.max_depth);
+    // A progress bar over pixel rows, only for a person watching a terminal.
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let bar = ProgressBar::new(scene.camera.ny as u64);
+        if let Ok(style) =
+            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} rows, eta {eta}")
+        {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar
+    });
+    let tick = |rows: u64| {
+        if let Some(bar) = &bar {
+            bar.inc(rows);
+        }
+    };
+    let config = RenderConfig {
+        sampling,
+        max_depth,
+        strip_rows,
+        rays_per_pixel: false,
+        progress: bar.is_some().then_some(&tick as &(dyn Fn(u64) + Sync)),
+    };
     let trace = Instant::now();
-    let rendered = render_centers(scene, &accel, max_depth, strip_rows);
+    let rendered = render(scene, &accel, &config);
     let seconds = trace.elapsed().as_secs_f64();
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
     Outcome { rendered, build_seconds, seconds, accel: accel.kind().name() }
 }

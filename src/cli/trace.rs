@@ -1,15 +1,20 @@
 //! `whitted trace`: one pixel (or one ray) traced with `EventLog`; `--json` prints the trace
-//! document, otherwise the numbered narration (`doc::narrate`) in English or Romanian.
+//! document, otherwise the numbered narration (`doc::narrate`) in English or Romanian. With
+//! `--aa corners|adaptive` the pixel's samples are traced instead of its centre (`sample::trace_pixel`,
+//! `doc::samples`).
 
 use super::accel::AccelArgs;
+use super::sampling::SamplingArgs;
 use super::{load_scene, parse, print_out, Failure};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 use whitted::accel::Accel;
 use whitted::doc::narrate::{narrate, Lang};
+use whitted::doc::samples::{narrate_samples, sampled_document};
 use whitted::doc::{trace_document, TraceTarget};
 use whitted::geom::ray::Ray;
 use whitted::record::EventLog;
+use whitted::sample::{trace_pixel, Sampling};
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
 use whitted::trace::Tracer;
@@ -43,6 +48,9 @@ pub struct TraceArgs {
     /// The narration's language.
     #[arg(long, value_enum, default_value = "en")]
     lang: LangArg,
+    /// With --pixel: corners or adaptive trace the pixel's samples instead of its centre.
+    #[command(flatten)]
+    sampling: SamplingArgs,
     #[command(flatten)]
     accel: AccelArgs,
 }
@@ -95,12 +103,27 @@ fn target<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(Ray<V>, TraceTa
 }
 
 fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure> {
+    let sampling = args.sampling.sampling()?;
     let (ray, target) = target(scene, args)?;
     let options = args.accel.options(V::DIM).map_err(Failure::input)?;
     let accel = Accel::build_with(scene, &options);
     let mut tracer = Tracer::new(scene, &accel, EventLog::new());
     if let Some(d) = args.depth {
         tracer.max_depth = d;
+    }
+    if sampling != Sampling::Center {
+        let Some(pixel) = target.pixel.clone() else {
+            return Err(Failure::input("--aa corners|adaptive samples a pixel: give --pixel, not --ray"));
+        };
+        let traced = trace_pixel(&mut tracer, sampling, pixel[0], pixel.get(1).copied().unwrap_or(0));
+        let text = if args.json {
+            let doc = sampled_document(scene, &tracer.recorder, &tracer.stats, &target, sampling, &traced);
+            serde_json::to_string_pretty(&doc).map_err(|e| Failure::other(e.to_string()))? + "\n"
+        } else {
+            narrate_samples(&target, sampling, &traced, &tracer.stats, lang(args.lang))
+        };
+        print_out(&text);
+        return Ok(());
     }
     let uv = target.uv.clone().unwrap_or_default();
     let color = tracer.trace_primary(&ray, &uv);
@@ -109,11 +132,15 @@ fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure
         let text = serde_json::to_string_pretty(&doc).map_err(|e| Failure::other(e.to_string()))?;
         print_out(&format!("{text}\n"));
     } else {
-        let lang = match args.lang {
-            LangArg::En => Lang::En,
-            LangArg::Ro => Lang::Ro,
-        };
+        let lang = lang(args.lang);
         print_out(&narrate(scene, &tracer.recorder, &tracer.stats, &target, tracer.max_depth, lang));
     }
     Ok(())
+}
+
+fn lang(arg: LangArg) -> Lang {
+    match arg {
+        LangArg::En => Lang::En,
+        LangArg::Ro => Lang::Ro,
+    }
 }

@@ -9,11 +9,15 @@
 //!   `{ light, L, n_dot_l, lum, fat, shadow, diffuse, specular }`;
 //! - `events`: every event in order, each `{ kind, ray, …fields }` (see `record::event`).
 //!
+//! A pixel traced with `--aa corners|adaptive` adds `sampling`, `samples` and `squares` and has
+//! `tree` = null: see [`samples`].
+//!
 //! Objects are named by `name` when they have one, else by their index (a number). JSON has no
 //! infinity: ±∞ is written `"inf"`/`"-inf"`; a NaN is never written (it would be a bug).
 
 pub mod narrate;
 pub mod round;
+pub mod samples;
 
 use crate::geom::Vector;
 use crate::record::event::{Event, LightTerm, NodeHit, ObjectRef};

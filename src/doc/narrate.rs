@@ -56,6 +56,15 @@ pub fn num(x: f64) -> String {
     }
 }
 
+/// A number as the right operand of a subtraction: negative values in parentheses.
+fn paren(x: f64) -> String {
+    if x < 0.0 {
+        format!("({})", num(x))
+    } else {
+        num(x)
+    }
+}
+
 fn vec_str<V: Vector>(v: V) -> String {
     let parts: Vec<String> = v.to_vec().into_iter().map(num).collect();
     format!("({})", parts.join(", "))
@@ -72,6 +81,8 @@ struct Writer<'a, V: Dim> {
     out: String,
     step: usize,
     max_depth: u32,
+    /// The tests of each shadow ray of the node being told: (light, tests).
+    shadow_tests: Vec<(usize, Vec<&'a Event<V>>)>,
 }
 
 impl<'a, V: Dim> Writer<'a, V> {
@@ -117,6 +128,38 @@ impl<'a, V: Dim> Writer<'a, V> {
         self.log.events.iter().filter(|e| e.ray == Some(node)).map(|e| &e.event).collect()
     }
 
+    /// One intersection test as a line: its roots and what was taken.
+    fn test_line(&self, e: &Event<V>) -> String {
+        match e {
+            Event::ObjectTest { roots, accepted, .. } => {
+                let roots_s = if roots.is_empty() {
+                    self.t("no real root: the ray misses", "nicio rădăcină reală: raza ratează").to_string()
+                } else {
+                    let r: Vec<String> = roots.iter().map(|x| num(*x)).collect();
+                    format!("{} t = {}", self.t("roots", "rădăcini"), r.join(", "))
+                };
+                let acc = match accepted {
+                    Some(t) => format!(
+                        "→ {} t = {}",
+                        self.t("accepted (least t > 0)", "acceptat (cel mai mic t > 0)"),
+                        num(*t)
+                    ),
+                    None => self.t("→ no root with t > 0", "→ nicio rădăcină cu t > 0").to_string(),
+                };
+                format!("{roots_s} {acc}")
+            }
+            Event::BoundTest { volume, t_in, t_out, hit, .. } => format!(
+                "{volume}: max tᵢ = {}, min tₑ = {} → {}",
+                num(*t_in),
+                num(*t_out),
+                if *hit { self.t("hit", "intersectat") } else { self.t("missed", "ratat") }
+            ),
+            Event::NodeVisit { structure, node, .. } => format!("{structure} {node}"),
+            Event::VoxelStep { cell, .. } => format!("{} {cell:?}", self.t("cell", "celula")),
+            _ => String::new(),
+        }
+    }
+
     fn node(&mut self, index: usize, indent: usize) {
         let node = &self.log.nodes[index];
         let events = self.events_of(index);
@@ -136,32 +179,27 @@ impl<'a, V: Dim> Writer<'a, V> {
         self.step(indent, &title, &[ray_line]);
         let mut children = node.children.iter();
         let mut lights_done = false;
+        // Tests after the hit belong to the shadow ray that follows them.
+        let mut seen_hit = false;
+        let mut pending: Vec<&Event<V>> = Vec::new();
+        self.shadow_tests.clear();
         for e in events {
             match e {
-                Event::ObjectTest { object, roots, accepted } => {
-                    let roots_s = if roots.is_empty() {
-                        self.t("no real root: the ray misses", "nicio rădăcină reală: raza ratează")
-                            .to_string()
-                    } else {
-                        let r: Vec<String> = roots.iter().map(|x| num(*x)).collect();
-                        format!("{} t = {}", self.t("roots", "rădăcini"), r.join(", "))
-                    };
-                    let acc = match accepted {
-                        Some(t) => format!(
-                            "→ {} t = {}",
-                            self.t("accepted (least t > 0)", "acceptat (cel mai mic t > 0)"),
-                            num(*t)
-                        ),
-                        None => self.t("→ no root with t > 0", "→ nicio rădăcină cu t > 0").to_string(),
-                    };
+                Event::ObjectTest { .. } if seen_hit => pending.push(e),
+                Event::BoundTest { .. } | Event::NodeVisit { .. } | Event::VoxelStep { .. } if seen_hit => {
+                    pending.push(e);
+                }
+                Event::ObjectTest { object, .. } => {
                     let title = format!(
                         "{} {}",
                         self.t("Intersection test with", "Test de intersecție cu"),
                         self.object(*object)
                     );
-                    self.step(indent + 1, &title, &[format!("{roots_s} {acc}")]);
+                    let line = self.test_line(e);
+                    self.step(indent + 1, &title, &[line]);
                 }
                 Event::Hit { object, t, point, normal, entering } => {
+                    seen_hit = true;
                     let d = node.start.direction;
                     let dn = d.dot(*normal);
                     let side = if *entering {
@@ -192,11 +230,8 @@ impl<'a, V: Dim> Writer<'a, V> {
                     );
                     self.step(indent + 1, title, &[format!("I = {}", rgb(*color))]);
                 }
-                Event::ShadowRay { .. } => {
-                    if !lights_done {
-                        self.local_model(node, index, indent + 1);
-                        lights_done = true;
-                    }
+                Event::ShadowRay { light, .. } => {
+                    self.shadow_tests.push((*light, std::mem::take(&mut pending)));
                 }
                 Event::Reflect { origin, direction, offset } => {
                     if !lights_done {
@@ -365,10 +400,29 @@ impl<'a, V: Dim> Writer<'a, V> {
         }
         lines.push(format!("lum = 1, fat = min(1, 1/(c0 + c1·d + c2·d²)) = {}", num(term.fat)));
         for e in shadows {
-            if let Event::ShadowRay { light, distance, occluders, s, .. } = e {
+            if let Event::ShadowRay { light, origin, direction, distance, occluders, s } = e {
                 if *light != term.light {
                     continue;
                 }
+                let tests: Vec<String> = self
+                    .shadow_tests
+                    .iter()
+                    .filter(|(l, _)| *l == term.light)
+                    .flat_map(|(_, tests)| tests.iter())
+                    .map(|t| match t {
+                        Event::ObjectTest { object, .. } => {
+                            format!("  · {}: {}", self.object(*object), self.test_line(t))
+                        }
+                        _ => format!("  · {}", self.test_line(t)),
+                    })
+                    .collect();
+                lines.push(format!(
+                    "{} O = {}, D = {}",
+                    self.t("shadow ray from the offset origin", "raza de umbră din originea deplasată"),
+                    vec_str(*origin),
+                    vec_str(*direction)
+                ));
+                lines.extend(tests);
                 let occ = if occluders.is_empty() {
                     self.t("nothing in between", "nimic între ele").to_string()
                 } else {
@@ -380,7 +434,7 @@ impl<'a, V: Dim> Writer<'a, V> {
                 };
                 lines.push(format!(
                     "{} d_L = {}: {occ} → s = Π kt = {}",
-                    self.t("shadow ray, segment of length", "raza de umbră, segment de lungime"),
+                    self.t("segment to the light, length", "segment până la sursă, lungime"),
                     num(*distance),
                     num(*s)
                 ));
@@ -429,7 +483,7 @@ pub fn narrate<V: Dim>(
     max_depth: u32,
     lang: Lang,
 ) -> String {
-    let mut w = Writer { scene, log, lang, out: String::new(), step: 0, max_depth };
+    let mut w = Writer { scene, log, lang, out: String::new(), step: 0, max_depth, shadow_tests: Vec::new() };
     let cam = &scene.camera;
     if let (Some(pixel), Some(uv)) = (&target.pixel, &target.uv) {
         let win = &cam.window;
@@ -437,7 +491,7 @@ pub fn narrate<V: Dim>(
             "u = l + (r − l)·(i + 0.5)/Nx = {} + ({} − {})·({} + 0.5)/{} = {}",
             num(win.l),
             num(win.r),
-            num(win.l),
+            paren(win.l),
             pixel[0],
             cam.nx,
             num(uv[0])
@@ -447,7 +501,7 @@ pub fn narrate<V: Dim>(
                 "v = b + (t − b)·(j + 0.5)/Ny = {} + ({} − {})·({} + 0.5)/{} = {}",
                 num(win.b),
                 num(win.t),
-                num(win.b),
+                paren(win.b),
                 pixel[1],
                 cam.ny,
                 num(uv[1])

@@ -116,7 +116,11 @@ fn type_name(v: &Value) -> &'static str {
 
 /// Formats a number as a person wrote it (`-1`, `0.5`).
 fn num(x: f64) -> String {
-    format!("{x}")
+    if x != 0.0 && !(1e-5..1e16).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
 }
 
 impl Reader {

@@ -71,6 +71,25 @@ impl Checker {
     /// point; the 1e-10 keeps a boundary such as y = −1 (size 1) from speckling.
     #[must_use]
     pub fn is_odd<V: Vector>(&self, point: V) -> bool {
+        // Below 2^50 a floor is exact through the truncating integer conversion (no libm call, which
+        // the renderer would otherwise pay at every checker hit) and the sum of the floors is exact
+        // in f64 too, so both paths give the same parity; larger cells take the float path.
+        let mut parity = 0_i64;
+        let mut small = true;
+        for i in 0..V::DIM {
+            let x = point[i] / self.size + 1e-10;
+            if x.abs() < 1_125_899_906_842_624.0 {
+                // |x| < 2^50: the conversion truncates exactly.
+                #[allow(clippy::cast_possible_truncation)]
+                let t = x as i64;
+                parity += t - i64::from((t as f64) > x);
+            } else {
+                small = false;
+            }
+        }
+        if small {
+            return parity.rem_euclid(2) == 1;
+        }
         let sum: f64 = (0..V::DIM).map(|i| (point[i] / self.size + 1e-10).floor()).sum();
         // The sum is an integer-valued float, so its remainder is exactly 0 or 1.
         #[allow(clippy::float_cmp)]
@@ -145,5 +164,21 @@ mod tests {
         assert_eq!(a, b);
         assert_ne!(c.is_odd(DVec3::new(0.5, 0.5, 0.5)), c.is_odd(DVec3::new(1.5, 0.5, 0.5)));
         assert!(!c.is_odd(DVec3::new(-0.5, 0.5, -0.5)));
+    }
+
+    #[test]
+    fn the_integer_and_float_parities_agree() {
+        let c = Checker { size: 0.75, kd2: Rgb::BLACK, ka2: Rgb::BLACK };
+        let float = |p: DVec3| {
+            let sum: f64 = (0..3).map(|i| (p[i] / c.size + 1e-10).floor()).sum();
+            sum.rem_euclid(2.0) == 1.0
+        };
+        let mut x = 1e-3_f64;
+        while x < 1e20 {
+            for p in [DVec3::new(x, -x, 0.3 * x), DVec3::new(-x, -1.0, x * 1.7), DVec3::new(x, x, x)] {
+                assert_eq!(c.is_odd(p), float(p), "{p}");
+            }
+            x *= 1.37;
+        }
     }
 }

@@ -27,6 +27,12 @@ impl<V: Vector> Plane<V> {
     /// The hit with `t > 0`; I re-projected by subtracting its signed distance to the plane.
     #[inline]
     pub fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
+        // t = num/denom > 0 needs num and denom of one strict sign; otherwise (behind, parallel,
+        // on the plane, NaN) there is no hit and no division.
+        let (num, denom) = ((self.point - ray.origin).dot(self.normal), ray.dir.dot(self.normal));
+        if !((num > 0.0 && denom > 0.0) || (num < 0.0 && denom < 0.0)) {
+            return None;
+        }
         let t = self.root(ray).filter(|t| *t > 0.0)?;
         let raw = ray.at(t);
         let point = raw - self.normal * (raw - self.point).dot(self.normal);

@@ -19,6 +19,12 @@ impl<V: Vector> Sphere<V> {
     /// The least root `t > 0` of `|O + t·D − C|² = r²`; I re-projected as `C + r·(I − C)/|I − C|`.
     #[inline]
     pub fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
+        // An origin outside (c = |f|² − r² > 0) with the centre behind (b' = f·D > 0): then
+        // q = −(b' + √Δ') < 0 and c/q < 0, no root is positive, and the roots need not be found.
+        let f = ray.origin - self.center;
+        if f.dot(ray.dir) > 0.0 && f.dot(f) - self.radius * self.radius > 0.0 {
+            return None;
+        }
         let t = sphere_roots(ray, self.center, self.radius).nearest_positive()?;
         let raw = ray.at(t);
         let normal = (raw - self.center).try_unit()?;

@@ -37,11 +37,11 @@ impl<V: Dim, R: Recorder<V>> Tracer<'_, V, R> {
             let s = self.shadow_factor(at, index, light.position);
             let weight = fat * s;
             let diffuse = light.intensity.modulate(kd) * (weight * n_dot_l);
-            // H = normalize(L + V); undefined when L = −V, and then there is no highlight.
-            // With ks = 0 the term is 0 whatever (N·H)^n is: skip the powf.
-            let highlight = match (l + view).try_unit() {
-                Some(h) if material.ks > 0.0 => at.n_f.dot(h).max(0.0).powf(material.n),
-                _ => 0.0,
+            // H = normalize(L + V); undefined when L = −V, and then there is no highlight. With
+            // ks = 0 the term is 0 whatever (N·H)^n ∈ [0, 1], so it is not computed.
+            let highlight = match (material.ks > 0.0).then(|| (l + view).try_unit()).flatten() {
+                Some(h) => at.n_f.dot(h).max(0.0).powf(material.n),
+                None => 0.0,
             };
             let specular = light.intensity * (weight * material.ks * highlight);
             sum += diffuse + specular;

@@ -1,15 +1,6 @@
 //! The command line: exit codes and one-line errors naming the field or argument (issue 3, item 8).
 
-use std::process::Command;
-
-fn whitted(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use crate::support::{fixture_path as fixture, whitted};
 
 fn scene_file(name: &str, text: &str) -> String {
     let dir = std::env::temp_dir().join(format!("whitted-cli-{}", std::process::id()));
@@ -17,10 +8,6 @@ fn scene_file(name: &str, text: &str) -> String {
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path.display().to_string()
-}
-
-fn fixture(name: &str) -> String {
-    format!("{}/tests/data/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
 }
 
 #[test]

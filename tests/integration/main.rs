@@ -3,5 +3,9 @@
 
 mod accel;
 mod cli;
+mod numerics;
+mod properties;
+mod sampling;
 mod support;
+mod tidy;
 mod traces;

@@ -1,5 +1,5 @@
 //! Helpers shared by the integration tests: load a scene from text, trace a pixel or a ray with
-//! `EventLog`, and build the trace document.
+//! `EventLog`, build the trace document, run the `whitted` binary.
 
 use serde_json::Value;
 use whitted::accel::{Accel, AccelKind};
@@ -33,6 +33,11 @@ pub fn scene2(text: &str) -> Scene<glam::DVec2> {
 pub fn fixture(name: &str) -> String {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/scenes").join(name);
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The path of a fixture scene, for the binary.
+pub fn fixture_path(name: &str) -> String {
+    format!("{}/tests/data/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
 }
 
 /// Traces pixel `(i, j)` and returns the trace document.
@@ -77,4 +82,15 @@ pub fn assert_finite(doc: &Value) {
         Value::Object(m) => m.values().for_each(assert_finite),
         _ => {}
     }
+}
+
+/// Runs the `whitted` binary: (exit code, stdout, stderr).
+pub fn whitted(args: &[&str]) -> (i32, String, String) {
+    let out =
+        std::process::Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }

@@ -1,0 +1,214 @@
+//! The trace document and narration of one pixel traced with `--aa corners|adaptive`
+//! (product.md "The trace document"; algorithm.md §8). Beside the fields of every trace document:
+//!
+//! - `tree`: null (there is no single root); `color`: the pixel's area-weighted mean of its leaves;
+//!   `uv`: the pixel's centre (no ray goes through it; the samples give theirs);
+//! - `sampling`: `{ aa, threshold, max_level, scale }` (`scale` = `2^K` lattice steps a pixel side);
+//! - `samples`: one entry per sample, in the order traced: `label` (the lecture's `CA`, `CB`, …),
+//!   `u`, `v` (2D: `u`), `lattice` (`[x, y]` = `[i·2^K + a, j·2^K + b]`, 2D `[x]`), `level` (0 for
+//!   the pixel's corners, k for the corners new at the k-th subdivision), `reused` (true iff another
+//!   square of this pixel read it after it was traced: shared, not traced again), `color`, `tree`
+//!   (its primary ray's node);
+//! - `squares`: the subdivision in pre-order (children lower-left, lower-right, upper-left,
+//!   upper-right; 2D: left, right): `level`, `lattice` (its lower-left corner), `side` (lattice
+//!   units), `corners` (indices into `samples`, in the same order), `spread` (max over channels of
+//!   max − min of the corners), `split`, `weight` (its share of the pixel's area, `4^−level`, 2D
+//!   `2^−level`), `color` (a leaf: the mean of its corners; a split square: the mean of its
+//!   children);
+//! - `events`: each carries `sample` (an index into `samples`); every time a square reads a corner,
+//!   a `sample` event (`u`, `v`, `level`, `color`, `reused`) with `reused` = the sample had already
+//!   been traced for another square of this pixel (its first read comes right after its ray's
+//!   events); `ray` numbers the nodes of the samples' trees in pre-order, one tree after another
+//!   in the order of `samples`.
+//!
+//! The pixel is traced alone: corners it shares with neighbouring pixels are traced here too.
+
+use super::narrate::{num, Lang};
+use super::{color, event, float, node, stats, Namer, TraceTarget};
+use crate::record::EventLog;
+use crate::sample::{PixelTrace, Sampling};
+use crate::scene::material::Rgb;
+use crate::scene::Scene;
+use crate::shape::Dim;
+use crate::trace::stats::Stats;
+use serde_json::{json, Value};
+use std::fmt::Write;
+
+fn floats(xs: &[f64]) -> Value {
+    Value::Array(xs.iter().map(|x| float(*x)).collect())
+}
+
+/// The trace document of a pixel traced with samples.
+pub fn sampled_document<V: Dim>(
+    scene: &Scene<V>,
+    log: &EventLog<V>,
+    stats_: &Stats,
+    target: &TraceTarget,
+    sampling: Sampling,
+    pixel: &PixelTrace,
+) -> Value {
+    let namer = Namer::new(scene);
+    let dims = V::DIM - 1;
+    let samples: Vec<Value> = pixel
+        .samples
+        .iter()
+        .map(|s| {
+            let mut m = serde_json::Map::new();
+            m.insert("label".into(), json!(s.label));
+            m.insert("u".into(), float(s.uv[0]));
+            if dims == 2 {
+                m.insert("v".into(), float(s.uv[1]));
+            }
+            m.insert("lattice".into(), json!(s.lattice));
+            m.insert("level".into(), json!(s.level));
+            m.insert("reused".into(), json!(s.reused));
+            m.insert("color".into(), color(s.color));
+            m.insert("tree".into(), node(&namer, log, s.root));
+            Value::Object(m)
+        })
+        .collect();
+    let share = if dims == 2 { 0.25_f64 } else { 0.5 };
+    let squares: Vec<Value> = pixel
+        .squares
+        .iter()
+        .map(|q| {
+            json!({
+                "level": q.level,
+                "lattice": q.lattice,
+                "side": q.side,
+                "corners": q.corners,
+                "spread": float(q.spread),
+                "split": q.split,
+                "weight": share.powi(i32::try_from(q.level).unwrap_or(i32::MAX)),
+                "color": color(q.color),
+            })
+        })
+        .collect();
+    json!({
+        "pixel": target.pixel.as_ref().map_or(Value::Null, |p| json!(p)),
+        "uv": target.uv.as_ref().map_or(Value::Null, |uv| floats(uv)),
+        "color": color(pixel.color),
+        "stats": stats(stats_),
+        "tree": Value::Null,
+        "sampling": {
+            "aa": sampling.name(),
+            "threshold": float(pixel.threshold),
+            "max_level": pixel.max_level,
+            "scale": 1_u64 << pixel.max_level,
+        },
+        "samples": samples,
+        "squares": squares,
+        "events": log.events.iter().map(|e| event(&namer, &e.event, e.ray, e.sample)).collect::<Vec<_>>(),
+    })
+}
+
+fn rgb(c: Rgb) -> String {
+    format!("({}, {}, {})", num(c.0[0]), num(c.0[1]), num(c.0[2]))
+}
+
+/// The narration of a pixel traced with samples: the rule, each sample, each square and the mean.
+/// (Each sample's own ray tree is in the `--json` document.)
+#[must_use]
+pub fn narrate_samples(
+    target: &TraceTarget,
+    sampling: Sampling,
+    pixel: &PixelTrace,
+    stats_: &Stats,
+    lang: Lang,
+) -> String {
+    let t = |en: &'static str, ro: &'static str| if lang == Lang::En { en } else { ro };
+    let mut out = String::new();
+    let where_ = target
+        .pixel
+        .as_ref()
+        .map_or(String::new(), |p| p.iter().map(ToString::to_string).collect::<Vec<_>>().join(", "));
+    let _ = writeln!(out, "1. {} ({where_}), --aa {}", t("Pixel", "Pixelul"), sampling.name());
+    let rule = if pixel.max_level == 0 {
+        t(
+            "   the 4 corners (2D: the 2 ends), shared with the neighbours; the pixel is their mean",
+            "   cele 4 colțuri (2D: cele 2 capete), comune cu vecinii; pixelul este media lor",
+        )
+        .to_string()
+    } else {
+        format!(
+            "{} {} {} K = {}",
+            t(
+                "   split a square while max over R, G, B of (max − min of its corners) ≥",
+                "   se subdivizează un pătrat cât timp max pe R, G, B din (max − min al colțurilor) ≥",
+            ),
+            num(pixel.threshold),
+            t("and its level is below", "și nivelul său este sub"),
+            pixel.max_level
+        )
+    };
+    let _ = writeln!(out, "{rule}");
+    let _ = writeln!(
+        out,
+        "2. {} ({}):",
+        t("Samples, in the order traced", "Eșantioane, în ordinea trasării"),
+        pixel.samples.len()
+    );
+    for s in &pixel.samples {
+        let uv: Vec<String> = s.uv.iter().map(|x| num(*x)).collect();
+        let reused = if s.reused { t(", reused", ", refolosit") } else { "" };
+        let _ = writeln!(
+            out,
+            "   {} ({}) {} {}{}: {}",
+            s.label,
+            uv.join(", "),
+            t("level", "nivel"),
+            s.level,
+            reused,
+            rgb(s.color)
+        );
+    }
+    let _ = writeln!(out, "3. {}:", t("Squares (pre-order)", "Pătrate (în preordine)"));
+    for q in &pixel.squares {
+        let labels: Vec<&str> = q.corners.iter().map(|k| pixel.samples[*k].label.as_str()).collect();
+        let what = if q.split { t("split", "subdivizat") } else { t("leaf", "frunză") };
+        let _ = writeln!(
+            out,
+            "   {}{} {}: {} [{}], spread {} → {}, {}",
+            "  ".repeat(q.level as usize),
+            t("level", "nivel"),
+            q.level,
+            what,
+            labels.join(", "),
+            num(q.spread),
+            rgb(q.color),
+            if q.split {
+                t("mean of its parts", "media părților")
+            } else {
+                t("mean of its corners", "media colțurilor")
+            }
+        );
+    }
+    let bytes = pixel.color.0.map(crate::image::to_byte);
+    let _ = writeln!(
+        out,
+        "4. {}: {} → 8 bit {:?}",
+        t(
+            "Pixel colour, the area-weighted mean of the leaves",
+            "Culoarea pixelului, media ponderată cu aria a frunzelor"
+        ),
+        rgb(pixel.color),
+        bytes
+    );
+    let r = stats_.rays;
+    let _ = writeln!(
+        out,
+        "{}: {} {}, {} {}, {} {}, {} {}; {} {}",
+        t("Rays", "Raze"),
+        r.primary,
+        t("primary", "primare"),
+        r.reflected,
+        t("reflected", "reflectate"),
+        r.transmitted,
+        t("transmitted", "transmise"),
+        r.shadow,
+        t("shadow", "de umbră"),
+        stats_.tests.object,
+        t("object tests", "teste de intersecție")
+    );
+    out
+}

@@ -1,0 +1,118 @@
+//! The 4 shared pixel corners (algorithm.md §8.1, "Uniform"): corner `(i, j)` sits at
+//! `u = l + (r − l)·i/Nx`, `v = b + (t − b)·j/Ny`, an `m × n` image needs `(m + 1)(n + 1)` rays,
+//! and a pixel is the mean of its 4 corners. Here also the integer lattice that refines the
+//! corners for the adaptive method: point `(x, y) = (i·2^K + a, j·2^K + b)` is the corner
+//! `(x/2^K, y/2^K)`, so the same corner gets the same bits at every K.
+
+use crate::geom::Vector;
+use crate::scene::camera::Camera;
+use crate::scene::material::Rgb;
+
+/// The sample lattice of an image: `2^K` lattice steps per pixel side, on 2 axes (a 3D scene's
+/// image) or 1 (a 2D scene's image line, whose "squares" are intervals with 2 ends).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Lattice {
+    /// K, the deepest level.
+    pub max_level: u32,
+    /// `2^K`: lattice steps per pixel side.
+    pub scale: u32,
+    /// Columns `Nx`.
+    pub nx: usize,
+    /// Rows `Ny` (1 for a 2D scene).
+    pub ny: usize,
+    /// 2 for a 3D scene's image, 1 for a 2D scene's image line.
+    dims: usize,
+}
+
+impl Lattice {
+    /// The lattice of `camera`'s image with K = `max_level` (at most [`super::MAX_LEVEL`]).
+    #[must_use]
+    pub fn new<V: Vector>(camera: &Camera<V>, max_level: u32) -> Self {
+        Self { max_level, scale: 1 << max_level, nx: camera.nx, ny: camera.ny, dims: V::DIM - 1 }
+    }
+    /// 2 (squares with 4 corners) or 1 (intervals with 2 ends).
+    #[must_use]
+    pub fn dims(self) -> usize {
+        self.dims
+    }
+    /// Points on one lattice row: `Nx·2^K + 1`.
+    #[must_use]
+    pub fn row_len(self) -> usize {
+        self.nx * self.scale as usize + 1
+    }
+    /// The global point of pixel `(i, j)`'s local point `(a, b)`: `(i·2^K + a, j·2^K + b)`
+    /// (`b = 0` and `y = 0` on a 2D scene's line).
+    #[must_use]
+    pub fn global(self, i: usize, j: usize, a: u32, b: u32) -> (u64, u64) {
+        let s = u64::from(self.scale);
+        (i as u64 * s + u64::from(a), j as u64 * s + u64::from(b))
+    }
+    /// The window point of lattice point `(x, y)`: `u = l + (r − l)·(x/2^K)/Nx`,
+    /// `v = b + (t − b)·(y/2^K)/Ny` (§8.1 with the fractional corner `x/2^K`, exact because
+    /// `2^K` is a power of two; `v = 0` in 2D).
+    #[must_use]
+    pub fn uv<V: Vector>(self, camera: &Camera<V>, x: u64, y: u64) -> (f64, f64) {
+        let s = f64::from(self.scale);
+        (camera.u_at(x as f64 / s), camera.v_at(y as f64 / s))
+    }
+}
+
+/// §8.1: the colour of a pixel (or of a leaf square, §8.2) is the mean of its corners,
+/// `(C1 + C2 + C3 + C4)/4` (2D: `(C1 + C2)/2`), summed in the order given.
+#[must_use]
+pub fn corner_mean(corners: &[Rgb]) -> Rgb {
+    let mut sum = corners[0];
+    for c in &corners[1..] {
+        sum += *c;
+    }
+    // 1/2 and 1/4 are exact: this is the division by the number of corners.
+    sum * (1.0 / corners.len() as f64)
+}
+
+#[cfg(test)]
+// These tests pin exact IEEE results on purpose (numerics.md gives bit-exact expectations).
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+    use crate::scene::load::load_str;
+    use crate::scene::AnyScene;
+
+    fn camera() -> Camera<glam::DVec3> {
+        let text = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0],
+            "window": {"l": -0.6666666666666666, "r": 0.6666666666666666, "b": -0.5, "t": 0.5},
+            "resolution": [7, 3]}}"#;
+        match load_str(text) {
+            Ok(AnyScene::Space(s)) => s.camera,
+            _ => panic!("scene"),
+        }
+    }
+
+    #[test]
+    fn a_corner_has_the_same_bits_at_every_level() {
+        let cam = camera();
+        for k in 0..=8 {
+            let lattice = Lattice::new(&cam, k);
+            for (i, j) in [(0, 0), (3, 1), (7, 3)] {
+                let (x, y) = lattice.global(i, j, 0, 0);
+                let (u, v) = lattice.uv(&cam, x, y);
+                assert_eq!(u, cam.u_at(i as f64));
+                assert_eq!(v, cam.v_at(j as f64));
+            }
+        }
+    }
+
+    #[test]
+    fn the_middle_point_is_the_pixel_centre() {
+        let cam = camera();
+        let lattice = Lattice::new(&cam, 1);
+        let (x, y) = lattice.global(3, 1, 1, 1);
+        assert_eq!(lattice.uv(&cam, x, y), cam.pixel_center(3, 1));
+    }
+
+    #[test]
+    fn the_mean_of_corners() {
+        let c = [Rgb([1.0, 0.0, 0.5]), Rgb([0.0, 1.0, 0.5]), Rgb([1.0, 1.0, 0.5]), Rgb([0.0, 0.0, 0.5])];
+        assert_eq!(corner_mean(&c), Rgb([0.5, 0.5, 0.5]));
+        assert_eq!(corner_mean(&c[..2]), Rgb([0.5, 0.5, 0.5]));
+    }
+}

@@ -1,0 +1,255 @@
+//! Sharing samples across a whole image (algorithm.md §8: "every sample is traced once and shared
+//! by all squares and pixels that touch it", keyed by integer lattice coordinates, never floats).
+//!
+//! A pixel row is rendered left to right by one thread. Its samples are of four kinds:
+//! - the pixel corners `(i·2^K, j·2^K)`: every one is needed, so the corners of a lattice row are
+//!   traced first, all at once ([`EdgeRow::trace_corners`]), and read as plain colours;
+//! - the other points of the lattice row `y = j·2^K` (the pixel row's bottom edge) or
+//!   `(j + 1)·2^K` (its top edge): shared with the pixel row below or above, which another thread
+//!   may render at the same time. They sit in a [`Line`] of `OnceLock`s: the first thread to need
+//!   a point traces it, any other waits for that colour;
+//! - the points of the vertical edge `x = i·2^K` between two pixels of the row: carried from
+//!   pixel `i − 1` to pixel `i` (the `left` column of [`Scratch`]);
+//! - the points inside the pixel: private.
+//!
+//! On a 2D scene's image line the pixel's two ends are corners and everything else is inside.
+//! Each pixel memoises what it read in [`Scratch`] (stamped, so nothing is cleared per pixel), and
+//! the number of distinct points it read is its rays-per-pixel count. Memory: the edge rows of one
+//! band of pixel rows (see `render`) and, per thread, one pixel's `(2^K + 1)²` memo.
+
+use super::adaptive::{subdivide, NoSquares, SampleSource};
+use super::corners::{corner_mean, Lattice};
+use crate::record::NoRecorder;
+use crate::scene::material::Rgb;
+use crate::shape::Dim;
+use crate::trace::Tracer;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::OnceLock;
+
+/// The points of one lattice row, `Nx·2^K + 1` of them, each traced at most once by whichever
+/// thread asks first (the corners are not kept here: see [`EdgeRow`]).
+#[derive(Debug)]
+pub struct Line {
+    cells: Vec<OnceLock<Rgb>>,
+    /// Whether any point was traced (a line nobody split across needs no clearing).
+    touched: AtomicBool,
+}
+
+impl Line {
+    /// An empty line of `len` points.
+    #[must_use]
+    pub fn new(len: usize) -> Self {
+        Self { cells: (0..len).map(|_| OnceLock::new()).collect(), touched: AtomicBool::new(false) }
+    }
+    /// Forgets every colour (the line is reused for another lattice row).
+    pub fn clear(&mut self) {
+        if *self.touched.get_mut() {
+            for cell in &mut self.cells {
+                cell.take();
+            }
+            *self.touched.get_mut() = false;
+        }
+    }
+    /// The colour of point `x`, traced by `trace` if no thread has traced it yet.
+    fn get_or_trace(&self, x: usize, trace: impl FnOnce() -> Rgb) -> Rgb {
+        *self.cells[x].get_or_init(|| {
+            self.touched.store(true, Ordering::Relaxed);
+            trace()
+        })
+    }
+}
+
+/// A lattice row `y = j·2^K` on pixel-row boundaries: its `Nx + 1` pixel corners, and for K > 0
+/// its finer points.
+#[derive(Debug)]
+pub struct EdgeRow {
+    /// The colours of the corners `(i·2^K, y)`, `i = 0 … Nx`.
+    corners: Vec<Rgb>,
+    /// The other points, traced on demand; None when K = 0 or on a 2D scene's line (whose
+    /// finer points are each inside one pixel).
+    finer: Option<Line>,
+}
+
+impl EdgeRow {
+    /// An untraced edge row of `lattice`; `shared` if its finer points are shared by two rows.
+    #[must_use]
+    pub fn new(lattice: Lattice, shared: bool) -> Self {
+        let finer = (shared && lattice.max_level > 0).then(|| Line::new(lattice.row_len()));
+        Self { corners: vec![Rgb::BLACK; lattice.nx + 1], finer }
+    }
+    /// Traces the corners of pixel-row boundary `j` (§8.1: `(Nx + 1)` rays a row) and forgets the
+    /// finer points of the lattice row it held before.
+    pub fn trace_corners<V: Dim>(
+        &mut self,
+        tracer: &mut Tracer<'_, V, NoRecorder>,
+        lattice: Lattice,
+        j: usize,
+    ) {
+        let s = u64::from(lattice.scale);
+        for (i, corner) in self.corners.iter_mut().enumerate() {
+            *corner = trace_point(tracer, lattice, i as u64 * s, j as u64 * s);
+        }
+        if let Some(line) = &mut self.finer {
+            line.clear();
+        }
+    }
+}
+
+/// Traces the primary ray through global lattice point `(x, y)`.
+fn trace_point<V: Dim>(tracer: &mut Tracer<'_, V, NoRecorder>, lattice: Lattice, x: u64, y: u64) -> Rgb {
+    let camera = &tracer.scene.camera;
+    let (u, v) = lattice.uv(camera, x, y);
+    let ray = camera.primary_ray(u, v);
+    tracer.trace_primary(&ray, &[u, v][..lattice.dims()])
+}
+
+/// One memoised local point: valid when `stamp` is the current pixel's.
+#[derive(Clone, Copy, Debug, Default)]
+struct Memo {
+    stamp: u32,
+    color: Rgb,
+}
+
+/// One thread's per-pixel memory: a memo of the pixel's `(2^K + 1)^dims` local points, and the left
+/// edge carried from the previous pixel.
+#[derive(Debug)]
+pub struct Scratch {
+    side: usize,
+    memo: Vec<Memo>,
+    current: u32,
+    left: Vec<Option<Rgb>>,
+}
+
+impl Scratch {
+    /// The memory for pixels of `lattice`.
+    #[must_use]
+    pub fn new(lattice: Lattice) -> Self {
+        let side = lattice.scale as usize + 1;
+        let points = if lattice.dims() == 1 { side } else { side * side };
+        Self { side, memo: vec![Memo::default(); points], current: 0, left: vec![None; side] }
+    }
+    /// Starts a new pixel: every memo entry becomes stale.
+    fn next_pixel(&mut self) {
+        if self.current == u32::MAX {
+            self.memo.fill(Memo::default());
+            self.current = 0;
+        }
+        self.current += 1;
+    }
+    /// After pixel `i`: its right edge `a = 2^K`, `0 < b < 2^K`, becomes pixel `i + 1`'s left edge
+    /// (the ends `b = 0`, `b = 2^K` are on the edge rows).
+    fn carry_right_edge(&mut self, dims: usize) {
+        if dims == 1 {
+            // A 2D scene's pixel has no vertical edge but its right end, a corner.
+            return;
+        }
+        for b in 1..self.side - 1 {
+            let m = self.memo[b * self.side + self.side - 1];
+            self.left[b] = (m.stamp == self.current).then_some(m.color);
+        }
+    }
+}
+
+/// The edge rows below and above one pixel row (a 2D scene's line: its one row, twice).
+#[derive(Clone, Copy, Debug)]
+pub struct Edges<'l> {
+    /// `y = j·2^K`.
+    pub bottom: &'l EdgeRow,
+    /// `y = (j + 1)·2^K`.
+    pub top: &'l EdgeRow,
+}
+
+/// Renders pixel row `j` with the subdivision rule `(threshold, K)` between its traced edge rows:
+/// writes each pixel's colour to `pixels` and the number of distinct samples it read to `used`.
+#[allow(clippy::too_many_arguments)]
+pub fn render_row<V: Dim>(
+    tracer: &mut Tracer<'_, V, NoRecorder>,
+    lattice: Lattice,
+    (threshold, max_level): (f64, u32),
+    j: usize,
+    edges: Edges<'_>,
+    scratch: &mut Scratch,
+    pixels: &mut [Rgb],
+    used: &mut [u32],
+) {
+    let dims = lattice.dims();
+    scratch.left.fill(None);
+    for (i, pixel) in pixels.iter_mut().enumerate() {
+        let count = if max_level == 0 {
+            // K = 0: the pixel is one leaf, the mean of its corners (the subdivision would read
+            // the same corners in the same order and split nothing).
+            let (b, t) = (&edges.bottom.corners, &edges.top.corners);
+            *pixel = if dims == 1 {
+                corner_mean(&[b[i], b[i + 1]])
+            } else {
+                corner_mean(&[b[i], b[i + 1], t[i], t[i + 1]])
+            };
+            1 << dims
+        } else {
+            scratch.next_pixel();
+            let mut source = RowSource { tracer, lattice, i, j, edges, scratch, used: 0 };
+            *pixel = subdivide(&mut source, &mut NoSquares, dims, threshold, max_level);
+            let count = source.used;
+            scratch.carry_right_edge(dims);
+            count
+        };
+        used[i] = count;
+    }
+}
+
+/// The samples of pixel `(i, j)` during a render.
+struct RowSource<'r, 't, 's, V: Dim> {
+    tracer: &'r mut Tracer<'s, V, NoRecorder>,
+    lattice: Lattice,
+    i: usize,
+    j: usize,
+    edges: Edges<'t>,
+    scratch: &'r mut Scratch,
+    used: u32,
+}
+
+impl<V: Dim> SampleSource for RowSource<'_, '_, '_, V> {
+    #[inline]
+    fn color(&mut self, a: u32, b: u32) -> Rgb {
+        let side = self.scratch.side;
+        let k = b as usize * side + a as usize;
+        let memo = self.scratch.memo[k];
+        if memo.stamp == self.scratch.current {
+            return memo.color;
+        }
+        let lattice = self.lattice;
+        let s = lattice.scale;
+        let row = if b == 0 {
+            Some(self.edges.bottom)
+        } else if b == s && lattice.dims() == 2 {
+            Some(self.edges.top)
+        } else {
+            None
+        };
+        let color = match row {
+            // A pixel corner, traced with its edge row.
+            Some(row) if a == 0 || a == s => row.corners[self.i + (a / s) as usize],
+            // A finer point of an edge row shared with the pixel row below or above.
+            Some(EdgeRow { finer: Some(line), .. }) => {
+                let (x, y) = lattice.global(self.i, self.j, a, b);
+                // x ≤ Nx·2^K: the index of a point of the line.
+                #[allow(clippy::cast_possible_truncation)]
+                let index = x as usize;
+                let tracer = &mut *self.tracer;
+                line.get_or_trace(index, || trace_point(tracer, lattice, x, y))
+            }
+            // The left edge, already read by the pixel to the left.
+            None if a == 0 && self.scratch.left[b as usize].is_some() => {
+                self.scratch.left[b as usize].unwrap_or_default()
+            }
+            // Inside the pixel (or an edge point no neighbour read).
+            _ => {
+                let (x, y) = lattice.global(self.i, self.j, a, b);
+                trace_point(self.tracer, lattice, x, y)
+            }
+        };
+        self.scratch.memo[k] = Memo { stamp: self.scratch.current, color };
+        self.used += 1;
+        color
+    }
+}
