@@ -36,7 +36,7 @@ MESH_SIZES = {"mesh-100k": 100, "mesh-1000k": 1000}
 def povray_dir(explicit=None):
     """The folder holding the POV-Ray scenes and gen_mesh.py: --povray-dir, then bench/povray/ in this
     repository if it exists, then the shared copy."""
-    candidates = [explicit] if explicit else [os.path.join(BENCH, "povray"), "/work/shared/bench/povray"]
+    candidates = [explicit] if explicit else [os.path.join(BENCH, "povray"), os.path.join(BENCH, "..", "..", "shared", "bench", "povray")]
     for d in candidates:
         if d and os.path.isfile(os.path.join(d, "gen_mesh.py")):
             return os.path.abspath(d)
@@ -141,7 +141,7 @@ def ensure_mesh(k, pov_dir, force):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--povray-dir", help="folder with gen_mesh.py (default: bench/povray, else /work/shared/bench/povray)")
+    ap.add_argument("--povray-dir", help="folder with gen_mesh.py (default: bench/povray, else ../shared/bench/povray beside the repository)")
     ap.add_argument("--no-mesh", action="store_true", help="do not generate the OBJ/.inc mesh files")
     ap.add_argument("--force-mesh", action="store_true", help="regenerate the mesh files even if present")
     args = ap.parse_args()

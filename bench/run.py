@@ -546,7 +546,7 @@ def machine_info(binary, povray):
 
 
 def find_povray_dir(explicit):
-    candidates = [explicit] if explicit else [os.path.join(BENCH, "povray"), "/work/shared/bench/povray"]
+    candidates = [explicit] if explicit else [os.path.join(BENCH, "povray"), os.path.join(BENCH, "..", "..", "shared", "bench", "povray")]
     for d in candidates:
         if d and os.path.isfile(os.path.join(d, "whitted.pov")):
             return os.path.abspath(d)
@@ -654,7 +654,7 @@ def main():
     ap.add_argument("--whitted", default=os.path.join(REPO, "target", "release", "whitted"),
                     help="the whitted binary (default: target/release/whitted)")
     ap.add_argument("--povray-dir", help="folder with the POV-Ray bench scenes "
-                                         "(default: bench/povray if present, else /work/shared/bench/povray)")
+                                         "(default: bench/povray if present, else ../shared/bench/povray beside the repository)")
     args = ap.parse_args()
     runs = args.runs or (1 if args.quick else 3)
 
