@@ -246,6 +246,7 @@ fn lattice_rows<V: Dim>(
 }
 
 /// One pixel row of the lattice modes, into its pixels and per-pixel counts.
+// The inputs of `render_row` plus the progress callback; a struct would only rename them.
 #[allow(clippy::too_many_arguments)]
 fn lattice_row<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
