@@ -161,6 +161,8 @@ pub struct Edges<'l> {
 
 /// Renders pixel row `j` with the subdivision rule `(threshold, K)` between its traced edge rows:
 /// writes each pixel's colour to `pixels` and the number of distinct samples it read to `used`.
+// Tracer, lattice, rule, row, edges, scratch and the two outputs are all distinct; a struct
+// would only rename them.
 #[allow(clippy::too_many_arguments)]
 pub fn render_row<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
