@@ -154,6 +154,18 @@ pub fn shadow_block_t<V>(log: &EventLog<V>, index: usize) -> Option<f64> {
         .reduce(f64::min)
 }
 
+/// Where a ray from `from` along `dir` enters the picture `view`: `from` itself when it lies inside,
+/// else the first crossing of the view's border (or `from` when the ray never crosses it).
+#[must_use]
+pub fn entry_point(from: DVec2, dir: DVec2, view: &View) -> DVec2 {
+    let inside =
+        view.xmin() <= from.x && from.x <= view.xmax() && view.ymin() <= from.y && from.y <= view.ymax();
+    if inside {
+        return from;
+    }
+    clip_line(from, dir.normalize_or_zero(), view).map_or(from, |(a, _)| a)
+}
+
 /// The part of the line through `point` along `dir` inside `view`, or `None`.
 #[must_use]
 pub fn clip_line(point: DVec2, dir: DVec2, view: &View) -> Option<(DVec2, DVec2)> {

@@ -128,15 +128,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let anchors = draw_objects(d, scene, &plane, &scene_part, &[], style::BLACK);
 
     // The ray, from where it enters the picture to its hit or the picture's edge.
-    let start = if scene_part.xmin() <= from.x
-        && from.x <= scene_part.xmax()
-        && scene_part.ymin() <= from.y
-        && from.y <= scene_part.ymax()
-    {
-        from
-    } else {
-        parts::clip_line(from, plane.dir(dir).normalize_or_zero(), &scene_part).map_or(from, |(a, _)| a)
-    };
+    let start = parts::entry_point(from, plane.dir(dir), &scene_part);
     let end =
         hit.map_or_else(|| parts::exit_point(start, plane.dir(dir), &scene_part), |h| plane.point(h.point));
     draw_ray(d, RayRole::Primary, start, end);

@@ -174,16 +174,7 @@ pub fn draw<V: Planar>(
         }
     }
     // The ray: from where it enters the picture to its hit (or out of the picture).
-    let start = if scene_part.xmin() <= from.x
-        && from.x <= scene_part.xmax()
-        && scene_part.ymin() <= from.y
-        && from.y <= scene_part.ymax()
-    {
-        from
-    } else {
-        let dir = plane.dir(root.start.direction);
-        parts::clip_line(from, dir.normalize_or_zero(), &scene_part).map_or(from, |(a, _)| a)
-    };
+    let start = parts::entry_point(from, plane.dir(root.start.direction), &scene_part);
     let end = to.unwrap_or_else(|| parts::exit_point(start, plane.dir(root.start.direction), &scene_part));
     draw_ray(d, RayRole::Primary, start, end);
     if let Some(p) = to {
