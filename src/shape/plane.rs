@@ -33,7 +33,12 @@ impl<V: Vector> Plane<V> {
         if !((num > 0.0 && denom > 0.0) || (num < 0.0 && denom < 0.0)) {
             return None;
         }
-        let t = self.root(ray).filter(|t| *t > 0.0)?;
+        // Same signs, so t > 0 (or +∞ from an underflowing denominator, which §11's finite-t
+        // acceptance turns away, numerics C2).
+        let t = num / denom;
+        if !(t.is_finite() && t > 0.0) {
+            return None;
+        }
         let raw = ray.at(t);
         let point = raw - self.normal * (raw - self.point).dot(self.normal);
         Some(SurfaceHit { t, point, normal: self.normal })
