@@ -84,7 +84,7 @@ impl AccelOptions {
 }
 
 /// A primitive: part `part` of object `object` (a mesh triangle, or the object itself, part 0).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
 pub struct Prim {
     /// Index in the scene's `objects`.
     pub object: u32,
@@ -270,11 +270,10 @@ impl<V: Dim> Accel<V> {
         rec: &mut R,
         mut on: impl FnMut(ObjectRef) -> bool,
     ) {
-        let mut visitor = Shadow { scene, ray, d_l, transparent: Vec::new(), opaque: None };
+        let mut visitor = Shadow { scene, ray, d_l, transparent: PrimSet::default(), opaque: None };
         self.search(scene, ray, &mut visitor, stats, rec);
-        let Shadow { mut transparent, opaque, .. } = visitor;
-        transparent.sort_unstable();
-        for prim in transparent.into_iter().chain(opaque) {
+        let opaque = visitor.opaque;
+        for &prim in visitor.transparent.sorted().iter().chain(&opaque) {
             if !on(object_ref(scene, prim)) {
                 return;
             }
@@ -294,6 +293,8 @@ pub trait Visitor<V: Dim> {
 pub struct Nearest<'a, V: Dim> {
     scene: &'a Scene<V>,
     ray: &'a Ray<V>,
+    /// The t of `best` (`+∞` while there is none): what [`Visitor::bound`] answers.
+    best_t: f64,
     best: Option<(Prim, SurfaceHit<V>)>,
 }
 
@@ -301,7 +302,7 @@ impl<'a, V: Dim> Nearest<'a, V> {
     /// The question for `ray`, nothing found yet.
     #[must_use]
     pub fn new(scene: &'a Scene<V>, ray: &'a Ray<V>) -> Self {
-        Self { scene, ray, best: None }
+        Self { scene, ray, best_t: f64::INFINITY, best: None }
     }
     /// The nearest hit found, named as traces name it.
     #[must_use]
@@ -313,15 +314,17 @@ impl<'a, V: Dim> Nearest<'a, V> {
 impl<V: Dim> Visitor<V> for Nearest<'_, V> {
     #[inline]
     fn bound(&self) -> f64 {
-        self.best.as_ref().map_or(f64::INFINITY, |(_, h)| h.t)
+        self.best_t
     }
-    #[inline]
+    #[inline(always)]
     fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool {
         if let Some(hit) = test_prim(self.scene, prim, self.ray, stats, rec) {
             // §6: equal t goes to the smaller object, then the smaller triangle.
             #[allow(clippy::float_cmp)] // An exact tie is exactly what the rule is about.
-            let closer = |(p, b): &(Prim, SurfaceHit<V>)| hit.t < b.t || (hit.t == b.t && prim < *p);
-            if self.best.as_ref().is_none_or(closer) {
+            let closer = hit.t < self.best_t
+                || (hit.t == self.best_t && self.best.as_ref().is_none_or(|(p, _)| prim < *p));
+            if closer {
+                self.best_t = hit.t;
                 self.best = Some((prim, hit));
             }
         }
@@ -335,7 +338,7 @@ pub struct Shadow<'a, V: Dim> {
     ray: &'a Ray<V>,
     d_l: f64,
     /// Transparent occluders found, one primitive per object.
-    transparent: Vec<Prim>,
+    transparent: PrimSet,
     /// The opaque occluder that ended the search.
     opaque: Option<Prim>,
 }
@@ -345,16 +348,16 @@ impl<V: Dim> Visitor<V> for Shadow<'_, V> {
     fn bound(&self) -> f64 {
         self.d_l
     }
-    #[inline]
+    #[inline(always)]
     fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool {
         // An object already found multiplies s once: its other triangles need no test.
-        if self.transparent.iter().any(|p| p.object == prim.object) {
+        if self.transparent.has_object(prim.object) {
             return false;
         }
-        let Some(hit) = test_prim(self.scene, prim, self.ray, stats, rec) else {
+        let Some(t) = test_prim_t(self.scene, prim, self.ray, stats, rec) else {
             return false;
         };
-        if !(hit.t < self.d_l) {
+        if !(t < self.d_l) {
             return false;
         }
         if self.scene.material_of(prim.object()).transmits() {
@@ -367,6 +370,48 @@ impl<V: Dim> Visitor<V> for Shadow<'_, V> {
     }
 }
 
+/// The transparent occluders of one shadow ray, one primitive per object: a handful at most in
+/// any real scene, so the first [`PrimSet::INLINE`] live on the stack and a shadow ray allocates
+/// nothing (the heap holds the rest of a segment through many glass objects).
+#[derive(Debug, Default)]
+struct PrimSet {
+    inline: [Prim; PrimSet::INLINE],
+    len: usize,
+    spill: Vec<Prim>,
+}
+
+impl PrimSet {
+    /// How many primitives fit without allocating.
+    const INLINE: usize = 4;
+    /// Whether a primitive of `object` is in the set.
+    #[inline(always)]
+    fn has_object(&self, object: u32) -> bool {
+        self.inline[..self.len].iter().chain(&self.spill).any(|p| p.object == object)
+    }
+    /// Adds a primitive (of an object not yet in the set).
+    #[inline]
+    fn push(&mut self, prim: Prim) {
+        if self.len < Self::INLINE {
+            self.inline[self.len] = prim;
+            self.len += 1;
+        } else {
+            self.spill.push(prim);
+        }
+    }
+    /// The primitives in ascending order (by object: the order of `s = Π kt`).
+    fn sorted(&mut self) -> &[Prim] {
+        if !self.spill.is_empty() {
+            self.spill.extend_from_slice(&self.inline[..self.len]);
+            self.len = 0;
+            self.spill.sort_unstable();
+            return &self.spill;
+        }
+        let set = &mut self.inline[..self.len];
+        set.sort_unstable();
+        set
+    }
+}
+
 /// How a primitive is named in traces: its object, and for a mesh its triangle's OBJ index.
 #[must_use]
 pub fn object_ref<V: Dim>(scene: &Scene<V>, prim: Prim) -> ObjectRef {
@@ -374,7 +419,7 @@ pub fn object_ref<V: Dim>(scene: &Scene<V>, prim: Prim) -> ObjectRef {
 }
 
 /// One ray–primitive test, counted and recorded (`object_test` with every root).
-#[inline]
+#[inline(always)]
 pub fn test_prim<V: Dim, R: Recorder<V>>(
     scene: &Scene<V>,
     prim: Prim,
@@ -391,6 +436,23 @@ pub fn test_prim<V: Dim, R: Recorder<V>>(
         accepted: hit.map(|h| h.t),
     });
     hit
+}
+
+/// [`test_prim`] for a question that needs only t (a shadow segment): the same count, the same
+/// event, the same t, but spheres and planes skip their point and normal.
+#[inline(always)]
+pub fn test_prim_t<V: Dim, R: Recorder<V>>(
+    scene: &Scene<V>,
+    prim: Prim,
+    ray: &Ray<V>,
+    stats: &mut Stats,
+    rec: &mut R,
+) -> Option<f64> {
+    if R::ENABLED {
+        return test_prim(scene, prim, ray, stats, rec).map(|h| h.t);
+    }
+    stats.tests.object += 1;
+    scene.objects[prim.object()].shape.part_hit_t(prim.part(), ray)
 }
 
 /// The bounds of a primitive, grown by a few ulps so that rounding in `C ± r` never leaves part
@@ -474,5 +536,32 @@ impl Mailbox {
         let fresh = self.stamps[i] != self.ray;
         self.stamps[i] = self.ray;
         fresh
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn prim(object: u32) -> Prim {
+        Prim { object, part: 0 }
+    }
+
+    #[test]
+    fn a_prim_set_sorts_by_object_inline_and_spilled() {
+        let mut few = PrimSet::default();
+        for o in [7, 2, 5] {
+            few.push(prim(o));
+        }
+        assert!(few.has_object(5) && !few.has_object(3));
+        assert_eq!(few.sorted(), &[prim(2), prim(5), prim(7)]);
+        // More than the inline capacity: the rest goes to the heap, and order still holds.
+        let mut many = PrimSet::default();
+        for o in [9, 1, 8, 3, 6, 0, 4] {
+            many.push(prim(o));
+        }
+        assert!((0..10).all(|o| many.has_object(o) == [9, 1, 8, 3, 6, 0, 4].contains(&o)));
+        let objects: Vec<u32> = many.sorted().iter().map(|p| p.object).collect();
+        assert_eq!(objects, [0, 1, 3, 4, 6, 8, 9]);
     }
 }

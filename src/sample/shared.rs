@@ -61,12 +61,20 @@ impl Line {
 
 /// A lattice row `y = j·2^K` on pixel-row boundaries: its `Nx + 1` pixel corners, and for K > 0
 /// its finer points.
+///
+/// A new row holds nothing: its memory is allocated, and first written, by the thread that
+/// traces its corners ([`EdgeRow::trace_corners`]), so that a render spends no serial time
+/// filling rows it is about to overwrite, and the page faults of a large lattice are taken by
+/// every thread at once.
 #[derive(Debug)]
 pub struct EdgeRow {
-    /// The colours of the corners `(i·2^K, y)`, `i = 0 … Nx`.
+    /// The colours of the corners `(i·2^K, y)`, `i = 0 … Nx` (empty until traced).
     corners: Vec<Rgb>,
-    /// The other points, traced on demand; None when K = 0 or on a 2D scene's line (whose
-    /// finer points are each inside one pixel).
+    /// Whether the finer points are shared by two pixel rows: false when K = 0 or on a 2D
+    /// scene's line (whose finer points are each inside one pixel).
+    shared: bool,
+    /// The finer points, traced on demand (None until the row is first traced, and when not
+    /// `shared`).
     finer: Option<Line>,
 }
 
@@ -74,8 +82,7 @@ impl EdgeRow {
     /// An untraced edge row of `lattice`; `shared` if its finer points are shared by two rows.
     #[must_use]
     pub fn new(lattice: Lattice, shared: bool) -> Self {
-        let finer = (shared && lattice.max_level > 0).then(|| Line::new(lattice.row_len()));
-        Self { corners: vec![Rgb::BLACK; lattice.nx + 1], finer }
+        Self { corners: Vec::new(), shared: shared && lattice.max_level > 0, finer: None }
     }
     /// Traces the corners of pixel-row boundary `j` (§8.1: `(Nx + 1)` rays a row) and forgets the
     /// finer points of the lattice row it held before.
@@ -86,11 +93,14 @@ impl EdgeRow {
         j: usize,
     ) {
         let s = u64::from(lattice.scale);
-        for (i, corner) in self.corners.iter_mut().enumerate() {
-            *corner = trace_point(tracer, lattice, i as u64 * s, j as u64 * s);
-        }
-        if let Some(line) = &mut self.finer {
-            line.clear();
+        self.corners.clear();
+        let row = (0..=lattice.nx).map(|i| trace_point(tracer, lattice, i as u64 * s, j as u64 * s));
+        self.corners.extend(row);
+        if self.shared {
+            match &mut self.finer {
+                Some(line) => line.clear(),
+                None => self.finer = Some(Line::new(lattice.row_len())),
+            }
         }
     }
 }

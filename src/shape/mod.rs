@@ -188,12 +188,26 @@ impl<V: Dim> Shape<V> {
             _ => 1,
         }
     }
-    /// The nearest hit of part `k` with `t > 0` (the object itself when it has one part).
-    #[inline]
+    /// The nearest hit of part `k` with `t > 0` (the object itself when it has one part): one
+    /// dispatch on the shape, inlined into every structure's visitor (the hot path of a render).
+    #[inline(always)]
     pub fn part_hit(&self, k: usize, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
         match self {
+            Self::Sphere(s) => s.hit(ray),
+            Self::Plane(p) => p.hit(ray),
+            Self::Box(b) => b.hit(ray),
+            Self::Facet(f) => f.hit(ray),
             Self::Mesh(m) => m.hit(k, ray),
-            _ => self.hit(ray),
+        }
+    }
+    /// `part_hit(k, ray).map(|h| h.t)`, without computing I and N where the shape can skip them
+    /// (spheres, planes): what a shadow ray asks.
+    #[inline(always)]
+    pub fn part_hit_t(&self, k: usize, ray: &Ray<V>) -> Option<f64> {
+        match self {
+            Self::Sphere(s) => s.hit_t(ray),
+            Self::Plane(p) => p.hit_t(ray),
+            _ => self.part_hit(k, ray).map(|h| h.t),
         }
     }
     /// Every root of part `k`, ascending.

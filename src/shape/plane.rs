@@ -27,6 +27,14 @@ impl<V: Vector> Plane<V> {
     /// The hit with `t > 0`; I re-projected by subtracting its signed distance to the plane.
     #[inline]
     pub fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
+        let t = self.hit_t(ray)?;
+        let raw = ray.at(t);
+        let point = raw - self.normal * (raw - self.point).dot(self.normal);
+        Some(SurfaceHit { t, point, normal: self.normal })
+    }
+    /// The t of [`Plane::hit`] alone (a shadow ray needs no point).
+    #[inline]
+    pub fn hit_t(&self, ray: &Ray<V>) -> Option<f64> {
         // t = num/denom > 0 needs num and denom of one strict sign; otherwise (behind, parallel,
         // on the plane, NaN) there is no hit and no division.
         let (num, denom) = ((self.point - ray.origin).dot(self.normal), ray.dir.dot(self.normal));
@@ -36,12 +44,7 @@ impl<V: Vector> Plane<V> {
         // Same signs, so t > 0 (or +∞ from an underflowing denominator, which §11's finite-t
         // acceptance turns away, numerics C2).
         let t = num / denom;
-        if !(t.is_finite() && t > 0.0) {
-            return None;
-        }
-        let raw = ray.at(t);
-        let point = raw - self.normal * (raw - self.point).dot(self.normal);
-        Some(SurfaceHit { t, point, normal: self.normal })
+        (t.is_finite() && t > 0.0).then_some(t)
     }
     /// The one root, if any.
     #[must_use]

@@ -19,6 +19,22 @@ impl<V: Vector> Sphere<V> {
     /// The least root `t > 0` of `|O + t·D − C|² = r²`; I re-projected as `C + r·(I − C)/|I − C|`.
     #[inline]
     pub fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
+        let (t, radial) = self.crossing(ray)?;
+        let normal = radial.try_unit()?;
+        Some(SurfaceHit { t, point: self.center + normal * self.radius, normal })
+    }
+    /// The t of [`Sphere::hit`] without its point and normal (a shadow ray needs only t): the
+    /// same root, refused in the same cases.
+    #[inline]
+    pub fn hit_t(&self, ray: &Ray<V>) -> Option<f64> {
+        let (t, radial) = self.crossing(ray)?;
+        // `try_unit` fails exactly on a zero or non-finite vector.
+        let m = radial.max_abs();
+        (m > 0.0 && m.is_finite()).then_some(t)
+    }
+    /// The least root `t > 0` and `I − C` for the raw `I = O + t·D`.
+    #[inline(always)]
+    fn crossing(&self, ray: &Ray<V>) -> Option<(f64, V)> {
         // An origin outside (c = |f|² − r² > 0) with the centre behind (b' = f·D > 0): then
         // q = −(b' + √Δ') < 0 and c/q < 0, no root is positive, and the roots need not be found.
         let f = ray.origin - self.center;
@@ -26,9 +42,7 @@ impl<V: Vector> Sphere<V> {
             return None;
         }
         let t = sphere_roots(ray, self.center, self.radius).nearest_positive()?;
-        let raw = ray.at(t);
-        let normal = (raw - self.center).try_unit()?;
-        Some(SurfaceHit { t, point: self.center + normal * self.radius, normal })
+        Some((t, ray.at(t) - self.center))
     }
     /// Every real root, ascending; a tangent gives one.
     #[must_use]

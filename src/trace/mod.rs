@@ -9,9 +9,9 @@ use crate::accel::Accel;
 use crate::geom::offset::{offset_distance, spawn_origin};
 use crate::geom::optics::{indices, reflect, refract, Refraction};
 use crate::geom::ray::Ray;
-use crate::record::event::{Event, NodeHit, ObjectRef, RayKind};
+use crate::record::event::{Event, NodeHit, RayKind};
 use crate::record::{RayEnd, RayStart, Recorder};
-use crate::scene::material::Rgb;
+use crate::scene::material::{Material, Rgb};
 use crate::scene::Scene;
 use crate::shape::{Dim, SurfaceHit};
 use stats::Stats;
@@ -34,13 +34,14 @@ pub struct Tracer<'s, V: Dim, R: Recorder<V>> {
 pub(crate) struct Shading<'a, V> {
     pub ray: &'a Ray<V>,
     pub hit: SurfaceHit<V>,
-    pub object: ObjectRef,
     /// `D·N ≤ 0` (§3).
     pub entering: bool,
     /// The facing normal N_f: N when entering, −N when leaving.
     pub n_f: V,
     /// The spawn offset δ for every ray leaving this hit.
     pub delta: f64,
+    /// The hit object's material.
+    pub material: &'a Material,
 }
 
 impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
@@ -86,9 +87,11 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
             normal: hit.normal,
             entering,
         });
-        let scale = self.scene.objects[object.index].shape.scale();
-        let delta = offset_distance(hit.point, ray.origin, hit.t, scale);
-        let at = Shading { ray, hit, object, entering, n_f, delta };
+        let scene = self.scene;
+        let hit_object = &scene.objects[object.index];
+        let delta = offset_distance(hit.point, ray.origin, hit.t, hit_object.shape.scale());
+        let material = &scene.materials[hit_object.material];
+        let at = Shading { ray, hit, entering, n_f, delta, material };
         let local = self.local(&at);
         let color = local + self.secondary(&at, level);
         self.recorder.close_ray(|| RayEnd {
@@ -102,7 +105,7 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
     /// `ks·TraceRay(R, n + 1) + kt·TraceRay(T, n + 1)` when `n ≤ max_depth` (§6), children in the
     /// order R, then T; TIR drops the `kt·T` term and records it.
     fn secondary(&mut self, at: &Shading<'_, V>, level: u32) -> Rgb {
-        let material = self.scene.material_of(at.object.index);
+        let material = at.material;
         let (reflects, transmits) = (material.reflects(), material.transmits());
         if !(reflects || transmits) {
             return Rgb::BLACK;

@@ -14,7 +14,7 @@ impl<V: Dim, R: Recorder<V>> Tracer<'_, V, R> {
     /// `I_local` at a hit, every light in scene order.
     pub(crate) fn local(&mut self, at: &Shading<'_, V>) -> Rgb {
         let scene = self.scene;
-        let material = scene.material_of(at.object.index);
+        let material = at.material;
         // The checker swaps kd (and ka) by the parity of I's cell.
         let (ka, kd) = material.colors_at(at.hit.point);
         let mut sum = scene.ambient.modulate(ka);

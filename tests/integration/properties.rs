@@ -14,8 +14,10 @@ use whitted::image::Image;
 use whitted::render::render_centers;
 use whitted::scene::load::load_str;
 use whitted::scene::{AnyScene, Scene};
+use whitted::shape::plane::Plane;
 use whitted::shape::sphere::Sphere;
 use whitted::shape::Dim;
+use whitted::shape::Shape;
 
 /// Every path to a leaf or container in a JSON value.
 fn paths(v: &Value, prefix: Vec<String>, out: &mut Vec<Vec<String>>) {
@@ -105,6 +107,32 @@ proptest! {
             Ok(AnyScene::Flat(s)) => assert_renders_finite(s),
             Ok(AnyScene::Space(s)) => assert_renders_finite(s),
             Err(errors) => prop_assert!(!errors.is_empty()),
+        }
+    }
+
+    /// What a shadow ray asks of a sphere or a plane (t alone, no point or normal) is exactly the
+    /// t of the full hit, refusals included: tiny spheres far out, where `I − C` may round to
+    /// zero, and rays along the plane.
+    #[test]
+    fn the_t_of_a_shadow_test_is_the_t_of_the_hit(
+        log_r in -12.0f64..4.0,
+        log_c in -2.0f64..9.0,
+        cdir in prop::array::uniform3(-1.0f64..1.0),
+        origin in prop::array::uniform3(-10.0f64..10.0),
+        dir in prop::array::uniform3(-1.0f64..1.0),
+        aim in any::<bool>(),
+        ny in -1.0f64..1.0,
+    ) {
+        let center = DVec3::from(cdir) * 10f64.powf(log_c);
+        let origin = DVec3::from(origin);
+        let d = if aim { center - origin } else { DVec3::from(dir) };
+        prop_assume!(d.length() > 1e-9);
+        let ray = Ray::new(origin, d.normalize());
+        let sphere = Shape::Sphere(Sphere { center, radius: 10f64.powf(log_r) });
+        let plane = Shape::Plane(Plane { point: center, normal: DVec3::new(0.0, ny, 1.0).normalize() });
+        for shape in [sphere, plane] {
+            let full = shape.part_hit(0, &ray).map(|h| h.t.to_bits());
+            prop_assert_eq!(shape.part_hit_t(0, &ray).map(f64::to_bits), full);
         }
     }
 
