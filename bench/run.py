@@ -15,7 +15,8 @@ Sampling modes (ours = POV-Ray's):
   adaptive  --aa adaptive --max-level 2 --threshold 0.3         = +A0.3 +AM2 +R3
 
 Both programs run the same number of times (3, or 1 with --quick), one after the other and never
-at once, whitted and POV-Ray alternating; the tables show medians. For every run the script also
+at once, whitted and POV-Ray alternating, and the 1- and 2-thread runs of a mode in turns; the
+tables show medians (or, with --stat min, minima). For every run the script also
 keeps the wall time, user/system CPU and peak resident memory of the process (from os.wait4), and
 the CPU time other processes used meanwhile (from /proc/stat), so a disturbed run shows.
 Rays/s: whitted = (primary + reflected + transmitted + shadow) / trace seconds;
@@ -369,18 +370,19 @@ def median(values):
     return statistics.median(values) if values else None
 
 
-def summarise(runs):
-    """Medians over the successful runs; ray counts from the first (they do not vary)."""
+def summarise(runs, stat="median"):
+    """Medians (or minima) over the successful runs; ray counts from the first (they do not vary)."""
     ok = [r for r in runs if r.get("figures")]
     if not ok:
         return None
+    pick = median if stat == "median" else (lambda vs: min([v for v in vs if v is not None], default=None))
     first = ok[0]["figures"]
     return {
         "runs": len(ok),
-        "trace_s": median([r["figures"]["trace_s"] for r in ok]),
-        "setup_s": median([r["figures"]["setup_s"] for r in ok]),
-        "wall_s": median([r["wall_s"] for r in ok]),
-        "max_rss_mb": median([r["max_rss_mb"] for r in ok]),
+        "trace_s": pick([r["figures"]["trace_s"] for r in ok]),
+        "setup_s": pick([r["figures"]["setup_s"] for r in ok]),
+        "wall_s": pick([r["wall_s"] for r in ok]),
+        "max_rss_mb": pick([r["max_rss_mb"] for r in ok]),
         "rays": first["rays"],
         "rays_vary": len({r["figures"]["rays"] for r in ok}) > 1,
         "by_kind": first["by_kind"],
@@ -425,8 +427,9 @@ def tables(results):
     out = []
     m = results["machine"]
     out.append("Measured %s on %s (%s cores), Linux %s, %s, whitted %s; %d run(s) a configuration, "
-               "medians shown; %dx%d." % (m["date"], m["cpu"], m["cores"], m["kernel"], m["povray"] or "no POV-Ray",
-                                          m["whitted"], results["runs"], WIDTH, HEIGHT))
+               "%s shown; %dx%d." % (m["date"], m["cpu"], m["cores"], m["kernel"], m["povray"] or "no POV-Ray",
+                                      m["whitted"], results["runs"],
+                                      "minima" if results.get("stat") == "min" else "medians", WIDTH, HEIGHT))
     out.append("")
     out.append("| scene | size | AA | threads | whitted trace (s) | POV-Ray trace (s) | time ratio POV/whitted "
                "| whitted Mrays/s | POV-Ray Mrays/s | throughput ratio whitted/POV | rays traced (M) whitted / POV "
@@ -456,7 +459,7 @@ def tables(results):
                "thread / with 2. Peak RSS of the whole process.")
     out.append("")
 
-    out.append("Whole process (median wall time) and the work before tracing:")
+    out.append("Whole process (%s wall time) and the work before tracing:" % ("least" if results.get("stat") == "min" else "median"))
     out.append("")
     out.append("| scene | AA | threads | whitted wall (s) | whitted load + build (s) | whitted accel "
                "| POV-Ray wall (s) | POV-Ray parse + bounding (s) |")
@@ -609,35 +612,42 @@ def slim(r):
     return keep
 
 
-def run_config(config, jobs, commands, runs, timeout, gave_up, notes, tag):
-    """The runs of one configuration, whitted and POV-Ray alternating; fills config[prog]."""
-    failed = set()
-    for k in range(runs):
-        for prog, _, cwd in jobs:
-            if gave_up[prog] or prog in failed:
-                continue
-            r = run_one(prog, commands[prog], cwd, timeout)
-            config[prog]["runs"].append(r)
-            if r.get("figures"):
-                fig = r["figures"]
-                log("%-28s %-7s run %d: trace %.3f s, wall %.2f s, %.2f Mrays/s, RSS %.0f MB" % (
-                    tag, prog, k + 1, fig["trace_s"], r["wall_s"],
-                    fig["rays"] / fig["trace_s"] / 1e6 if fig["trace_s"] else 0, r["max_rss_mb"]))
-                continue
-            why = r.get("parse_error") or describe_failure(r)
-            log("%-28s %-7s run %d FAILED: %s\n    command: %s" % (tag, prog, k + 1, why, " ".join(commands[prog])))
-            failed.add(prog)
-            if r["timeout"]:
-                # too slow here: the scene's other modes trace at least as many rays
-                gave_up[prog] = True
-                why += "; the scene's remaining configurations were skipped"
-            notes.append("%s on %s (%s, %d thread(s)), run %d: %s"
-                         % (prog, config["scene"], config["mode"], config["threads"], k + 1, why))
+def run_round(config, k, timeout, gave_up, notes):
+    """Run k of one configuration: whitted, then POV-Ray; appends to config[prog]["runs"]."""
+    failed = config.setdefault("failed", set())
+    for prog, _, cwd in config["jobs"]:
+        if gave_up[prog] or prog in failed:
+            continue
+        r = run_one(prog, config["commands"][prog], cwd, timeout)
+        config[prog]["runs"].append(r)
+        tag = config["tag"]
+        if r.get("figures"):
+            fig = r["figures"]
+            log("%-28s %-7s run %d: trace %.3f s, wall %.2f s, %.2f Mrays/s, RSS %.0f MB" % (
+                tag, prog, k + 1, fig["trace_s"], r["wall_s"],
+                fig["rays"] / fig["trace_s"] / 1e6 if fig["trace_s"] else 0, r["max_rss_mb"]))
+            continue
+        why = r.get("parse_error") or describe_failure(r)
+        log("%-28s %-7s run %d FAILED: %s\n    command: %s" % (
+            tag, prog, k + 1, why, " ".join(config["commands"][prog])))
+        failed.add(prog)
+        if r["timeout"]:
+            # too slow here: the scene's other modes trace at least as many rays
+            gave_up[prog] = True
+            why += "; the scene's remaining configurations were skipped"
+        notes.append("%s on %s (%s, %d thread(s)), run %d: %s"
+                     % (prog, config["scene"], config["mode"], config["threads"], k + 1, why))
+
+
+def finish_config(config, gave_up, stat):
+    """Summarises the runs of a configuration and drops what results.json does not keep."""
     for prog in ("whitted", "povray"):
         side = config[prog]
         side["skipped"] = gave_up[prog] and not side["runs"]
-        side["summary"] = summarise(side["runs"])
+        side["summary"] = summarise(side["runs"], stat)
         side["runs"] = [slim(r) for r in side["runs"]]
+    for key in ("jobs", "commands", "failed", "tag"):
+        config.pop(key, None)
 
 
 def main():
@@ -649,6 +659,10 @@ def main():
     ap.add_argument("--quick", action="store_true", help="one run per configuration instead of three")
     ap.add_argument("--runs", type=int, help="runs per configuration (default 3, 1 with --quick)")
     ap.add_argument("--no-povray", action="store_true", help="run whitted only")
+    ap.add_argument("--stat", choices=["median", "min"], default="median",
+                    help="how the runs of a configuration are summarised (times and memory): the median "
+                         "(default) or the minimum, the steadier estimator on a machine whose noise only "
+                         "ever adds time")
     ap.add_argument("--accel", help="pass --accel NAME to whitted (default: whitted's own default)")
     ap.add_argument("--timeout", type=float, default=300, help="seconds before a run is killed (default 300)")
     ap.add_argument("--whitted", default=os.path.join(REPO, "target", "release", "whitted"),
@@ -686,13 +700,17 @@ def main():
     image_dir = os.path.join(WORK, "images")
     os.makedirs(image_dir, exist_ok=True)
 
-    results = {"machine": machine_info(binary, povray), "runs": runs, "accel_option": args.accel,
+    results = {"machine": machine_info(binary, povray), "runs": runs, "stat": args.stat,
+               "accel_option": args.accel,
                "povray_options": POV_COMMON, "configs": [], "images": [], "notes": []}
     for scene, json_file, pov_args in selected:
         gave_up = {"whitted": False, "povray": False}
         for mode, our_mode, pov_mode in MODES:
             if args.mode and mode not in args.mode:
                 continue
+            # The thread counts of a mode run in turns (run k of 1 thread, run k of 2 threads, …),
+            # so that a slow spell of the machine lands on both and the speed-up holds.
+            configs = []
             for threads in THREADS:
                 tag = "%s-%s-t%d" % (scene, mode, threads)
                 jobs = [("whitted", os.path.join(image_dir, tag + "-whitted.png"), REPO)]
@@ -703,14 +721,20 @@ def main():
                                                jobs[0][1], args.accel),
                     "povray": with_povray and povray_command(pov_args, pov_mode, threads, jobs[-1][1]),
                 }
-                config = {"scene": scene, "mode": mode, "threads": threads, "images": {}}
+                config = {"scene": scene, "mode": mode, "threads": threads, "images": {},
+                          "jobs": jobs, "commands": commands, "tag": tag}
                 for prog, image, _ in jobs:
                     config[prog] = {"cmd": " ".join(commands[prog]), "runs": []}
                     config["images"][prog] = image
                     if os.path.exists(image):  # no stale image may stand in for a failed run
                         os.remove(image)
                 config.setdefault("povray", {"runs": []})
-                run_config(config, jobs, commands, runs, args.timeout, gave_up, results["notes"], tag)
+                configs.append(config)
+            for k in range(runs):
+                for config in configs:
+                    run_round(config, k, args.timeout, gave_up, results["notes"])
+            for config in configs:
+                finish_config(config, gave_up, args.stat)
                 results["configs"].append(config)
 
     for c in results["configs"]:
