@@ -459,6 +459,28 @@ def tables(results):
                "thread / with 2. Peak RSS of the whole process.")
     out.append("")
 
+    other = "median" if results.get("stat") == "min" else "min"
+    out.append("The same runs summarised by the other estimator (%s):" % ("medians" if other == "median" else "minima"))
+    out.append("")
+    out.append("| scene | AA | threads | whitted trace (s) | POV-Ray trace (s) | time ratio POV/whitted "
+               "| throughput ratio whitted/POV | 2-thread speed-up whitted / POV |")
+    out.append("|---|---|---:|---:|---:|---:|---:|---:|")
+    alt = {key: {prog: summarise(c[prog]["runs"], other) for prog in ("whitted", "povray")}
+           for key, c in by_key.items()}
+    for c in rows:
+        key = (c["scene"], c["mode"], c["threads"])
+        w, p = alt[key]["whitted"], alt[key]["povray"]
+        wt, pt = w and w["trace_s"], p and p["trace_s"]
+        speed = "—"
+        if c["threads"] == 2 and (c["scene"], c["mode"], 1) in alt:
+            one = alt[(c["scene"], c["mode"], 1)]
+            speed = pair(ratio(one["whitted"] and one["whitted"]["trace_s"], wt),
+                         ratio(one["povray"] and one["povray"]["trace_s"], pt))
+        out.append("| %s | %s | %d | %s | %s | %s | %s | %s |" % (
+            c["scene"], c["mode"], c["threads"], f(wt, 3), f(pt, 3), f(ratio(pt, wt)),
+            f(ratio(mrays(w), mrays(p))), speed))
+    out.append("")
+
     out.append("Whole process (%s wall time) and the work before tracing:" % ("least" if results.get("stat") == "min" else "median"))
     out.append("")
     out.append("| scene | AA | threads | whitted wall (s) | whitted load + build (s) | whitted accel "

@@ -399,7 +399,12 @@ impl PrimSet {
         }
     }
     /// The primitives in ascending order (by object: the order of `s = Π kt`).
+    #[inline]
     fn sorted(&mut self) -> &[Prim] {
+        if self.len <= 1 && self.spill.is_empty() {
+            // Nearly every shadow ray: nothing or one object to order.
+            return &self.inline[..self.len];
+        }
         if !self.spill.is_empty() {
             self.spill.extend_from_slice(&self.inline[..self.len]);
             self.len = 0;

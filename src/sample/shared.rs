@@ -223,14 +223,21 @@ struct RowSource<'r, 't, 's, V: Dim> {
 impl<V: Dim> SampleSource for RowSource<'_, '_, '_, V> {
     #[inline]
     fn color(&mut self, a: u32, b: u32) -> Rgb {
+        let lattice = self.lattice;
+        let s = lattice.scale;
+        if (a == 0 || a == s) && (b == 0 || (b == s && lattice.dims() == 2)) {
+            // A pixel corner, traced with its edge row: `subdivide` reads each once per pixel
+            // (squares pass their corners down), so it needs no memo.
+            let row = if b == 0 { self.edges.bottom } else { self.edges.top };
+            self.used += 1;
+            return row.corners[self.i + (a / s) as usize];
+        }
         let side = self.scratch.side;
         let k = b as usize * side + a as usize;
         let memo = self.scratch.memo[k];
         if memo.stamp == self.scratch.current {
             return memo.color;
         }
-        let lattice = self.lattice;
-        let s = lattice.scale;
         let row = if b == 0 {
             Some(self.edges.bottom)
         } else if b == s && lattice.dims() == 2 {
@@ -239,8 +246,6 @@ impl<V: Dim> SampleSource for RowSource<'_, '_, '_, V> {
             None
         };
         let color = match row {
-            // A pixel corner, traced with its edge row.
-            Some(row) if a == 0 || a == s => row.corners[self.i + (a / s) as usize],
             // A finer point of an edge row shared with the pixel row below or above.
             Some(EdgeRow { finer: Some(line), .. }) => {
                 let (x, y) = lattice.global(self.i, self.j, a, b);
