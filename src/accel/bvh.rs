@@ -29,6 +29,7 @@ use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::Dim;
 use crate::trace::stats::Stats;
+use arrayvec::ArrayVec;
 
 /// Centroid bins per axis.
 pub const BINS: usize = 12;
@@ -143,11 +144,9 @@ fn build_into<V: Vector>(out: &mut Vec<Built<V>>, items: &mut [Item<V>], base: u
     }));
 }
 
-thread_local! {
-    /// The traversal stack of this thread's walks: pending `(link, depth, t_in)`, reused so that
-    /// a walk neither allocates nor clears a large array.
-    static STACK: std::cell::RefCell<Vec<(Link, u32, f64)>> = const { std::cell::RefCell::new(Vec::new()) };
-}
+/// Room on a walk's stack of pending `(link, depth, t_in)`: a walk keeps at most one pending
+/// (farther) child per level below the root, and the depth is at most `BALANCE_DEPTH + 33`.
+const STACK_SIZE: usize = BALANCE_DEPTH as usize + 40;
 
 impl<V: Dim> Bvh<V> {
     /// Builds the tree over `prims` (their boxes from the scene).
@@ -294,39 +293,37 @@ impl<V: Dim> Bvh<V> {
         if !root.hit {
             return;
         }
-        STACK.with(|cell| {
-            let mut stack = cell.borrow_mut();
-            stack.clear();
-            stack.push((self.root, 0, root.t_in));
-            while let Some((link, depth, t_in)) = stack.pop() {
-                if beyond(t_in, visitor.bound()) {
-                    continue;
-                }
-                if link.count > 0 {
-                    let start = link.start as usize;
-                    for p in &self.prims[start..start + link.count as usize] {
-                        if visitor.visit(*p, stats, rec) {
-                            return;
-                        }
+        // On the walk's own stack, never initialised: a walk neither allocates nor clears.
+        let mut stack: ArrayVec<(Link, u32, f64), STACK_SIZE> = ArrayVec::new();
+        stack.push((self.root, 0, root.t_in));
+        while let Some((link, depth, t_in)) = stack.pop() {
+            if beyond(t_in, visitor.bound()) {
+                continue;
+            }
+            if link.count > 0 {
+                let start = link.start as usize;
+                for p in &self.prims[start..start + link.count as usize] {
+                    if visitor.visit(*p, stats, rec) {
+                        return;
                     }
-                    continue;
                 }
-                let node = &self.nodes[link.start as usize];
-                let [l, rr] = node.links;
-                let [bl, br] = &node.boxes;
-                let [il, ir] = r.box_pair_interval([bl.min, br.min], [bl.max, br.max]);
-                let hl = Self::record(il, l.id, depth + 1, stats, rec);
-                let hr = Self::record(ir, rr.id, depth + 1, stats, rec);
-                // Push the farther first, so the nearer is popped first (a tie keeps left first).
-                let (near, far, h_near, h_far) =
-                    if hr.t_in < hl.t_in { (rr, l, hr, hl) } else { (l, rr, hl, hr) };
-                for (child, h) in [(far, h_far), (near, h_near)] {
-                    if h.hit && !beyond(h.t_in, visitor.bound()) {
-                        stack.push((child, depth + 1, h.t_in));
-                    }
+                continue;
+            }
+            let node = &self.nodes[link.start as usize];
+            let [l, rr] = node.links;
+            let [bl, br] = &node.boxes;
+            let [il, ir] = r.box_pair_interval([bl.min, br.min], [bl.max, br.max]);
+            let hl = Self::record(il, l.id, depth + 1, stats, rec);
+            let hr = Self::record(ir, rr.id, depth + 1, stats, rec);
+            // Push the farther first, so the nearer is popped first (a tie keeps left first).
+            let (near, far, h_near, h_far) =
+                if hr.t_in < hl.t_in { (rr, l, hr, hl) } else { (l, rr, hl, hr) };
+            for (child, h) in [(far, h_far), (near, h_near)] {
+                if h.hit && !beyond(h.t_in, visitor.bound()) {
+                    stack.push((child, depth + 1, h.t_in));
                 }
             }
-        });
+        }
     }
 }
 
