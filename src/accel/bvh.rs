@@ -5,10 +5,10 @@
 //! of threads): top-down, binned surface-area heuristic. At each node the primitives' centroids
 //! are sorted into [`BINS`] equal bins along each axis (along the longest axis only for groups
 //! of more than [`ALL_AXES_BELOW`]); the split between bins minimising
-//! `C_trav + (S(L)·N_L + S(R)·N_R)/S(P)` (S: surface area in 3D, perimeter in 2D; one object
-//! test costs 1, a node visit [`C_TRAV`]) wins, ties to the lower axis and bin. A node becomes a
-//! leaf when it holds one primitive, or at most [`MAX_LEAF`] and no split beats testing them
-//! all. From depth [`BALANCE_DEPTH`] on, or when every centroid coincides, the split is at the
+//! `C_trav + (S(L)·C_L + S(R)·C_R)/S(P)` (S: surface area in 3D, perimeter in 2D; C: the summed
+//! test costs of a side's primitives, [`crate::shape::Shape::test_cost`], a triangle test costing
+//! 1 and a node visit [`C_TRAV`]) wins, ties to the lower axis and bin. A node becomes a leaf when
+//! it holds one primitive, or at most [`MAX_LEAF`] and no split beats testing them all. From depth [`BALANCE_DEPTH`] on, or when every centroid coincides, the split is at the
 //! median (by centroid, then by index), which bounds the depth by `BALANCE_DEPTH + 33`. The top
 //! levels of large trees build their two subtrees in parallel; the result does not depend on it.
 //!
@@ -37,7 +37,8 @@ pub const BINS: usize = 12;
 pub const MAX_LEAF: usize = 4;
 /// Groups of more primitives than this are binned along their longest axis only.
 pub const ALL_AXES_BELOW: usize = 64;
-/// The cost of visiting a node, in object tests.
+/// The cost of visiting a node (two box tests), in triangle tests (each primitive's own cost is
+/// [`crate::shape::Shape::test_cost`]).
 pub const C_TRAV: f64 = 0.5;
 /// From this depth on, splits are at the median.
 pub const BALANCE_DEPTH: u32 = 40;
@@ -77,13 +78,16 @@ pub struct Bvh<V> {
     prims: Vec<Prim>,
 }
 
-/// A primitive as the builder sees it: its box and its index. The builder reorders these
-/// records themselves (not indices to them), so every pass reads memory in order; the centroid
-/// is the box's centre, recomputed where needed (cheaper than 24 more bytes per primitive).
+/// A primitive as the builder sees it: its box, its index and the cost of testing it. The
+/// builder reorders these records themselves (not indices to them), so every pass reads memory
+/// in order; the centroid is the box's centre, recomputed where needed (cheaper than 24 more
+/// bytes per primitive).
 #[derive(Clone, Copy, Debug)]
 struct Item<V> {
     bounds: Aabb<V>,
     prim: u32,
+    /// [`crate::shape::Shape::test_cost`] (an `f32` fits beside `prim` at no size).
+    cost: f32,
 }
 
 impl<V: Vector> Item<V> {
@@ -155,16 +159,23 @@ impl<V: Dim> Bvh<V> {
         let items = prims
             .iter()
             .enumerate()
-            .map(|(i, &p)| Item { bounds: prim_bounds(scene, p), prim: to_u32(i) })
+            .map(|(i, &p)| {
+                #[allow(clippy::cast_possible_truncation)] // 0.25 and 1 are exact in f32
+                let cost = scene.objects[p.object()].shape.test_cost() as f32;
+                Item { bounds: prim_bounds(scene, p), prim: to_u32(i), cost }
+            })
             .collect();
         Self::from_items(prims, items)
     }
 
-    /// Builds the tree over primitives with the given boxes.
+    /// Builds the tree over primitives with the given boxes (each costing one triangle test).
     #[must_use]
     pub fn from_boxes(prims: Vec<Prim>, boxes: Vec<Aabb<V>>) -> Self {
-        let items =
-            boxes.into_iter().enumerate().map(|(i, bounds)| Item { bounds, prim: to_u32(i) }).collect();
+        let items = boxes
+            .into_iter()
+            .enumerate()
+            .map(|(i, bounds)| Item { bounds, prim: to_u32(i), cost: 1.0 })
+            .collect();
         Self::from_items(prims, items)
     }
 
@@ -365,7 +376,9 @@ impl<V: Vector> Builder<'_, V> {
             return (count > MAX_LEAF || depth >= BALANCE_DEPTH).then(|| self.median(lo, hi, axis));
         }
         let (cost, axis, bin) = self.best_bin_split(lo, hi, cbox, bounds);
-        if count <= MAX_LEAF && cost >= count as f64 {
+        // A leaf costs the tests of all its primitives.
+        let leaf: f64 = self.items[lo..hi].iter().map(|it| f64::from(it.cost)).sum();
+        if count <= MAX_LEAF && cost >= leaf {
             return None;
         }
         // Partition by bin: those left of the split first.
@@ -395,6 +408,7 @@ impl<V: Vector> Builder<'_, V> {
             *map = (used && cbox.extent()[axis] > 0.0).then(|| bin_map(cbox, axis));
         }
         let mut counts = [[0usize; BINS]; 3];
+        let mut costs = [[0.0f64; BINS]; 3];
         let mut boxes = [[Aabb::empty(); BINS]; 3];
         for it in &self.items[lo..hi] {
             let (c, b) = (it.centroid(), &it.bounds);
@@ -402,36 +416,41 @@ impl<V: Vector> Builder<'_, V> {
                 if let Some((cmin, scale)) = map {
                     let k = bin_of(c[axis], *cmin, *scale);
                     counts[axis][k] += 1;
+                    costs[axis][k] += f64::from(it.cost);
                     boxes[axis][k] = boxes[axis][k].union(b);
                 }
             }
         }
         let mut best = (f64::INFINITY, 0, 0);
         for axis in (0..V::DIM).filter(|&a| maps[a].is_some()) {
-            let (counts, boxes) = (&counts[axis], &boxes[axis]);
-            // Sweep from the right: the area and count of bins b+1.. .
+            let (counts, costs, boxes) = (&counts[axis], &costs[axis], &boxes[axis]);
+            // Sweep from the right: the area, count and test cost of bins b+1.. .
             let mut right_area = [0.0; BINS];
             let mut right_count = [0usize; BINS];
-            let (mut acc, mut n) = (Aabb::empty(), 0);
+            let mut right_cost = [0.0; BINS];
+            let (mut acc, mut n, mut c) = (Aabb::empty(), 0, 0.0);
             for b in (1..BINS).rev() {
                 acc = acc.union(&boxes[b]);
                 n += counts[b];
+                c += costs[b];
                 right_area[b] = acc.surface();
                 right_count[b] = n;
+                right_cost[b] = c;
             }
-            let (mut acc, mut n) = (Aabb::empty(), 0);
+            let (mut acc, mut n, mut c) = (Aabb::empty(), 0, 0.0);
             for b in 0..BINS - 1 {
                 acc = acc.union(&boxes[b]);
                 n += counts[b];
-                let (nl, nr) = (n, right_count[b + 1]);
-                if nl == 0 || nr == 0 {
+                c += costs[b];
+                if n == 0 || right_count[b + 1] == 0 {
                     continue;
                 }
+                let (cl, cr) = (c, right_cost[b + 1]);
                 let cost = if parent > 0.0 {
-                    C_TRAV + (acc.surface() * nl as f64 + right_area[b + 1] * nr as f64) / parent
+                    C_TRAV + (acc.surface() * cl + right_area[b + 1] * cr) / parent
                 } else {
                     // A flat or point-like group: every box has measure 0; split evenly.
-                    C_TRAV + nl.max(nr) as f64
+                    C_TRAV + f64::max(cl, cr)
                 };
                 if cost < best.0 {
                     best = (cost, axis, b);

@@ -180,6 +180,18 @@ impl<V: Dim> Shape<V> {
         }
     }
 
+    /// What one ray test of a part costs, in watertight-triangle tests, for the BVH's surface
+    /// area heuristic (where a node visit, two box tests, costs [`crate::accel::bvh::C_TRAV`]).
+    /// Measured with callgrind on the bench scenes (bench/README.md): a sphere or box test costs
+    /// about half a node visit, a triangle or polygon test about two.
+    #[must_use]
+    pub fn test_cost(&self) -> f64 {
+        match self {
+            Self::Sphere(_) | Self::Plane(_) | Self::Box(_) => 0.25,
+            Self::Facet(_) | Self::Mesh(_) => 1.0,
+        }
+    }
+
     /// How many parts the acceleration structures see: a mesh's triangles, else 1.
     #[must_use]
     pub fn parts(&self) -> usize {
