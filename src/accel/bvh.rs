@@ -524,6 +524,33 @@ mod tests {
     }
 
     #[test]
+    fn cheap_primitives_share_a_leaf_where_costly_ones_split() {
+        // Two unit-sized objects 3 apart. Spheres (test cost 0.25): a leaf costs 0.5, a split
+        // 0.5 + (6·0.25 + 6·0.25)/18 ≈ 0.67, so one leaf. Flat triangles (cost 1): a leaf costs
+        // 2, a split 0.5 + (2·1 + 2·1)/8 = 1, so a root over two leaves.
+        let scene = |kind: &str| {
+            let objects = if kind == "sphere" {
+                r#"{"type": "sphere", "center": [0, 0, 0], "radius": 0.5},
+                   {"type": "sphere", "center": [3, 0, 0], "radius": 0.5}"#
+            } else {
+                r#"{"type": "triangle", "vertices": [[-0.5, -0.5, 0], [0.5, -0.5, 0], [0, 0.5, 0]]},
+                   {"type": "triangle", "vertices": [[2.5, -0.5, 0], [3.5, -0.5, 0], [3, 0.5, 0]]}"#
+            };
+            let camera = r#""eye": [0, 0, 5], "center": [0, 0, 0], "window": {"l": -1, "r": 1, "b": -1, "t": 1}, "resolution": [4, 4]"#;
+            let text = format!(r#"{{"camera": {{{camera}}}, "objects": [{objects}]}}"#);
+            match crate::scene::load::load_str(&text) {
+                Ok(crate::scene::AnyScene::Space(s)) => s,
+                other => panic!("{other:?}"),
+            }
+        };
+        let prims = vec![Prim { object: 0, part: 0 }, Prim { object: 1, part: 0 }];
+        let spheres = Bvh::build(&scene("sphere"), prims.clone());
+        assert_eq!((spheres.nodes.len(), spheres.root.count), (0, 2), "one leaf of both spheres");
+        let triangles = Bvh::build(&scene("triangle"), prims);
+        assert_eq!((triangles.nodes.len(), triangles.root.count), (1, 0), "a root over two leaves");
+    }
+
+    #[test]
     fn identical_boxes_split_at_the_median() {
         let prims: Vec<Prim> = (0..100).map(|i| Prim { object: i, part: 0 }).collect();
         let boxes = vec![Aabb::new(DVec3::ZERO, DVec3::ONE); 100];
