@@ -174,9 +174,10 @@ fn tracer<'s, V: Dim>(scene: &'s Scene<V>, accel: &'s Accel<V>, max_depth: u32) 
     tracer
 }
 
-/// The default of [`RenderConfig::band_memory`]: 8 MiB. The shared cells are allocated (and
-/// written) when the render starts, so a larger budget costs time and memory for cells that most
-/// renders never use.
+/// The default of [`RenderConfig::band_memory`]: 8 MiB. An edge row's cells are allocated and
+/// initialised in full (by the thread that first traces the row), however few of them the
+/// subdivision reads, so a larger budget buys fewer bands (fewer waits between the two phases
+/// of a band) with memory that most renders never use.
 pub const BAND_MEMORY: usize = 8 << 20;
 
 /// Pixel rows per band: as many as fit `budget` bytes of edge rows (each `Nx + 1` corner colours
