@@ -18,13 +18,11 @@
 //! when its entry lies beyond the best hit so far ([`super::beyond`]), so the walk stops as soon
 //! as the nearest hit is closer than the next node.
 
-use super::{beyond, prim_bounds, Prim, TreeNode, Visitor};
+use super::{beyond, node_visit, prim_bounds, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
-use crate::bounds::BoundHit;
 use crate::geom::ray::Ray;
-use crate::geom::slab::{culling_hit, RecipRay};
+use crate::geom::slab::RecipRay;
 use crate::geom::Vector;
-use crate::record::event::Event;
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::Dim;
@@ -252,42 +250,6 @@ impl<V: Dim> Bvh<V> {
         out.into_iter().flatten().collect()
     }
 
-    /// A box's interval, counted, recorded, with the culling decision.
-    #[inline(always)]
-    fn record<R: Recorder<V>>(
-        (t_in, t_out): (f64, f64),
-        id: u32,
-        depth: u32,
-        stats: &mut Stats,
-        rec: &mut R,
-    ) -> BoundHit {
-        stats.tests.node += 1;
-        rec.event(|| Event::NodeVisit { structure: "bvh", node: id as usize, depth, t_in, t_out });
-        BoundHit { t_in, t_out, hit: culling_hit(t_in, t_out) }
-    }
-
-    /// One box against the ray: counted, recorded.
-    #[inline(always)]
-    fn test_box<R: Recorder<V>>(
-        bounds: &Aabb<V>,
-        id: u32,
-        depth: u32,
-        ray: &RecipRay<V>,
-        stats: &mut Stats,
-        rec: &mut R,
-    ) -> BoundHit {
-        stats.tests.node += 1;
-        let h = bounds.cull(ray);
-        rec.event(|| Event::NodeVisit {
-            structure: "bvh",
-            node: id as usize,
-            depth,
-            t_in: h.t_in,
-            t_out: h.t_out,
-        });
-        h
-    }
-
     /// Front-to-back traversal, handing the primitives of every leaf reached to the visitor.
     pub fn walk<R: Recorder<V>, W: Visitor<V>>(
         &self,
@@ -300,7 +262,8 @@ impl<V: Dim> Bvh<V> {
             return;
         }
         let r = RecipRay::new(ray);
-        let root = Self::test_box(&self.root_box, 0, 0, &r, stats, rec);
+        let root =
+            node_visit("bvh", r.box_interval(self.root_box.min, self.root_box.max), (0, 0), stats, rec);
         if !root.hit {
             return;
         }
@@ -324,8 +287,8 @@ impl<V: Dim> Bvh<V> {
             let [l, rr] = node.links;
             let [bl, br] = &node.boxes;
             let [il, ir] = r.box_pair_interval([bl.min, br.min], [bl.max, br.max]);
-            let hl = Self::record(il, l.id, depth + 1, stats, rec);
-            let hr = Self::record(ir, rr.id, depth + 1, stats, rec);
+            let hl = node_visit("bvh", il, (l.id as usize, depth + 1), stats, rec);
+            let hr = node_visit("bvh", ir, (rr.id as usize, depth + 1), stats, rec);
             // Push the farther first, so the nearer is popped first (a tie keeps left first).
             let (near, far, h_near, h_far) =
                 if hr.t_in < hl.t_in { (rr, l, hr, hl) } else { (l, rr, hl, hr) };

@@ -19,8 +19,9 @@ pub mod octree;
 pub mod volumes;
 
 use crate::bounds::aabb::Aabb;
-use crate::bounds::{BoundingVolume, Hull, VolumeKind};
+use crate::bounds::{BoundHit, BoundingVolume, Hull, VolumeKind};
 use crate::geom::ray::Ray;
+use crate::geom::slab::culling_hit;
 use crate::record::event::{Event, ObjectRef};
 use crate::record::Recorder;
 use crate::scene::Scene;
@@ -441,6 +442,21 @@ pub fn test_prim<V: Dim, R: Recorder<V>>(
         accepted: hit.map(|h| h.t),
     });
     hit
+}
+
+/// A hierarchy node's box met by the ray over `[t_in, t_out]` (BVH, octree): counted as one node
+/// test, recorded as a `node_visit` event, with the culling decision of [`culling_hit`].
+#[inline(always)]
+pub(crate) fn node_visit<V: Dim, R: Recorder<V>>(
+    structure: &'static str,
+    (t_in, t_out): (f64, f64),
+    (node, depth): (usize, u32),
+    stats: &mut Stats,
+    rec: &mut R,
+) -> BoundHit {
+    stats.tests.node += 1;
+    rec.event(|| Event::NodeVisit { structure, node, depth, t_in, t_out });
+    BoundHit { t_in, t_out, hit: culling_hit(t_in, t_out) }
 }
 
 /// [`test_prim`] for a question that needs only t (a shadow segment): the same count, the same

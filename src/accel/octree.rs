@@ -14,12 +14,11 @@
 //! index), each skipped when it starts beyond the best hit ([`super::beyond`]); a primitive in
 //! several leaves is tested once (the mailbox). `node_visit` events, one per node box tested.
 
-use super::{beyond, prim_bounds, Mailbox, Prim, TreeNode, Visitor};
+use super::{beyond, node_visit, prim_bounds, Mailbox, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
 use crate::geom::ray::Ray;
 use crate::geom::slab::RecipRay;
 use crate::geom::Vector;
-use crate::record::event::Event;
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::Dim;
@@ -166,16 +165,8 @@ impl<V: Dim> Octree<V> {
             return;
         }
         let r = RecipRay::new(ray);
-        stats.tests.node += 1;
-        let h = self.nodes[0].bounds.cull(&r);
-        rec.event(|| Event::NodeVisit {
-            structure: "octree",
-            node: 0,
-            depth: 0,
-            t_in: h.t_in,
-            t_out: h.t_out,
-        });
-        if !h.hit {
+        let b = &self.nodes[0].bounds;
+        if !node_visit("octree", r.box_interval(b.min, b.max), (0, 0), stats, rec).hit {
             return;
         }
         Mailbox::with(self.prims.len(), |mailbox| {
@@ -209,15 +200,9 @@ impl<V: Dim> Octree<V> {
                 let mut n = 0;
                 for k in 0..1usize << V::DIM {
                     let child = first_child as usize + k;
-                    stats.tests.node += 1;
-                    let h = self.nodes[child].bounds.cull(ray);
-                    rec.event(|| Event::NodeVisit {
-                        structure: "octree",
-                        node: child,
-                        depth: depth + 1,
-                        t_in: h.t_in,
-                        t_out: h.t_out,
-                    });
+                    let b = &self.nodes[child].bounds;
+                    let h =
+                        node_visit("octree", ray.box_interval(b.min, b.max), (child, depth + 1), stats, rec);
                     if h.hit {
                         entered[n] = (h.t_in, child);
                         n += 1;

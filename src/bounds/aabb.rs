@@ -4,7 +4,7 @@
 
 use super::BoundHit;
 use crate::geom::ray::Ray;
-use crate::geom::slab::{box_crossing, culling_hit, RecipRay, GAMMA3};
+use crate::geom::slab::{box_crossing, culling_hit, GAMMA3};
 use crate::geom::Vector;
 
 /// The box `[min, max]`; empty when `min > max` on some axis.
@@ -103,13 +103,6 @@ impl<V: Vector> Aabb<V> {
         let c = box_crossing(ray, self.min, self.max, |_, s| each([s.t_near, s.t_far]));
         BoundHit { t_in: c.t_in, t_out: c.t_out, hit: culling_hit(c.t_in, c.t_out) }
     }
-    /// The same decision by reciprocals, for traversals (no per-axis intervals).
-    #[inline(always)]
-    #[must_use]
-    pub fn cull(&self, ray: &RecipRay<V>) -> BoundHit {
-        let (t_in, t_out) = ray.box_interval(self.min, self.max);
-        BoundHit { t_in, t_out, hit: culling_hit(t_in, t_out) }
-    }
 }
 
 #[cfg(test)]
@@ -117,6 +110,7 @@ impl<V: Vector> Aabb<V> {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
+    use crate::geom::slab::RecipRay;
     use glam::{DVec2, DVec3};
 
     const INF: f64 = f64::INFINITY;
@@ -126,8 +120,10 @@ mod tests {
         let ray = Ray::new(DVec3::from(o), DVec3::from(d));
         let mut intervals = Vec::new();
         let hit = b.test(&ray, |i| intervals.push(i));
-        // The traversal's reciprocal form decides the same on these exact cases.
-        assert_eq!(b.cull(&RecipRay::new(&ray)).hit, hit.hit, "{o:?} {d:?}");
+        // The traversal's reciprocal form (`accel::node_visit`) decides the same on these exact
+        // cases.
+        let (t_in, t_out) = RecipRay::new(&ray).box_interval(b.min, b.max);
+        assert_eq!(culling_hit(t_in, t_out), hit.hit, "{o:?} {d:?}");
         (hit, intervals)
     }
 
