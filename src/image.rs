@@ -3,6 +3,7 @@
 //! with file row `Ny − 1 − j` (image files store the top row first).
 
 use crate::scene::material::Rgb;
+use rayon::iter::ParallelExtend;
 
 /// Linear colours, `width × height`, row 0 at the bottom.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,10 +28,14 @@ pub fn to_byte(c: f64) -> u8 {
 }
 
 impl Image {
-    /// A black image.
+    /// A black image, written by every thread of the current rayon pool at once: a large image's
+    /// first-touch page faults are most of its allocation time, which a serial `vec!` would add
+    /// to the serial part of every render.
     #[must_use]
     pub fn new(width: usize, height: usize) -> Self {
-        Self { width, height, pixels: vec![Rgb::BLACK; width * height] }
+        let mut pixels = Vec::with_capacity(width * height);
+        pixels.par_extend(rayon::iter::repeat_n(Rgb::BLACK, width * height));
+        Self { width, height, pixels }
     }
     /// The colour of pixel `(i, j)`, j from the bottom.
     #[must_use]

@@ -99,7 +99,7 @@ pub fn render_centers<V: Dim>(
 pub fn render<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<'_>) -> Rendered {
     let cam = &scene.camera;
     let height = if V::DIM == 2 { config.strip_rows.unwrap_or_else(|| strip_height(cam.nx)) } else { cam.ny };
-    let mut image = blank_image(cam.nx, height);
+    let mut image = Image::new(cam.nx, height);
     // Rows are written in place: the computed rows are the first Ny of the image.
     let computed = &mut image.pixels[..cam.nx * cam.ny];
     let (stats, counts) = match config.sampling.rule() {
@@ -120,15 +120,6 @@ pub fn render<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<
         }
     }
     Rendered { image, stats, pixels: (cam.nx * cam.ny) as u64, rays_per_pixel: counts }
-}
-
-/// A black image written by every thread of the pool at once: a large image's first-touch page
-/// faults are most of its allocation time, which a serial `vec!` would add to every render's
-/// serial part.
-fn blank_image(width: usize, height: usize) -> Image {
-    let mut pixels = Vec::with_capacity(width * height);
-    pixels.par_extend(rayon::iter::repeat_n(Rgb::BLACK, width * height));
-    Image { width, height, pixels }
 }
 
 /// Sums the statistics of the rows (integer counts: the order does not matter).

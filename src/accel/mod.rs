@@ -294,7 +294,9 @@ pub trait Visitor<V: Dim> {
 pub struct Nearest<'a, V: Dim> {
     scene: &'a Scene<V>,
     ray: &'a Ray<V>,
-    /// The t of `best` (`+∞` while there is none): what [`Visitor::bound`] answers.
+    /// The t of `best` (`+∞` while there is none): what [`Visitor::bound`] answers before every
+    /// node and primitive. Kept beside `best` on purpose: reading it out of the `Option` cost
+    /// 1.6 % more instructions on mesh-100k (callgrind).
     best_t: f64,
     best: Option<(Prim, SurfaceHit<V>)>,
 }

@@ -182,8 +182,10 @@ impl<V: Dim> Shape<V> {
 
     /// What one ray test of a part costs, in watertight-triangle tests, for the BVH's surface
     /// area heuristic (where a node visit, two box tests, costs [`crate::accel::bvh::C_TRAV`]).
-    /// Measured with callgrind on the bench scenes (bench/README.md): a sphere or box test costs
-    /// about half a node visit, a triangle or polygon test about two.
+    /// Chosen by the trace phase's instruction counts on the bench scenes (bench/README.md):
+    /// spheres at 0.25 made the Whitted scene and the sphere lattices 3.6–4.2 % cheaper, and
+    /// triangles at 1 keep the mesh trees as they were. Boxes are priced like spheres and 2D
+    /// polygons like triangles by analogy, not measured.
     #[must_use]
     pub fn test_cost(&self) -> f64 {
         match self {
