@@ -250,6 +250,19 @@ impl<V: Dim> Bvh<V> {
         out.into_iter().flatten().collect()
     }
 
+    /// Hands a leaf's primitives to the visitor; true when the search is over.
+    #[inline(always)]
+    fn visit_leaf<R: Recorder<V>, W: Visitor<V>>(
+        &self,
+        leaf: Link,
+        visitor: &mut W,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> bool {
+        let start = leaf.start as usize;
+        self.prims[start..start + leaf.count as usize].iter().any(|p| visitor.visit(*p, stats, rec))
+    }
+
     /// Front-to-back traversal, handing the primitives of every leaf reached to the visitor.
     pub fn walk<R: Recorder<V>, W: Visitor<V>>(
         &self,
@@ -264,7 +277,12 @@ impl<V: Dim> Bvh<V> {
         let r = RecipRay::new(ray);
         let root =
             node_visit("bvh", r.box_interval(self.root_box.min, self.root_box.max), (0, 0), stats, rec);
-        if !root.hit {
+        if !root.hit || beyond(root.t_in, visitor.bound()) {
+            return;
+        }
+        if self.root.count > 0 {
+            // A tree that is one leaf (a small scene): its primitives, without the stack.
+            self.visit_leaf(self.root, visitor, stats, rec);
             return;
         }
         // On the walk's own stack, never initialised: a walk neither allocates nor clears.
@@ -275,11 +293,8 @@ impl<V: Dim> Bvh<V> {
                 continue;
             }
             if link.count > 0 {
-                let start = link.start as usize;
-                for p in &self.prims[start..start + link.count as usize] {
-                    if visitor.visit(*p, stats, rec) {
-                        return;
-                    }
+                if self.visit_leaf(link, visitor, stats, rec) {
+                    return;
                 }
                 continue;
             }

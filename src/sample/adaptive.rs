@@ -12,6 +12,13 @@ use crate::scene::material::Rgb;
 pub trait SampleSource {
     /// The colour of the sample at `(a, b)`, traced once whatever the number of calls.
     fn color(&mut self, a: u32, b: u32) -> Rgb;
+    /// The pixel's `N` corners at `0` and `side = 2^K`, in the order lower-left, lower-right,
+    /// upper-left, upper-right (2D: the two ends): by default read through
+    /// [`SampleSource::color`] in that order; a render reads them straight from its edge rows.
+    #[inline(always)]
+    fn corners<const N: usize>(&mut self, side: u32) -> [Rgb; N] {
+        std::array::from_fn(|k| self.color(CORNERS[k].0 * side, CORNERS[k].1 * side))
+    }
     /// A square reads `(a, b)` again, whose colour its parent already holds (the trace records
     /// it as reused; rendering does nothing).
     #[inline(always)]
@@ -87,13 +94,17 @@ pub fn subdivide(
     threshold: f64,
     max_level: u32,
 ) -> Rgb {
-    Rule { dims, threshold, max_level }.pixel(source, sink)
+    if dims == 1 {
+        Rule::<2> { threshold, max_level }.pixel(source, sink)
+    } else {
+        Rule::<4> { threshold, max_level }.pixel(source, sink)
+    }
 }
 
-/// The fixed parameters of one subdivision.
+/// The fixed parameters of one subdivision, whose squares have `N` corners: 4, or 2 on a 2D
+/// scene's line (a constant, so that every loop over corners is unrolled).
 #[derive(Clone, Copy)]
-struct Rule {
-    dims: usize,
+struct Rule<const N: usize> {
     threshold: f64,
     max_level: u32,
 }
@@ -102,23 +113,12 @@ struct Rule {
 /// offsets in half sides (2D: the first two).
 const CORNERS: [(u32, u32); 4] = [(0, 0), (1, 0), (0, 1), (1, 1)];
 
-impl Rule {
-    /// Corners per square: 4, or 2 on a 2D scene's line.
-    fn n(self) -> usize {
-        if self.dims == 1 {
-            2
-        } else {
-            4
-        }
-    }
-
+impl<const N: usize> Rule<N> {
     /// The pixel: reads its corners, then subdivides.
+    #[inline(always)]
     fn pixel<S: SquareSink>(self, source: &mut impl SampleSource, sink: &mut S) -> Rgb {
         let side = 1 << self.max_level;
-        let mut corners = [Rgb::BLACK; 4];
-        for (k, (dx, dy)) in CORNERS[..self.n()].iter().enumerate() {
-            corners[k] = source.color(dx * side, dy * side);
-        }
+        let corners = source.corners::<N>(side);
         self.square(source, sink, (0, 0), side, 0, corners)
     }
 
@@ -133,24 +133,22 @@ impl Rule {
         (a, b): (u32, u32),
         side: u32,
         level: u32,
-        corners: [Rgb; 4],
+        corners: [Rgb; N],
     ) -> Rgb {
-        let n = self.n();
-        let known = &corners[..n];
         let decides = level < self.max_level;
-        let spread = if decides || S::RECORDS { Rgb::spread(known) } else { 0.0 };
+        let spread = if decides || S::RECORDS { Rgb::spread(&corners) } else { 0.0 };
         let split = decides && splits(spread, level, self.threshold, self.max_level);
         let handle = sink.open(&Square { a, b, side, level, spread, split });
         let color = if split {
             let half = side / 2;
             let mut points: [[Option<Rgb>; 3]; 3] = [[None; 3]; 3];
-            for (k, (dx, dy)) in CORNERS[..n].iter().enumerate() {
+            for (k, (dx, dy)) in CORNERS[..N].iter().enumerate() {
                 points[2 * *dy as usize][2 * *dx as usize] = Some(corners[k]);
             }
-            let mut children = [Rgb::BLACK; 4];
-            for (child, (cx, cy)) in CORNERS[..n].iter().enumerate() {
-                let mut own = [Rgb::BLACK; 4];
-                for (k, (dx, dy)) in CORNERS[..n].iter().enumerate() {
+            let mut children = [Rgb::BLACK; N];
+            for (child, (cx, cy)) in CORNERS[..N].iter().enumerate() {
+                let mut own = [Rgb::BLACK; N];
+                for (k, (dx, dy)) in CORNERS[..N].iter().enumerate() {
                     let (gx, gy) = (cx + dx, cy + dy);
                     let (x, y) = (a + gx * half, b + gy * half);
                     let slot = &mut points[gy as usize][gx as usize];
@@ -169,9 +167,9 @@ impl Rule {
                 children[child] =
                     self.square(source, sink, (a + cx * half, b + cy * half), half, level + 1, own);
             }
-            corner_mean(&children[..n])
+            corner_mean(&children)
         } else {
-            corner_mean(known)
+            corner_mean(&corners)
         };
         sink.close(handle, color);
         color

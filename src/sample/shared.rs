@@ -221,17 +221,28 @@ struct RowSource<'r, 't, 's, V: Dim> {
 }
 
 impl<V: Dim> SampleSource for RowSource<'_, '_, '_, V> {
+    /// The pixel corners, traced with their edge rows: `subdivide` reads them once per pixel
+    /// (squares pass their corners down, and never ask [`SampleSource::color`] for them).
+    #[inline(always)]
+    fn corners<const N: usize>(&mut self, _side: u32) -> [Rgb; N] {
+        let (i, edges) = (self.i, self.edges);
+        #[allow(clippy::cast_possible_truncation)] // N is 2 or 4
+        let n = N as u32;
+        self.used += n;
+        // Corner k is (k & 1, k >> 1) in pixel units: lower-left, lower-right, upper-left, …
+        std::array::from_fn(|k| {
+            let row = if k < 2 { edges.bottom } else { edges.top };
+            row.corners[i + (k & 1)]
+        })
+    }
     #[inline]
     fn color(&mut self, a: u32, b: u32) -> Rgb {
         let lattice = self.lattice;
         let s = lattice.scale;
-        if (a == 0 || a == s) && (b == 0 || (b == s && lattice.dims() == 2)) {
-            // A pixel corner, traced with its edge row: `subdivide` reads each once per pixel
-            // (squares pass their corners down), so it needs no memo.
-            let row = if b == 0 { self.edges.bottom } else { self.edges.top };
-            self.used += 1;
-            return row.corners[self.i + (a / s) as usize];
-        }
+        debug_assert!(
+            !((a == 0 || a == s) && (b == 0 || (b == s && lattice.dims() == 2))),
+            "a pixel corner is read through `corners`"
+        );
         let side = self.scratch.side;
         let k = b as usize * side + a as usize;
         let memo = self.scratch.memo[k];
