@@ -108,9 +108,9 @@ pub fn render<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<
             (stats, config.rays_per_pixel.then(|| vec![1; cam.nx * cam.ny]))
         }
         Some(rule) => {
-            let mut counts = vec![0; cam.nx * cam.ny];
-            let stats = lattice_rows(scene, accel, config, rule, computed, &mut counts);
-            (stats, config.rays_per_pixel.then_some(counts))
+            let mut counts = config.rays_per_pixel.then(|| vec![0; cam.nx * cam.ny]);
+            let stats = lattice_rows(scene, accel, config, rule, computed, counts.as_deref_mut());
+            (stats, counts)
         }
     };
     if V::DIM == 2 {
@@ -191,13 +191,14 @@ fn band_rows(lattice: Lattice, budget: usize) -> usize {
 
 /// §8: corners and adaptive sampling on the shared lattice, band after band of pixel rows: first
 /// the corners of the band's edge rows (in parallel over rows), then its pixel rows (in parallel).
+/// Each pixel's sample count goes to `counts` when asked for, else to a band-sized scratch.
 fn lattice_rows<V: Dim>(
     scene: &Scene<V>,
     accel: &Accel<V>,
     config: &RenderConfig<'_>,
     rule: (f64, u32),
     pixels: &mut [Rgb],
-    counts: &mut [u32],
+    mut counts: Option<&mut [u32]>,
 ) -> Stats {
     let lattice = Lattice::new(&scene.camera, rule.1);
     let nx = lattice.nx;
@@ -209,12 +210,18 @@ fn lattice_rows<V: Dim>(
         edge.trace_corners(&mut tracer, lattice, 0);
         let edges = Edges { bottom: &edge, top: &edge };
         let mut scratch = Scratch::new(lattice);
+        let mut unused = Vec::new();
+        let counts = counts.unwrap_or_else(|| {
+            unused.resize(nx, 0);
+            &mut unused
+        });
         lattice_row(&mut tracer, &mut scratch, lattice, rule, config, 0, edges, (pixels, counts));
         return tracer.stats;
     }
     let band = band_rows(lattice, config.band_memory);
     let mut edge_rows: Vec<EdgeRow> = (0..=band).map(|_| EdgeRow::new(lattice, true)).collect();
     let mut stats = Vec::new();
+    let mut unused_counts = Vec::new();
     let mut j0 = 0;
     while j0 < lattice.ny {
         let n = band.min(lattice.ny - j0);
@@ -231,7 +238,14 @@ fn lattice_rows<V: Dim>(
         stats.extend(traced);
         let edge_ref = &edge_rows;
         let band_pixels = pixels[j0 * nx..(j0 + n) * nx].par_chunks_mut(nx);
-        let band_counts = counts[j0 * nx..(j0 + n) * nx].par_chunks_mut(nx);
+        let band_counts = match counts.as_deref_mut() {
+            Some(all) => &mut all[j0 * nx..(j0 + n) * nx],
+            None => {
+                unused_counts.resize(n * nx, 0);
+                &mut unused_counts[..n * nx]
+            }
+        }
+        .par_chunks_mut(nx);
         let rows: Vec<Stats> = band_pixels
             .zip(band_counts)
             .enumerate()
