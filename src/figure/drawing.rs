@@ -349,9 +349,25 @@ pub struct TextOpts {
     pub weight: Weight,
     /// White halo behind the glyphs.
     pub halo: bool,
-    /// Nudge the label to a free spot near its anchor when it would overlap an earlier label or
-    /// cross a line (see [`Drawing::text`]).
-    pub avoid_overlap: bool,
+    /// Where the label may move when it would overlap an earlier one (see [`Drawing::text`]).
+    pub placement: Placement,
+}
+
+/// How [`Drawing::text`] places a label against the labels already drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Placement {
+    /// Exactly as requested.
+    AsGiven,
+    /// Nudged to a free spot near its anchor when it would overlap an earlier label or cross a
+    /// line ([`TextOpts::avoid_overlap`]).
+    Clear,
+    /// Moved down a line at a time, keeping its alignment, until it overlaps no earlier label,
+    /// its bottom never below the world height `floor` ([`TextOpts::stack_down`]): the names of
+    /// nested boxes that share a corner, each kept inside its box.
+    StackDown {
+        /// The lowest world y the label may reach.
+        floor: f64,
+    },
 }
 
 impl TextOpts {
@@ -363,7 +379,7 @@ impl TextOpts {
         color: style::TEXT,
         weight: Weight::Regular,
         halo: true,
-        avoid_overlap: false,
+        placement: Placement::AsGiven,
     };
     /// A secondary note: small, centred, with a halo.
     pub const NOTE: Self = Self { size: TextSize::Small, ..Self::LABEL };
@@ -401,7 +417,13 @@ impl TextOpts {
     /// Placed clear of earlier labels and lines where a free spot exists.
     #[must_use]
     pub const fn avoid_overlap(self) -> Self {
-        Self { avoid_overlap: true, ..self }
+        Self { placement: Placement::Clear, ..self }
+    }
+    /// Stacked below the earlier labels it would overlap, no lower than world height `floor`
+    /// ([`Placement::StackDown`]).
+    #[must_use]
+    pub const fn stack_down(self, floor: f64) -> Self {
+        Self { placement: Placement::StackDown { floor }, ..self }
     }
 }
 
@@ -640,6 +662,10 @@ impl ArrowPx {
 /// Line spacing of stacked text lines, in em.
 const LINE_SPACING: f64 = 1.3;
 
+/// How many lines down [`TextOpts::stack_down`] moves a label at most (then it takes the least
+/// covered of those lines).
+pub const STACK_LINES: usize = 6;
+
 impl Drawing {
     /// An empty drawing for a `width` × `height` pixel canvas showing the world square
     /// [−1, 1]², or `None` if either size is 0.
@@ -792,7 +818,10 @@ impl Drawing {
     /// Adds a label at `anchor`. With [`TextOpts::avoid_overlap`], the label keeps the requested
     /// placement if its box is clear of earlier labels and lines and inside the plot area;
     /// otherwise it takes the first clear spot among candidates around the anchor (eight
-    /// directions, at growing distances), or the least bad one if none is clear.
+    /// directions, at growing distances), or the least bad one if none is clear. With
+    /// [`TextOpts::stack_down`] it moves down by its own height until no earlier label overlaps
+    /// it (at most [`STACK_LINES`] lines, never below its floor; if none is clear, to the least
+    /// covered).
     pub fn text(&mut self, tag: &str, anchor: DVec2, markup: &str, opts: TextOpts) -> &mut Self {
         let mut label = Text {
             text: markup.to_owned(),
@@ -803,8 +832,10 @@ impl Drawing {
             weight: opts.weight,
             halo: opts.halo,
         };
-        if opts.avoid_overlap {
-            self.place_clear(&mut label);
+        match opts.placement {
+            Placement::AsGiven => {}
+            Placement::Clear => self.place_clear(&mut label),
+            Placement::StackDown { floor } => self.place_stacked(&mut label, floor),
         }
         let style = Style { color: opts.color, width: 0.0, dash: None };
         self.push(tag, style, Shape::Text(label))
@@ -954,6 +985,35 @@ impl Drawing {
                 _ => None,
             })
             .collect()
+    }
+
+    /// Moves `label` down, a line at a time, off the earlier labels and no lower than world
+    /// height `floor` (see [`Drawing::text`]).
+    fn place_stacked(&self, label: &mut Text, floor: f64) {
+        let (tf, _, _) = self.placed_legend();
+        let boxes = self.text_boxes(&tf);
+        // One line down: the label's own height and a gap of 2 reference pixels, so that
+        // labels on neighbouring lines never touch.
+        let line = Self::place_text(label, &tf).bbox.height() / tf.ref_px(1.0) + 2.0;
+        let start = label.offset;
+        let lowest = tf.to_px(DVec2::new(0.0, floor)).y;
+        // The first line clear of every earlier label, else the least covered one.
+        let mut best = (f64::INFINITY, start);
+        for k in 0..=STACK_LINES {
+            label.offset = start - DVec2::new(0.0, line * k as f64);
+            let b = Self::place_text(label, &tf).bbox;
+            if k > 0 && b.max.y > lowest {
+                break;
+            }
+            let covered: f64 = boxes.iter().map(|o| b.overlap(o)).sum();
+            if covered < best.0 {
+                best = (covered, label.offset);
+            }
+            if covered <= 0.0 {
+                break;
+            }
+        }
+        label.offset = best.1;
     }
 
     /// Moves `label` to the clearest candidate spot (see [`Drawing::text`]).
@@ -1246,6 +1306,26 @@ mod tests {
         for b in &boxes {
             assert!(b.min.y > y || b.max.y < y, "label crosses the ray: {b:?}");
         }
+    }
+
+    #[test]
+    fn stacked_names_of_boxes_sharing_a_corner_go_down_a_line_each_and_stay_in_their_box() {
+        let mut d = Drawing::slide();
+        d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
+        let corner = v(-1.0, 0.5);
+        let opts = TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Top });
+        for name in ["A", "B", "C"] {
+            d.text("node-name", corner, name, opts.stack_down(-1.0));
+        }
+        // A box too short for a second line: its name stays at the corner, over A's.
+        d.text("node-name", corner, "D", opts.stack_down(0.49));
+        let tf = d.transform();
+        let boxes = d.text_boxes(&tf);
+        for k in 1..3 {
+            assert!(boxes[k].min.y >= boxes[k - 1].max.y, "{k}: {boxes:?}");
+            assert!(boxes[k].min.x == boxes[0].min.x, "{k}: alignment kept");
+        }
+        assert_eq!(boxes[3].min, boxes[0].min);
     }
 
     #[test]

@@ -50,7 +50,8 @@ fn letter(k: usize) -> String {
 }
 
 /// The page plane: 2D the scene's; 3D the plane of the two axes the ray moves most along
-/// (boxes project to rectangles), through the root box's centre.
+/// (boxes project to rectangles), through the root box's centre, with y (the scenes' up) up
+/// the page when it is one of them. The axes are returned in index order, for the caption.
 fn page<V: Planar>(centre: V, direction: V) -> (PagePlane<V>, Option<[usize; 2]>) {
     let fallback = PagePlane { origin: V::ZERO, x: V::axis(0), y: V::axis(1), offset: DVec2::ZERO };
     if V::DIM == 2 {
@@ -58,7 +59,8 @@ fn page<V: Planar>(centre: V, direction: V) -> (PagePlane<V>, Option<[usize; 2]>
     }
     let dropped = (0..3).fold(0, |m, a| if direction[a].abs() < direction[m].abs() { a } else { m });
     let axes: Vec<usize> = (0..3).filter(|a| *a != dropped).collect();
-    let plane = PagePlane::spanned(centre, V::axis(axes[0]), V::axis(axes[1])).unwrap_or(fallback);
+    let (across, up) = if axes[0] == 1 { (axes[1], axes[0]) } else { (axes[0], axes[1]) };
+    let plane = PagePlane::spanned(centre, V::axis(across), V::axis(up)).unwrap_or(fallback);
     (plane, Some([axes[0], axes[1]]))
 }
 
@@ -78,6 +80,13 @@ fn rect<V: Planar>(plane: &PagePlane<V>, b: &Aabb<V>) -> (DVec2, DVec2) {
     let lo = corners.iter().copied().fold(DVec2::splat(f64::INFINITY), DVec2::min);
     let hi = corners.iter().copied().fold(DVec2::splat(f64::NEG_INFINITY), DVec2::max);
     (lo, hi)
+}
+
+/// The world distance between the outlines of a BVH box and its child: 0.8 % of the picture's
+/// span a level, and no more than 4 % from the root to the deepest leaf.
+fn nesting_gap<V: Planar>(nodes: &[TreeNode<V>], span: f64) -> f64 {
+    let depth = nodes.iter().map(|n| n.depth).max().unwrap_or(0).max(1);
+    (0.008 * span).min(0.04 * span / f64::from(depth))
 }
 
 /// Draws a hierarchy figure for `structure` (`bvh` or `octree`) under `title`.
@@ -155,6 +164,15 @@ pub fn draw<V: Planar>(
     let view = d.view;
     let scene_part = View::new(view.xmin(), column.x, view.ymin(), view.ymax()).unwrap_or(view);
 
+    // A BVH's boxes nest and share edges (a child often spans its parent on some side): each is
+    // drawn a little outside its true box, the more the nearer the root, so that every outline
+    // stays visible. An octree's cells tile their parent: those are drawn as they are.
+    let outset = if structure == "bvh" { nesting_gap(&nodes, span) } else { 0.0 };
+    let drawn = |n: &TreeNode<V>| {
+        let (lo, hi) = rect(&plane, &n.bounds);
+        let o = outset * f64::from(nodes.iter().map(|m| m.depth).max().unwrap_or(0) - n.depth);
+        (lo - DVec2::splat(o), hi + DVec2::splat(o))
+    };
     // Boxes: untested first (faint), then missed, then entered, so the walk reads on top.
     let anchors = draw_objects(d, scene, &plane, &scene_part, &[], style::BLACK);
     for pass in [Fate::Untested, Fate::Missed, Fate::Entered(0)] {
@@ -169,7 +187,7 @@ pub fn draw<V: Planar>(
             if !same {
                 continue;
             }
-            let (lo, hi) = rect(&plane, &n.bounds);
+            let (lo, hi) = drawn(n);
             d.rect(&format!("node:{}", letter(k)), lo, hi, fate_style(f), None);
         }
     }
@@ -180,17 +198,19 @@ pub fn draw<V: Planar>(
     if let Some(p) = to {
         d.dot("hit", p, style::HIT);
     }
-    // Node names at their boxes' upper-left corners, inside.
+    // Node names at their boxes' upper-left corners, inside; a box sharing that corner with an
+    // ancestor (named first) gets its name on the next line down.
     for (k, n) in nodes.iter().enumerate() {
         if fate[k] == Fate::Untested && nodes.len() > 40 {
             continue;
         }
-        let (lo, hi) = rect(&plane, &n.bounds);
+        let (lo, hi) = drawn(n);
         let opts = TextOpts::NOTE
             .size(TextSize::Small)
             .align(Align { h: HAlign::Left, v: VAlign::Top })
             .offset(6.0, -4.0)
-            .color(fate_colour(fate[k]));
+            .color(fate_colour(fate[k]))
+            .stack_down(lo.y);
         d.text("node-name", DVec2::new(lo.x, hi.y), &letter(k), opts);
     }
     label_objects(d, scene, &anchors);
