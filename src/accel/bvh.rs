@@ -274,20 +274,32 @@ impl<V: Dim> Bvh<V> {
         if self.prims.is_empty() {
             return;
         }
-        let r = RecipRay::new(ray);
-        let root =
-            node_visit("bvh", r.box_interval(self.root_box.min, self.root_box.max), (0, 0), stats, rec);
-        if !root.hit || beyond(root.t_in, visitor.bound()) {
-            return;
-        }
+        // A ray that starts in the closed root box (a secondary or shadow ray of most scenes)
+        // meets it: every slab's interval then holds t = 0, so t_in ≤ 0 ≤ t_out, the culling test
+        // passes and nothing is pruned. When no recorder wants the interval, the node test is
+        // counted without computing it, and the ray's reciprocals wait for an inner node.
+        let mut recip = None;
+        let root_t_in = if !R::ENABLED && self.root_box.holds(ray.origin) {
+            stats.tests.node += 1;
+            0.0
+        } else {
+            let r = recip.insert(RecipRay::new(ray));
+            let root =
+                node_visit("bvh", r.box_interval(self.root_box.min, self.root_box.max), (0, 0), stats, rec);
+            if !root.hit || beyond(root.t_in, visitor.bound()) {
+                return;
+            }
+            root.t_in
+        };
         if self.root.count > 0 {
             // A tree that is one leaf (a small scene): its primitives, without the stack.
             self.visit_leaf(self.root, visitor, stats, rec);
             return;
         }
+        let r = recip.unwrap_or_else(|| RecipRay::new(ray));
         // On the walk's own stack, never initialised: a walk neither allocates nor clears.
         let mut stack: ArrayVec<(Link, u32, f64), STACK_SIZE> = ArrayVec::new();
-        stack.push((self.root, 0, root.t_in));
+        stack.push((self.root, 0, root_t_in));
         while let Some((link, depth, t_in)) = stack.pop() {
             if beyond(t_in, visitor.bound()) {
                 continue;

@@ -31,6 +31,12 @@ impl<V: Vector> Aabb<V> {
     pub fn around(points: impl IntoIterator<Item = V>) -> Self {
         points.into_iter().fold(Self::empty(), |b, p| b.union(&Self::new(p, p)))
     }
+    /// True when `p` lies in the closed box: `min ≤ p ≤ max` on every axis.
+    #[inline]
+    #[must_use]
+    pub fn holds(&self, p: V) -> bool {
+        (0..V::DIM).all(|a| self.min[a] <= p[a] && p[a] <= self.max[a])
+    }
     /// True when it holds no point.
     #[must_use]
     pub fn is_empty(&self) -> bool {
@@ -114,6 +120,22 @@ mod tests {
     use glam::{DVec2, DVec3};
 
     const INF: f64 = f64::INFINITY;
+
+    #[test]
+    fn a_box_holds_its_faces_and_corners_and_nothing_beyond() {
+        let b = Aabb::new(DVec3::new(-1.0, 0.0, 2.0), DVec3::new(1.0, 0.5, 3.0));
+        for p in [DVec3::new(0.0, 0.25, 2.5), DVec3::new(-1.0, 0.0, 2.0), DVec3::new(1.0, 0.5, 3.0)] {
+            assert!(b.holds(p), "{p}");
+        }
+        let above = DVec3::new(0.0, 0.5f64.next_up(), 2.5);
+        assert!(!b.holds(above) && !b.holds(DVec3::new(0.0, 0.25, 1.0)));
+        // A ray from any point it holds meets it at t_in ≤ 0 ≤ t_out (what the BVH relies on
+        // when it skips computing the root's interval).
+        let ray = Ray::new(DVec3::new(1.0, 0.5, 2.0), DVec3::new(0.6, -0.8, 0.0));
+        let (t_in, t_out) = RecipRay::new(&ray).box_interval(b.min, b.max);
+        assert!(t_in <= 0.0 && 0.0 <= t_out, "{t_in} {t_out}");
+        assert!(!Aabb::<DVec2>::empty().holds(DVec2::ZERO));
+    }
 
     fn test3(o: [f64; 3], d: [f64; 3], min: [f64; 3], max: [f64; 3]) -> (BoundHit, Vec<[f64; 2]>) {
         let b = Aabb::new(DVec3::from(min), DVec3::from(max));
