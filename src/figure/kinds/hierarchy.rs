@@ -82,11 +82,11 @@ fn rect<V: Planar>(plane: &PagePlane<V>, b: &Aabb<V>) -> (DVec2, DVec2) {
     (lo, hi)
 }
 
-/// The world distance between the outlines of a BVH box and its child: 0.8 % of the picture's
-/// span a level, and no more than 4 % from the root to the deepest leaf.
-fn nesting_gap<V: Planar>(nodes: &[TreeNode<V>], span: f64) -> f64 {
-    let depth = nodes.iter().map(|n| n.depth).max().unwrap_or(0).max(1);
-    (0.008 * span).min(0.04 * span / f64::from(depth))
+/// The world distance between the outlines of a BVH box and its child in a tree `depth` levels
+/// deep: 0.8 % of the picture's span a level, and no more than 4 % from the root to the deepest
+/// leaf.
+fn nesting_gap(depth: u32, span: f64) -> f64 {
+    (0.008 * span).min(0.04 * span / f64::from(depth.max(1)))
 }
 
 /// Draws a hierarchy figure for `structure` (`bvh` or `octree`) under `title`.
@@ -167,10 +167,11 @@ pub fn draw<V: Planar>(
     // A BVH's boxes nest and share edges (a child often spans its parent on some side): each is
     // drawn a little outside its true box, the more the nearer the root, so that every outline
     // stays visible. An octree's cells tile their parent: those are drawn as they are.
-    let outset = if structure == "bvh" { nesting_gap(&nodes, span) } else { 0.0 };
+    let deepest = nodes.iter().map(|n| n.depth).max().unwrap_or(0);
+    let outset = if structure == "bvh" { nesting_gap(deepest, span) } else { 0.0 };
     let drawn = |n: &TreeNode<V>| {
         let (lo, hi) = rect(&plane, &n.bounds);
-        let o = outset * f64::from(nodes.iter().map(|m| m.depth).max().unwrap_or(0) - n.depth);
+        let o = outset * f64::from(deepest - n.depth);
         (lo - DVec2::splat(o), hi + DVec2::splat(o))
     };
     // Boxes: untested first (faint), then missed, then entered, so the walk reads on top.

@@ -6,7 +6,6 @@
 
 use super::slabs::{self, Slab};
 use super::Input;
-use crate::accel::Layout;
 use crate::bounds::kdop::{normal, slab_count};
 use crate::bounds::BoundingVolume;
 use crate::figure::drawing::Drawing;
@@ -28,12 +27,7 @@ fn name(dim: usize, k: usize) -> String {
 /// # Errors
 /// When the traces hold no k-DOP test of the object.
 pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
-    let focus = input.traces.focus.ok_or_else(|| FigureError("no object was tested".into()))?;
-    let Layout::Volumes(entries) = input.traces.accel.layout() else {
-        return Err(FigureError("kay-kajiya reads per-object volumes (--accel bounds)".into()));
-    };
-    let volume = entries.iter().find(|(p, _)| p.object() == focus).map(|(_, v)| *v);
-    let Some(BoundingVolume::Kdop(k)) = volume else {
+    let Some(BoundingVolume::Kdop(k)) = slabs::focus_volume(input, "kay-kajiya")? else {
         return Err(FigureError("the object has no Kay–Kajiya volume (--bounds kdop)".into()));
     };
     let slabs: Vec<Slab<V>> = (0..slab_count::<V>())

@@ -6,7 +6,6 @@
 
 use super::slabs::{self, axis_name, Slab};
 use super::Input;
-use crate::accel::Layout;
 use crate::bounds::BoundingVolume;
 use crate::figure::drawing::Drawing;
 use crate::figure::labels::Label;
@@ -18,12 +17,7 @@ use crate::figure::FigureError;
 /// # Errors
 /// When the traces hold no box test of the object.
 pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
-    let focus = input.traces.focus.ok_or_else(|| FigureError("no object was tested".into()))?;
-    let Layout::Volumes(entries) = input.traces.accel.layout() else {
-        return Err(FigureError("slab-test reads per-object volumes (--accel bounds)".into()));
-    };
-    let volume = entries.iter().find(|(p, _)| p.object() == focus).map(|(_, v)| *v);
-    let Some(BoundingVolume::Aabb(b)) = volume else {
+    let Some(BoundingVolume::Aabb(b)) = slabs::focus_volume(input, "slab-test")? else {
         return Err(FigureError("the object has no box (--bounds aabb)".into()));
     };
     let slabs: Vec<Slab<V>> = (0..V::DIM)

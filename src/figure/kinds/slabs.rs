@@ -9,6 +9,8 @@
 use glam::DVec2;
 
 use super::Input;
+use crate::accel::Layout;
+use crate::bounds::BoundingVolume;
 use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, clip_line, num, object_name};
@@ -17,6 +19,22 @@ use crate::figure::source::{bound_test_of, Target, Traced};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
 use crate::record::event::ObjectRef;
+
+/// The bounding volume of the object the figure `kind` is about, from the per-object volumes the
+/// traces were recorded with (`--accel bounds`); `None` when that object has none.
+///
+/// # Errors
+/// When no object was tested or the traces hold no per-object volumes.
+pub fn focus_volume<V: Planar>(
+    input: &Input<'_, V>,
+    kind: &str,
+) -> Result<Option<BoundingVolume<V>>, FigureError> {
+    let focus = input.traces.focus.ok_or_else(|| FigureError("no object was tested".into()))?;
+    let Layout::Volumes(entries) = input.traces.accel.layout() else {
+        return Err(FigureError(format!("{kind} reads per-object volumes (--accel bounds)")));
+    };
+    Ok(entries.iter().find(|(p, _)| p.object() == focus).map(|(_, v)| *v))
+}
 
 /// One pair of parallel planes: `lo ≤ n·x ≤ hi`, and its name (`x`, `45°`, `3`).
 pub struct Slab<V> {

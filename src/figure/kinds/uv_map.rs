@@ -81,29 +81,28 @@ fn grid_lines(n: usize, step: usize) -> Vec<usize> {
     lines
 }
 
-/// The formula lines, with the numbers put in.
-fn formula_u<V: Planar>(cam: &Camera<V>, m: &Mapped) -> String {
-    let w = &cam.window;
+/// A pixel-centre formula with the numbers put in, `c = lo + (hi − lo)·(k + 0.5)/N_axis = …`;
+/// `names` are the letters of c, lo, hi, k and the axis.
+fn centre_formula(names: [&str; 5], (lo, hi): (f64, f64), k: usize, n: usize, value: f64) -> String {
+    let [c, lo_name, hi_name, k_name, axis] = names;
     format!(
-        "u = l + (r − l)·(i + 0.5)/N_x = {} + {}·({} + 0.5)/{} = {}",
-        num(w.l),
-        num(w.r - w.l),
-        m.i,
-        cam.nx,
-        num(m.uv[0])
+        "{c} = {lo_name} + ({hi_name} − {lo_name})·({k_name} + 0.5)/N_{axis} = {} + {}·({k} + 0.5)/{n} = {}",
+        num(lo),
+        num(hi - lo),
+        num(value)
     )
 }
 
+/// The formula line of u (§2).
+fn formula_u<V: Planar>(cam: &Camera<V>, m: &Mapped) -> String {
+    let w = &cam.window;
+    centre_formula(["u", "l", "r", "i", "x"], (w.l, w.r), m.i, cam.nx, m.uv[0])
+}
+
+/// The formula line of v (§2).
 fn formula_v<V: Planar>(cam: &Camera<V>, m: &Mapped) -> String {
     let w = &cam.window;
-    format!(
-        "v = b + (t − b)·(j + 0.5)/N_y = {} + {}·({} + 0.5)/{} = {}",
-        num(w.b),
-        num(w.t - w.b),
-        m.j,
-        cam.ny,
-        num(m.uv.get(1).copied().unwrap_or(0.0))
-    )
+    centre_formula(["v", "b", "t", "j", "y"], (w.b, w.t), m.j, cam.ny, m.uv.get(1).copied().unwrap_or(0.0))
 }
 
 /// 3D: the image (left, pixel units scaled to height 1) and the window (right, (u, v) scaled by
