@@ -25,6 +25,7 @@ use crate::geom::slab::culling_hit;
 use crate::record::event::{Event, ObjectRef};
 use crate::record::Recorder;
 use crate::scene::Scene;
+use crate::shape::plane::Plane;
 use crate::shape::{Dim, Facet, Shape, SurfaceHit};
 use crate::trace::stats::Stats;
 use std::cell::RefCell;
@@ -151,8 +152,9 @@ pub struct TreeNode<V> {
 #[derive(Clone, Debug)]
 pub struct Accel<V: Dim> {
     kind: AccelKind,
-    /// Unbounded objects, tested before the structure.
-    unbounded: Vec<u32>,
+    /// Unbounded objects (planes; lines in 2D), tested before the structure, each with a copy
+    /// of its plane so that the test every ray makes needs no lookup in the scene.
+    unbounded: Vec<(Prim, Plane<V>)>,
     structure: Structure<V>,
 }
 
@@ -170,7 +172,8 @@ impl<V: Dim> Accel<V> {
         for (index, object) in scene.objects.iter().enumerate() {
             let object_index = u32::try_from(index).expect("fewer than 2^32 objects");
             if object.shape.bounds().is_none() {
-                unbounded.push(object_index);
+                let Shape::Plane(plane) = object.shape else { unreachable!("only a plane is unbounded") };
+                unbounded.push((Prim { object: object_index, part: 0 }, plane));
                 continue;
             }
             for part in 0..object.shape.parts() {
@@ -228,8 +231,8 @@ impl<V: Dim> Accel<V> {
             list::walk(scene, visitor, stats, rec);
             return;
         }
-        for &object in &self.unbounded {
-            if visitor.visit(Prim { object, part: 0 }, stats, rec) {
+        for (prim, plane) in &self.unbounded {
+            if visitor.visit_plane(*prim, plane, stats, rec) {
                 return;
             }
         }
@@ -288,6 +291,18 @@ pub trait Visitor<V: Dim> {
     fn bound(&self) -> f64;
     /// Tests a primitive; true when the search is over.
     fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool;
+    /// [`Visitor::visit`] of an unbounded object, whose plane the caller holds (a visitor may
+    /// test it without looking the object up).
+    #[inline(always)]
+    fn visit_plane<R: Recorder<V>>(
+        &mut self,
+        prim: Prim,
+        _plane: &Plane<V>,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> bool {
+        self.visit(prim, stats, rec)
+    }
 }
 
 /// The nearest-hit question: keeps the least `(t, object, part)`.
@@ -321,7 +336,29 @@ impl<V: Dim> Visitor<V> for Nearest<'_, V> {
     }
     #[inline(always)]
     fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool {
-        if let Some(hit) = test_prim(self.scene, prim, self.ray, stats, rec) {
+        let hit = test_prim(self.scene, prim, self.ray, stats, rec);
+        self.offer(prim, hit);
+        false
+    }
+    #[inline(always)]
+    fn visit_plane<R: Recorder<V>>(
+        &mut self,
+        prim: Prim,
+        plane: &Plane<V>,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> bool {
+        let hit = counted(self.scene, prim, self.ray, stats, rec, plane.hit(self.ray));
+        self.offer(prim, hit);
+        false
+    }
+}
+
+impl<V: Dim> Nearest<'_, V> {
+    /// Keeps `hit` if it is nearer than the best so far.
+    #[inline(always)]
+    fn offer(&mut self, prim: Prim, hit: Option<SurfaceHit<V>>) {
+        if let Some(hit) = hit {
             // §6: equal t goes to the smaller object, then the smaller triangle.
             #[allow(clippy::float_cmp)] // An exact tie is exactly what the rule is about.
             let closer = hit.t < self.best_t
@@ -331,7 +368,6 @@ impl<V: Dim> Visitor<V> for Nearest<'_, V> {
                 self.best = Some((prim, hit));
             }
         }
-        false
     }
 }
 
@@ -357,7 +393,30 @@ impl<V: Dim> Visitor<V> for Shadow<'_, V> {
         if self.transparent.has_object(prim.object) {
             return false;
         }
-        let Some(t) = test_prim_t(self.scene, prim, self.ray, stats, rec) else {
+        let t = test_prim_t(self.scene, prim, self.ray, stats, rec);
+        self.offer(prim, t)
+    }
+    #[inline(always)]
+    fn visit_plane<R: Recorder<V>>(
+        &mut self,
+        prim: Prim,
+        plane: &Plane<V>,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> bool {
+        if R::ENABLED {
+            return self.visit(prim, stats, rec);
+        }
+        stats.tests.object += 1;
+        self.offer(prim, plane.hit_t(self.ray))
+    }
+}
+
+impl<V: Dim> Shadow<'_, V> {
+    /// Takes the primitive's hit at `t` if it lies on the segment; true when it ends the search.
+    #[inline(always)]
+    fn offer(&mut self, prim: Prim, t: Option<f64>) -> bool {
+        let Some(t) = t else {
             return false;
         };
         if !(t < self.d_l) {
@@ -402,12 +461,17 @@ impl PrimSet {
         }
     }
     /// The primitives in ascending order (by object: the order of `s = Π kt`).
-    #[inline]
+    #[inline(always)]
     fn sorted(&mut self) -> &[Prim] {
         if self.len <= 1 && self.spill.is_empty() {
             // Nearly every shadow ray: nothing or one object to order.
             return &self.inline[..self.len];
         }
+        self.sort_many()
+    }
+    /// [`PrimSet::sorted`] of two or more primitives.
+    #[cold]
+    fn sort_many(&mut self) -> &[Prim] {
         if !self.spill.is_empty() {
             self.spill.extend_from_slice(&self.inline[..self.len]);
             self.len = 0;
@@ -435,12 +499,24 @@ pub fn test_prim<V: Dim, R: Recorder<V>>(
     stats: &mut Stats,
     rec: &mut R,
 ) -> Option<SurfaceHit<V>> {
+    let hit = scene.objects[prim.object()].shape.part_hit(prim.part(), ray);
+    counted(scene, prim, ray, stats, rec, hit)
+}
+
+/// Counts and records the test of `prim` whose answer was `hit`.
+#[inline(always)]
+fn counted<V: Dim, R: Recorder<V>>(
+    scene: &Scene<V>,
+    prim: Prim,
+    ray: &Ray<V>,
+    stats: &mut Stats,
+    rec: &mut R,
+    hit: Option<SurfaceHit<V>>,
+) -> Option<SurfaceHit<V>> {
     stats.tests.object += 1;
-    let shape = &scene.objects[prim.object()].shape;
-    let hit = shape.part_hit(prim.part(), ray);
     rec.event(|| Event::ObjectTest {
         object: object_ref(scene, prim),
-        roots: shape.part_roots(prim.part(), ray),
+        roots: scene.objects[prim.object()].shape.part_roots(prim.part(), ray),
         accepted: hit.map(|h| h.t),
     });
     hit

@@ -73,7 +73,8 @@ impl<V: Vector> RecipRay<V> {
         for axis in 0..V::DIM {
             inv_dir[axis] = 1.0 / ray.dir[axis];
         }
-        let oblique = (0..V::DIM).all(|a| ray.dir[a] != 0.0 && inv_dir[a].is_finite());
+        // 1/±0 = ±∞ and a NaN stays NaN, so a finite 1/d alone says the component is usable.
+        let oblique = (0..V::DIM).all(|a| inv_dir[a].is_finite());
         Self { origin: ray.origin, dir: ray.dir, inv_dir, oblique }
     }
     /// `[max t_near, min t_far]` of the box `[min, max]`, slab by slab, by reciprocals.
