@@ -3,11 +3,11 @@
 //! never pays for a trace. A 2D scene renders its one row and repeats it down a strip
 //! `max(1, Nx/8)` rows tall.
 //!
-//! With corners or adaptive sampling the image is rendered in bands of pixel rows: the corners of
-//! the band's edge rows are traced first, then the pixel rows run in parallel and share the finer
-//! points of the edge rows between them (`sample::shared`); the band's top edge row is carried
-//! into the next band, so every sample is traced exactly once, and memory holds one band's edge
-//! rows, never the whole refined lattice. Each sample's colour depends
+//! With corners or adaptive sampling the pixel rows run in parallel too, in jobs of consecutive
+//! rows, each row between two edge rows (the lattice rows on pixel-row boundaries) that it shares
+//! with the pixel rows below and above (`sample::shared`): an edge row is made by the first pixel
+//! row that needs it and dropped when the second is done, so every sample is traced exactly once
+//! and memory never holds the whole refined lattice. Each sample's colour depends
 //! only on its lattice point and each pixel sums its squares in a fixed order, so the image and the
 //! counts are the same for any number of threads.
 
@@ -15,7 +15,7 @@ use crate::accel::Accel;
 use crate::image::Image;
 use crate::record::NoRecorder;
 use crate::sample::corners::Lattice;
-use crate::sample::shared::{render_row, EdgeRow, Edges, Scratch};
+use crate::sample::shared::{render_row, EdgeRow, EdgeRows, Edges, Scratch};
 use crate::sample::Sampling;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
@@ -55,9 +55,10 @@ pub struct RenderConfig<'a> {
     pub rays_per_pixel: bool,
     /// Called with the number of pixel rows finished, from any thread (a progress bar).
     pub progress: Option<&'a (dyn Fn(u64) + Sync)>,
-    /// About how many bytes the edge rows of one band of pixel rows may take (corners and
-    /// adaptive sampling; default [`BAND_MEMORY`]): what bounds the memory of a deep `--max-level`.
-    pub band_memory: usize,
+    /// About how many bytes the edge rows that wait between jobs of pixel rows may take (corners
+    /// and adaptive sampling; default [`EDGE_MEMORY`]): what bounds the memory of a deep
+    /// `--max-level`.
+    pub edge_memory: usize,
 }
 
 impl RenderConfig<'_> {
@@ -71,7 +72,7 @@ impl RenderConfig<'_> {
             strip_rows: None,
             rays_per_pixel: false,
             progress: None,
-            band_memory: BAND_MEMORY,
+            edge_memory: EDGE_MEMORY,
         }
     }
 }
@@ -165,105 +166,91 @@ fn tracer<'s, V: Dim>(scene: &'s Scene<V>, accel: &'s Accel<V>, max_depth: u32) 
     tracer
 }
 
-/// The default of [`RenderConfig::band_memory`]: 2 MiB. A smaller budget keeps a band's edge
-/// rows in cache and reuses their pages band after band; a larger one buys fewer bands (fewer
-/// waits between the two phases of a band). An edge row's cells are allocated and initialised in
-/// full (by the thread that first traces the row), however few of them the subdivision reads.
-/// Measured at 640x480 (medians of 15 alternating runs, bench/README.md): with corners, 2 MiB
-/// (4 bands) took 6 % less trace time than 8 MiB (one band, 2 100 more page faults) on one
-/// thread and 3 % less on two; adaptive sampling (K = 2) did not move beyond the noise.
-pub const BAND_MEMORY: usize = 2 << 20;
+/// The default of [`RenderConfig::edge_memory`]: 8 MiB. An edge row shared by two rayon jobs of
+/// pixel rows waits in memory until the second job reaches it; this budget sets the fewest pixel
+/// rows a job takes ([`job_rows`]), which bounds how many jobs, and so how many waiting rows, there
+/// can be. A 640x480 image at K = 2 (97 KB an edge row) runs in jobs of at least 6 rows.
+pub const EDGE_MEMORY: usize = 8 << 20;
 
-/// Pixel rows per band: as many as fit `budget` bytes of edge rows (each `Nx + 1` corner colours
-/// and, for K > 0, `Nx·2^K + 1` shared cells), between 2 and 1024. With the default budget a
-/// 640x480 image renders in bands of 136 rows with corners (15 KB an edge row) and of 21 rows
-/// at K = 2 (97 KB an edge row); a 1920-pixel-wide one at K = 8, 491 521 cells a row, in bands of
-/// 2 rows (47 MB: the 2-row minimum exceeds the budget there).
-fn band_rows(lattice: Lattice, budget: usize) -> usize {
-    let corners = (lattice.nx + 1) * std::mem::size_of::<Rgb>();
-    let cells = if lattice.max_level > 0 {
-        lattice.row_len() * std::mem::size_of::<std::sync::OnceLock<Rgb>>()
-    } else {
-        0
-    };
-    (budget / (corners + cells)).clamp(2, 1024).min(lattice.ny)
+/// The fewest pixel rows a rayon job of a lattice render takes: enough that `Ny / job` edge rows
+/// fit `budget` bytes, but at most `Ny / (2·threads)`, so that every thread has work. Jobs run
+/// their rows bottom to top, and rayon splits them further (never below this) when a thread is
+/// idle, so the last job to finish is short.
+fn job_rows(lattice: Lattice, budget: usize, threads: usize) -> usize {
+    let wanted = (lattice.ny * EdgeRow::bytes(lattice)).div_ceil(budget.max(1));
+    let most = (lattice.ny / (2 * threads.max(1))).max(1);
+    wanted.clamp(1, most)
 }
 
-/// §8: corners and adaptive sampling on the shared lattice, band after band of pixel rows: first
-/// the corners of the band's edge rows (in parallel over rows), then its pixel rows (in parallel).
-/// Each pixel's sample count goes to `counts` when asked for, else to a band-sized scratch.
+/// §8: corners and adaptive sampling on the shared lattice. Pixel rows run in parallel, in jobs of
+/// consecutive rows ([`job_rows`]); a pixel row asks [`EdgeRows`] for its top edge row, then its
+/// bottom one (so a job's first row makes its own top row while the job below may still be
+/// making the row they share), and releases both when done. Each pixel's sample count goes to
+/// `counts` when asked for.
 fn lattice_rows<V: Dim>(
     scene: &Scene<V>,
     accel: &Accel<V>,
     config: &RenderConfig<'_>,
     rule: (f64, u32),
     pixels: &mut [Rgb],
-    mut counts: Option<&mut [u32]>,
+    counts: Option<&mut [u32]>,
 ) -> Stats {
     let lattice = Lattice::new(&scene.camera, rule.1);
     let nx = lattice.nx;
-    let new_tracer = || tracer(scene, accel, config.max_depth);
     if lattice.dims() == 1 {
         // A 2D scene: one line of intervals; its corners are its pixels' ends.
-        let mut tracer = new_tracer();
-        let mut edge = EdgeRow::new(lattice, false);
-        edge.trace_corners(&mut tracer, lattice, 0);
+        let mut tracer = tracer(scene, accel, config.max_depth);
+        let edge = EdgeRow::trace(&mut tracer, lattice, 0, false);
         let edges = Edges { bottom: &edge, top: &edge };
         let mut scratch = Scratch::new(lattice);
-        let mut unused = Vec::new();
-        let counts = counts.unwrap_or_else(|| {
-            unused.resize(nx, 0);
-            &mut unused
-        });
         lattice_row(&mut tracer, &mut scratch, lattice, rule, config, 0, edges, (pixels, counts));
         return tracer.stats;
     }
-    let band = band_rows(lattice, config.band_memory);
-    let mut edge_rows: Vec<EdgeRow> = (0..=band).map(|_| EdgeRow::new(lattice, true)).collect();
-    let mut stats = Vec::new();
-    let mut unused_counts = Vec::new();
-    let mut j0 = 0;
-    while j0 < lattice.ny {
-        let n = band.min(lattice.ny - j0);
-        // The first band traces its bottom edge row too; later ones carry it from the band below.
-        let first = usize::from(j0 > 0);
-        let traced: Vec<Stats> = edge_rows[first..=n]
-            .par_iter_mut()
-            .enumerate()
-            .map_init(new_tracer, |tracer, (k, row)| {
-                row.trace_corners(tracer, lattice, j0 + first + k);
-                std::mem::take(&mut tracer.stats)
-            })
-            .collect();
-        stats.extend(traced);
-        let edge_ref = &edge_rows;
-        let band_pixels = pixels[j0 * nx..(j0 + n) * nx].par_chunks_mut(nx);
-        let band_counts = match counts.as_deref_mut() {
-            Some(all) => &mut all[j0 * nx..(j0 + n) * nx],
-            None => {
-                unused_counts.resize(n * nx, 0);
-                &mut unused_counts[..n * nx]
-            }
+    let rows = Rows { scene, accel, config, rule, lattice, edges: EdgeRows::new(lattice) };
+    match counts {
+        Some(counts) => {
+            rows.run(pixels.par_chunks_mut(nx).zip(counts.par_chunks_mut(nx)).map(|(p, c)| (p, Some(c))))
         }
-        .par_chunks_mut(nx);
-        let rows: Vec<Stats> = band_pixels
-            .zip(band_counts)
+        None => rows.run(pixels.par_chunks_mut(nx).map(|p| (p, None))),
+    }
+}
+
+/// What every pixel row of a lattice render shares.
+struct Rows<'a, V: Dim> {
+    scene: &'a Scene<V>,
+    accel: &'a Accel<V>,
+    config: &'a RenderConfig<'a>,
+    rule: (f64, u32),
+    lattice: Lattice,
+    edges: EdgeRows,
+}
+
+impl<V: Dim> Rows<'_, V> {
+    /// Renders the pixel rows `rows` gives, bottom to top (each with its counts, if asked for).
+    fn run<'p>(
+        &self,
+        rows: impl IndexedParallelIterator<Item = (&'p mut [Rgb], Option<&'p mut [u32]>)>,
+    ) -> Stats {
+        let (lattice, edges) = (self.lattice, &self.edges);
+        let job = job_rows(lattice, self.config.edge_memory, rayon::current_num_threads());
+        let stats: Vec<Stats> = rows
             .enumerate()
+            .with_min_len(job)
             .map_init(
-                || (new_tracer(), Scratch::new(lattice)),
-                |(tracer, scratch), (k, row)| {
-                    let edges = Edges { bottom: &edge_ref[k], top: &edge_ref[k + 1] };
-                    lattice_row(tracer, scratch, lattice, rule, config, j0 + k, edges, row);
+                || (tracer(self.scene, self.accel, self.config.max_depth), Scratch::new(lattice)),
+                |(tracer, scratch), (j, row)| {
+                    let top = edges.acquire(tracer, j + 1);
+                    let bottom = edges.acquire(tracer, j);
+                    let pair = Edges { bottom: &bottom, top: &top };
+                    lattice_row(tracer, scratch, lattice, self.rule, self.config, j, pair, row);
+                    edges.release(j);
+                    edges.release(j + 1);
                     std::mem::take(&mut tracer.stats)
                 },
             )
             .collect();
-        stats.extend(rows);
-        // The band's top edge row is the next band's bottom one.
-        edge_rows.swap(0, n);
-        j0 += n;
+        total(stats)
     }
-    total(stats)
 }
 
 /// One pixel row of the lattice modes, into its pixels and per-pixel counts.
@@ -277,10 +264,42 @@ fn lattice_row<V: Dim>(
     config: &RenderConfig<'_>,
     j: usize,
     edges: Edges<'_>,
-    (pixels, counts): (&mut [Rgb], &mut [u32]),
+    (pixels, counts): (&mut [Rgb], Option<&mut [u32]>),
 ) {
     render_row(tracer, lattice, rule, j, edges, scratch, pixels, counts);
     if let Some(progress) = config.progress {
         progress(1);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::camera::Camera;
+    use crate::scene::load::load_str;
+    use crate::scene::AnyScene;
+
+    fn camera(nx: usize, ny: usize) -> Camera<glam::DVec3> {
+        let text = format!(
+            r#"{{"camera": {{"eye": [0,0,5], "center": [0,0,0], "window": {{"l": -1, "r": 1, "b": -1, "t": 1}}, "resolution": [{nx}, {ny}]}}}}"#
+        );
+        let Ok(AnyScene::Space(scene)) = load_str(&text) else { panic!("a 3D scene") };
+        scene.camera
+    }
+
+    #[test]
+    fn jobs_keep_waiting_edge_rows_within_the_budget_and_every_thread_busy() {
+        // 640x480 at K = 2: 2 561 cells of 32 bytes and 641 corners of 24 bytes an edge row,
+        // 97 kB; 480 of them are 46.7 MB, so 8 MiB asks for jobs of at least 6 rows.
+        let wide = camera(640, 480);
+        assert_eq!(EdgeRow::bytes(Lattice::new(&wide, 2)), 2561 * 32 + 641 * 24);
+        assert_eq!(job_rows(Lattice::new(&wide, 2), EDGE_MEMORY, 2), 6);
+        // With corners (15 kB a row) every row fits: one-row jobs.
+        assert_eq!(job_rows(Lattice::new(&wide, 0), EDGE_MEMORY, 2), 1);
+        // A deep level on a wide image: the budget would want one job; two threads get 4.
+        let hd = camera(1920, 1080);
+        assert_eq!(job_rows(Lattice::new(&hd, 8), EDGE_MEMORY, 2), 270);
+        // Fewer rows than threads: one-row jobs.
+        assert_eq!(job_rows(Lattice::new(&camera(8, 3), 8), 1, 4), 1);
     }
 }

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 use whitted::accel::{Accel, AccelOptions};
 use whitted::doc::float;
-use whitted::render::{render, RenderConfig, Rendered, BAND_MEMORY};
+use whitted::render::{render, RenderConfig, Rendered, EDGE_MEMORY};
 use whitted::sample::Sampling;
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
@@ -192,7 +192,7 @@ fn render_scene<V: Dim>(
         strip_rows,
         rays_per_pixel: false,
         progress: bar.is_some().then_some(&tick as &(dyn Fn(u64) + Sync)),
-        band_memory: BAND_MEMORY,
+        edge_memory: EDGE_MEMORY,
     };
     let trace = Instant::now();
     let rendered = render(scene, &accel, &config);

@@ -3,7 +3,8 @@
 //!
 //! A pixel row is rendered left to right by one thread. Its samples are of four kinds:
 //! - the pixel corners `(i·2^K, j·2^K)`: every one is needed, so the corners of a lattice row are
-//!   traced first, all at once ([`EdgeRow::trace_corners`]), and read as plain colours;
+//!   traced first, all at once, when the row is made ([`EdgeRow::trace`]), and read as plain
+//!   colours;
 //! - the other points of the lattice row `y = j·2^K` (the pixel row's bottom edge) or
 //!   `(j + 1)·2^K` (its top edge): shared with the pixel row below or above, which another thread
 //!   may render at the same time. They sit in a [`Line`] of `OnceLock`s: the first thread to need
@@ -14,8 +15,10 @@
 //!
 //! On a 2D scene's image line the pixel's two ends are corners and everything else is inside.
 //! Each pixel memoises what it read in [`Scratch`] (stamped, so nothing is cleared per pixel), and
-//! the number of distinct points it read is its rays-per-pixel count. Memory: the edge rows of one
-//! band of pixel rows (see `render`) and, per thread, one pixel's `(2^K + 1)²` memo.
+//! the number of distinct points it read is its rays-per-pixel count. The edge rows themselves are
+//! made and dropped by [`EdgeRows`]. Memory: the edge rows of the pixel rows in progress and of
+//! those waiting for their second pixel row (see `render`), and per thread one pixel's
+//! `(2^K + 1)²` memo.
 
 use super::adaptive::{subdivide, NoSquares, SampleSource};
 use super::corners::{corner_mean, Lattice};
@@ -23,84 +26,106 @@ use crate::record::NoRecorder;
 use crate::scene::material::Rgb;
 use crate::shape::Dim;
 use crate::trace::Tracer;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::OnceLock;
+use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
 /// The points of one lattice row, `Nx·2^K + 1` of them, each traced at most once by whichever
 /// thread asks first (the corners are not kept here: see [`EdgeRow`]).
 #[derive(Debug)]
 pub struct Line {
     cells: Vec<OnceLock<Rgb>>,
-    /// Whether any point was traced (a line nobody split across needs no clearing).
-    touched: AtomicBool,
 }
 
 impl Line {
     /// An empty line of `len` points.
     #[must_use]
     pub fn new(len: usize) -> Self {
-        Self { cells: (0..len).map(|_| OnceLock::new()).collect(), touched: AtomicBool::new(false) }
-    }
-    /// Forgets every colour (the line is reused for another lattice row).
-    pub fn clear(&mut self) {
-        if *self.touched.get_mut() {
-            for cell in &mut self.cells {
-                cell.take();
-            }
-            *self.touched.get_mut() = false;
-        }
+        Self { cells: (0..len).map(|_| OnceLock::new()).collect() }
     }
     /// The colour of point `x`, traced by `trace` if no thread has traced it yet.
     fn get_or_trace(&self, x: usize, trace: impl FnOnce() -> Rgb) -> Rgb {
-        *self.cells[x].get_or_init(|| {
-            self.touched.store(true, Ordering::Relaxed);
-            trace()
-        })
+        *self.cells[x].get_or_init(trace)
     }
 }
 
-/// A lattice row `y = j·2^K` on pixel-row boundaries: its `Nx + 1` pixel corners, and for K > 0
-/// its finer points.
-///
-/// A new row holds nothing: its memory is allocated, and first written, by the thread that
-/// traces its corners ([`EdgeRow::trace_corners`]), so that a render spends no serial time
-/// filling rows it is about to overwrite, and the page faults of a large lattice are taken by
-/// every thread at once.
+/// A lattice row `y = j·2^K` on a pixel-row boundary: its `Nx + 1` pixel corners, traced when
+/// the row is made, and for K > 0 its finer points, traced on demand.
 #[derive(Debug)]
 pub struct EdgeRow {
-    /// The colours of the corners `(i·2^K, y)`, `i = 0 … Nx` (empty until traced).
+    /// The colours of the corners `(i·2^K, y)`, `i = 0 … Nx`.
     corners: Vec<Rgb>,
-    /// Whether the finer points are shared by two pixel rows: false when K = 0 or on a 2D
-    /// scene's line (whose finer points are each inside one pixel).
-    shared: bool,
-    /// The finer points, traced on demand (None until the row is first traced, and when not
-    /// `shared`).
+    /// The finer points, shared by the two pixel rows the edge row bounds (None when K = 0, and
+    /// on a 2D scene's line, whose finer points are each inside one pixel).
     finer: Option<Line>,
 }
 
 impl EdgeRow {
-    /// An untraced edge row of `lattice`; `shared` if its finer points are shared by two rows.
-    #[must_use]
-    pub fn new(lattice: Lattice, shared: bool) -> Self {
-        Self { corners: Vec::new(), shared: shared && lattice.max_level > 0, finer: None }
-    }
-    /// Traces the corners of pixel-row boundary `j` (§8.1: `(Nx + 1)` rays a row) and forgets the
-    /// finer points of the lattice row it held before.
-    pub fn trace_corners<V: Dim>(
-        &mut self,
+    /// Pixel-row boundary `j` with its corners traced (§8.1: `Nx + 1` rays); `shared` if its finer
+    /// points are shared by two pixel rows.
+    pub fn trace<V: Dim>(
         tracer: &mut Tracer<'_, V, NoRecorder>,
         lattice: Lattice,
         j: usize,
-    ) {
+        shared: bool,
+    ) -> Self {
         let s = u64::from(lattice.scale);
-        self.corners.clear();
-        let row = (0..=lattice.nx).map(|i| trace_point(tracer, lattice, i as u64 * s, j as u64 * s));
-        self.corners.extend(row);
-        if self.shared {
-            match &mut self.finer {
-                Some(line) => line.clear(),
-                None => self.finer = Some(Line::new(lattice.row_len())),
-            }
+        let corners =
+            (0..=lattice.nx).map(|i| trace_point(tracer, lattice, i as u64 * s, j as u64 * s)).collect();
+        let finer = (shared && lattice.max_level > 0).then(|| Line::new(lattice.row_len()));
+        Self { corners, finer }
+    }
+    /// The bytes of one edge row of `lattice` (corners and finer points).
+    #[must_use]
+    pub fn bytes(lattice: Lattice) -> usize {
+        let corners = (lattice.nx + 1) * std::mem::size_of::<Rgb>();
+        let finer =
+            if lattice.max_level > 0 { lattice.row_len() * std::mem::size_of::<OnceLock<Rgb>>() } else { 0 };
+        corners + finer
+    }
+}
+
+/// Every edge row of an image, `j = 0 … Ny`, each made (its corners traced) by the first pixel row
+/// that asks for it, whichever thread runs that row, and dropped when the last of the pixel rows
+/// it bounds (one at the image's edges, else two) is done with it. So every sample is traced
+/// once, and memory holds only the edge rows of the pixel rows in progress and those that wait
+/// for their second pixel row.
+#[derive(Debug)]
+pub struct EdgeRows {
+    lattice: Lattice,
+    rows: Vec<SharedRow>,
+}
+
+/// One edge row of [`EdgeRows`]: absent until asked for, and again once its readers are done.
+#[derive(Debug)]
+struct SharedRow {
+    row: Mutex<Option<Arc<EdgeRow>>>,
+    /// The pixel rows that have not yet released it.
+    readers: AtomicU8,
+}
+
+impl EdgeRows {
+    /// The edge rows of a 3D image on `lattice`, none made yet.
+    #[must_use]
+    pub fn new(lattice: Lattice) -> Self {
+        let ny = lattice.ny;
+        let rows = (0..=ny)
+            .map(|j| SharedRow {
+                row: Mutex::new(None),
+                readers: AtomicU8::new(if j == 0 || j == ny { 1 } else { 2 }),
+            })
+            .collect();
+        Self { lattice, rows }
+    }
+    /// Edge row `j`, made now by `tracer` if no pixel row has asked for it before. A pixel row
+    /// that asks while another thread is making it waits for it.
+    pub fn acquire<V: Dim>(&self, tracer: &mut Tracer<'_, V, NoRecorder>, j: usize) -> Arc<EdgeRow> {
+        let mut slot = self.rows[j].row.lock().unwrap_or_else(PoisonError::into_inner);
+        Arc::clone(slot.get_or_insert_with(|| Arc::new(EdgeRow::trace(tracer, self.lattice, j, true))))
+    }
+    /// A pixel row is done with edge row `j`: the last one drops it.
+    pub fn release(&self, j: usize) {
+        if self.rows[j].readers.fetch_sub(1, Ordering::AcqRel) == 1 {
+            self.rows[j].row.lock().unwrap_or_else(PoisonError::into_inner).take();
         }
     }
 }
@@ -170,7 +195,8 @@ pub struct Edges<'l> {
 }
 
 /// Renders pixel row `j` with the subdivision rule `(threshold, K)` between its traced edge rows:
-/// writes each pixel's colour to `pixels` and the number of distinct samples it read to `used`.
+/// writes each pixel's colour to `pixels` and, if asked, the number of distinct samples it read
+/// to `used`.
 // Tracer, lattice, rule, row, edges, scratch and the two outputs are all distinct; a struct
 // would only rename them.
 #[allow(clippy::too_many_arguments)]
@@ -182,7 +208,7 @@ pub fn render_row<V: Dim>(
     edges: Edges<'_>,
     scratch: &mut Scratch,
     pixels: &mut [Rgb],
-    used: &mut [u32],
+    mut used: Option<&mut [u32]>,
 ) {
     let dims = lattice.dims();
     scratch.left.fill(None);
@@ -205,7 +231,9 @@ pub fn render_row<V: Dim>(
             scratch.carry_right_edge(dims);
             count
         };
-        used[i] = count;
+        if let Some(used) = used.as_deref_mut() {
+            used[i] = count;
+        }
     }
 }
 
@@ -279,5 +307,40 @@ impl<V: Dim> SampleSource for RowSource<'_, '_, '_, V> {
         self.scratch.memo[k] = Memo { stamp: self.scratch.current, color };
         self.used += 1;
         color
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::{Accel, AccelKind};
+    use crate::scene::load::load_str;
+    use crate::scene::AnyScene;
+
+    #[test]
+    fn an_edge_row_is_made_once_and_dropped_after_its_last_reader() {
+        let text = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0],
+            "window": {"l": -1, "r": 1, "b": -1, "t": 1}, "resolution": [4, 3]},
+            "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1}]}"#;
+        let Ok(AnyScene::Space(scene)) = load_str(text) else { panic!("a 3D scene") };
+        let accel = Accel::build(&scene, AccelKind::None);
+        let mut tracer = Tracer::new(&scene, &accel, NoRecorder);
+        let lattice = Lattice::new(&scene.camera, 2);
+        let rows = EdgeRows::new(lattice);
+        let held = |j: usize| rows.rows[j].row.lock().unwrap().is_some();
+        // Edge row 1 bounds pixel rows 0 and 1: made by the first to ask, its corners traced once.
+        let first = rows.acquire(&mut tracer, 1);
+        let second = rows.acquire(&mut tracer, 1);
+        assert!(Arc::ptr_eq(&first, &second));
+        assert_eq!(tracer.stats.rays.primary, 5, "Nx + 1 corners");
+        rows.release(1);
+        assert!(held(1), "one reader left");
+        rows.release(1);
+        assert!(!held(1), "dropped by its last reader");
+        // Edge rows 0 and Ny bound one pixel row each.
+        let _bottom = rows.acquire(&mut tracer, 0);
+        rows.release(0);
+        assert!(!held(0));
+        assert_eq!(tracer.stats.rays.primary, 10);
     }
 }

@@ -71,21 +71,39 @@ fn h1_threshold_zero_traces_the_whole_lattice() {
 }
 
 #[test]
-fn sharing_holds_across_bands_of_rows() {
-    // A tiny band budget: bands of 2 rows, so edge rows (corners and finer points) are carried
-    // from band to band; the image and the counts are those of one band.
-    let scene = scene3(&fixture("glass.json"));
+fn sharing_holds_across_jobs_of_rows() {
+    // An unbounded edge-row budget lets rayon split the rows into jobs of one row, so nearly every
+    // edge row is made by one job and read by another; a budget of one byte gives the largest
+    // jobs. The image, the statistics and the counts are the same either way, on 1 or 2 threads.
+    let mut scene = scene3(&fixture("glass.json"));
     let accel = Accel::build(&scene, AccelKind::None);
-    for sampling in [Sampling::Corners, adaptive(0.0, 2), adaptive(0.05, 3)] {
-        let one_band = render_in(&scene, sampling, 2);
-        let config = RenderConfig { sampling, band_memory: 1, ..RenderConfig::centers(scene.max_depth) };
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
-        let bands = pool.install(|| render(&scene, &accel, &config));
-        assert_eq!(bands.image, one_band.image, "{sampling:?}");
-        assert_eq!(bands.stats, one_band.stats, "{sampling:?}");
+    // 8x6 as written, and 32x24, where a budget of one byte gives jobs of several rows.
+    for (nx, ny, sampling) in [
+        (8, 6, Sampling::Corners),
+        (8, 6, adaptive(0.0, 2)),
+        (8, 6, adaptive(0.05, 3)),
+        (32, 24, Sampling::Corners),
+        (32, 24, adaptive(0.05, 2)),
+    ] {
+        (scene.camera.nx, scene.camera.ny) = (nx, ny);
+        let reference = render_in(&scene, sampling, 2);
+        for (threads, edge_memory) in [(2, usize::MAX), (2, 1), (1, usize::MAX), (3, usize::MAX)] {
+            let config = RenderConfig {
+                sampling,
+                edge_memory,
+                rays_per_pixel: true,
+                ..RenderConfig::centers(scene.max_depth)
+            };
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let r = pool.install(|| render(&scene, &accel, &config));
+            let case = format!("{nx}x{ny}, {sampling:?}, {threads} threads, budget {edge_memory}");
+            assert_eq!(r.image, reference.image, "{case}");
+            assert_eq!(r.stats, reference.stats, "{case}");
+            assert_eq!(r.rays_per_pixel, reference.rays_per_pixel, "{case}");
+        }
     }
-    let config = RenderConfig { sampling: adaptive(0.0, 2), band_memory: 1, ..RenderConfig::centers(4) };
-    assert_eq!(render(&scene, &accel, &config).stats.rays.primary, lattice_points(8, 6, 2));
+    let config = RenderConfig { sampling: adaptive(0.0, 2), edge_memory: 1, ..RenderConfig::centers(4) };
+    assert_eq!(render(&scene, &accel, &config).stats.rays.primary, lattice_points(32, 24, 2));
 }
 
 #[test]
