@@ -277,10 +277,13 @@ impl<V: Dim> Accel<V> {
         let mut visitor = Shadow { scene, ray, d_l, transparent: PrimSet::default(), opaque: None };
         self.search(scene, ray, &mut visitor, stats, rec);
         let opaque = visitor.opaque;
-        for &prim in visitor.transparent.sorted().iter().chain(&opaque) {
+        for &prim in visitor.transparent.sorted() {
             if !on(object_ref(scene, prim)) {
                 return;
             }
+        }
+        if let Some(prim) = opaque {
+            on(object_ref(scene, prim));
         }
     }
 }
@@ -448,7 +451,8 @@ impl PrimSet {
     /// Whether a primitive of `object` is in the set.
     #[inline(always)]
     fn has_object(&self, object: u32) -> bool {
-        self.inline[..self.len].iter().chain(&self.spill).any(|p| p.object == object)
+        let of = |p: &Prim| p.object == object;
+        self.inline[..self.len].iter().any(of) || (!self.spill.is_empty() && self.spill.iter().any(of))
     }
     /// Adds a primitive (of an object not yet in the set).
     #[inline]
