@@ -114,11 +114,16 @@ struct Rule<const N: usize> {
 const CORNERS: [(u32, u32); 4] = [(0, 0), (1, 0), (0, 1), (1, 1)];
 
 impl<const N: usize> Rule<N> {
-    /// The pixel: reads its corners, then subdivides.
+    /// The pixel: reads its corners, then subdivides. A pixel that is not split (most of an
+    /// image) is the mean of its corners at once when no sink records its square: the same
+    /// decision and the same mean as [`Rule::square`], without its call.
     #[inline(always)]
     fn pixel<S: SquareSink>(self, source: &mut impl SampleSource, sink: &mut S) -> Rgb {
         let side = 1 << self.max_level;
         let corners = source.corners::<N>(side);
+        if !S::RECORDS && !splits(Rgb::spread(&corners), 0, self.threshold, self.max_level) {
+            return corner_mean(&corners);
+        }
         self.square(source, sink, (0, 0), side, 0, corners)
     }
 

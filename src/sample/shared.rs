@@ -153,6 +153,8 @@ pub struct Scratch {
     memo: Vec<Memo>,
     current: u32,
     left: Vec<Option<Rgb>>,
+    /// Whether `left` may hold a colour (else it is all `None`).
+    left_any: bool,
 }
 
 impl Scratch {
@@ -161,7 +163,13 @@ impl Scratch {
     pub fn new(lattice: Lattice) -> Self {
         let side = lattice.scale as usize + 1;
         let points = if lattice.dims() == 1 { side } else { side * side };
-        Self { side, memo: vec![Memo::default(); points], current: 0, left: vec![None; side] }
+        Self {
+            side,
+            memo: vec![Memo::default(); points],
+            current: 0,
+            left: vec![None; side],
+            left_any: false,
+        }
     }
     /// Starts a new pixel: every memo entry becomes stale.
     fn next_pixel(&mut self) {
@@ -172,16 +180,26 @@ impl Scratch {
         self.current += 1;
     }
     /// After pixel `i`: its right edge `a = 2^K`, `0 < b < 2^K`, becomes pixel `i + 1`'s left edge
-    /// (the ends `b = 0`, `b = 2^K` are on the edge rows).
-    fn carry_right_edge(&mut self, dims: usize) {
+    /// (the ends `b = 0`, `b = 2^K` are on the edge rows). `read_inside`: whether the pixel read
+    /// any point besides its corners (if not, it read none of its right edge either).
+    #[inline]
+    fn carry_right_edge(&mut self, dims: usize, read_inside: bool) {
         if dims == 1 {
             // A 2D scene's pixel has no vertical edge but its right end, a corner.
+            return;
+        }
+        if !read_inside {
+            if self.left_any {
+                self.left.fill(None);
+                self.left_any = false;
+            }
             return;
         }
         for b in 1..self.side - 1 {
             let m = self.memo[b * self.side + self.side - 1];
             self.left[b] = (m.stamp == self.current).then_some(m.color);
         }
+        self.left_any = true;
     }
 }
 
@@ -212,6 +230,7 @@ pub fn render_row<V: Dim>(
 ) {
     let dims = lattice.dims();
     scratch.left.fill(None);
+    scratch.left_any = false;
     for (i, pixel) in pixels.iter_mut().enumerate() {
         let count = if max_level == 0 {
             // K = 0: the pixel is one leaf, the mean of its corners (the subdivision would read
@@ -228,7 +247,7 @@ pub fn render_row<V: Dim>(
             let mut source = RowSource { tracer, lattice, i, j, edges, scratch, used: 0 };
             *pixel = subdivide(&mut source, &mut NoSquares, dims, threshold, max_level);
             let count = source.used;
-            scratch.carry_right_edge(dims);
+            scratch.carry_right_edge(dims, count > 1 << dims);
             count
         };
         if let Some(used) = used.as_deref_mut() {
