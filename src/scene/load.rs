@@ -759,7 +759,8 @@ fn read_objects<V: LoadDim>(
         };
         let shape = read_shape::<V>(r, ty, map, &path, read_file);
         if let (Some(shape), Some(material)) = (shape, material) {
-            out.push(Object { name, shape, material });
+            let scale = shape.scale();
+            out.push(Object { name, shape, material, scale });
         }
     }
     out

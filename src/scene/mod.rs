@@ -23,6 +23,9 @@ pub struct Object<V: Dim> {
     pub shape: Shape<V>,
     /// Index into [`Scene::materials`].
     pub material: usize,
+    /// `shape.scale()`, computed once: the object's part of the spawn offset's magnitude M
+    /// (§11), which every hit on it needs.
+    pub scale: f64,
 }
 
 /// A validated scene in 2D (`V = DVec2`) or 3D (`V = DVec3`).

@@ -89,7 +89,7 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
         });
         let scene = self.scene;
         let hit_object = &scene.objects[object.index];
-        let delta = offset_distance(hit.point, ray.origin, hit.t, hit_object.shape.scale());
+        let delta = offset_distance(hit.point, ray.origin, hit.t, hit_object.scale);
         let material = &scene.materials[hit_object.material];
         let at = Shading { ray, hit, entering, n_f, delta, material };
         let local = self.local(&at);
