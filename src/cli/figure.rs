@@ -136,7 +136,8 @@ pub fn figure(scene: &AnyScene, name: &str, request: &Request) -> Result<Drawing
     }
 }
 
-fn figure_in<V: Planar>(scene: &Scene<V>, name: &str, request: &Request) -> Result<Drawing, Failure> {
+/// [`figure`] of a scene of known dimension.
+pub fn figure_in<V: Planar>(scene: &Scene<V>, name: &str, request: &Request) -> Result<Drawing, Failure> {
     let aim = if request.pixel.is_some() || request.ray.is_some() {
         let (ray, traced) = target(scene, request.pixel, request.ray.as_ref())?;
         match traced.pixel.as_deref() {

@@ -10,6 +10,7 @@ mod parse;
 mod render;
 mod sampling;
 mod trace;
+mod tradeoff;
 
 use clap::{Parser, Subcommand};
 use std::fmt;
@@ -38,6 +39,9 @@ enum Command {
     Figure(figure::FigureArgs),
     /// Draw every lesson's figures (lessons/) in both languages, PNG and SVG, with index pages.
     Lessons(lessons::LessonsArgs),
+    /// Measure what accuracy costs: time, rays and tests per setting (sampling, depth, structure)
+    /// and the error against a reference image; a Markdown table (or --json), plots with --out.
+    Tradeoff(tradeoff::TradeoffArgs),
 }
 
 /// An error with its exit code: 2 for bad input (scene, arguments), 1 for anything else.
@@ -107,6 +111,7 @@ pub fn main() -> u8 {
         Command::Check(args) => check::run(&args),
         Command::Figure(args) => figure::run(&args),
         Command::Lessons(args) => lessons::run(&args),
+        Command::Tradeoff(args) => tradeoff::run(&args),
     };
     match result {
         Ok(()) => 0,

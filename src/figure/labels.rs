@@ -159,6 +159,24 @@ pub enum Label {
     MeanPerPixel,
     /// "rays" after a count in the legend.
     RaysPerPixel,
+    /// Title of the `tradeoff` plot.
+    TitleTradeoff,
+    /// The `tradeoff` plot's sweep over sampling modes.
+    SweepSampling,
+    /// The `tradeoff` plot's sweep over depths.
+    SweepDepth,
+    /// The `tradeoff` plot's sweep over structures.
+    SweepAccel,
+    /// The Pareto front of time against error.
+    ParetoFront,
+    /// The `tradeoff` plot's time axis.
+    AxisTime,
+    /// The `tradeoff` plot's error axis.
+    AxisRmse,
+    /// The reference image of `tradeoff`.
+    ReferenceImage,
+    /// After the number of renders of each setting.
+    RendersEach,
     /// The adaptive threshold.
     Threshold,
     /// K = 0: the corners, no subdivision.
@@ -335,6 +353,25 @@ impl Label {
             Self::RaysTraced => ("primary rays traced", "raze primare trasate"),
             Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
             Self::RaysPerPixel => ("rays", "raze"),
+            Self::TitleTradeoff => {
+                ("What accuracy costs: error against time", "Cât costă precizia: eroarea față de timp")
+            }
+            Self::SweepSampling => {
+                ("sampling (centre, corners, adaptive)", "eșantionarea (centru, colțuri, adaptivă)")
+            }
+            Self::SweepDepth => ("recursion depth", "adâncimea recursivității"),
+            Self::SweepAccel => ("acceleration structure", "structura de accelerare"),
+            Self::ParetoFront => (
+                "Pareto front: nothing is both faster and more accurate",
+                "frontul Pareto: nimic nu e și mai rapid, și mai precis",
+            ),
+            Self::AxisTime => ("trace time (ms)", "timpul de trasare (ms)"),
+            Self::AxisRmse => ("RMSE against the reference", "RMSE față de referință"),
+            Self::ReferenceImage => (
+                "reference: adaptive, threshold 0, K = 3, depth 16",
+                "referința: adaptivă, prag 0, K = 3, adâncime 16",
+            ),
+            Self::RendersEach => ("renders per setting (median time)", "randări pe variantă (timpul median)"),
             Self::Threshold => ("threshold", "pragul"),
             Self::MeetsVolume => ("meets the volume", "intersectează volumul"),
             Self::MissesVolume => ("misses the volume", "ratează volumul"),
@@ -470,6 +507,15 @@ mod tests {
         Label::TitleOctree,
         Label::TitleAdaptive,
         Label::TitleHeatMap,
+        Label::TitleTradeoff,
+        Label::SweepSampling,
+        Label::SweepDepth,
+        Label::SweepAccel,
+        Label::ParetoFront,
+        Label::AxisTime,
+        Label::AxisRmse,
+        Label::ReferenceImage,
+        Label::RendersEach,
         Label::PrimaryRay,
         Label::ReflectedRay,
         Label::TransmittedRay,

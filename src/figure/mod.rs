@@ -15,6 +15,7 @@ pub mod source;
 pub mod style;
 pub mod svg;
 pub mod text;
+pub mod tradeoff;
 
 use crate::scene::Scene;
 use drawing::Drawing;

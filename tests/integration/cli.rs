@@ -37,9 +37,9 @@ fn bad_input_exits_2_with_the_field_named() {
     ];
     for (i, (text, expected)) in cases.iter().enumerate() {
         let path = scene_file(&format!("bad{i}.json"), text);
-        for cmd in ["check", "render"] {
+        for cmd in ["check", "render", "tradeoff"] {
             let (code, _, err) =
-                whitted(&[cmd, &path, "-o", "/dev/null"][..if cmd == "check" { 2 } else { 4 }]);
+                whitted(&[cmd, &path, "-o", "/dev/null"][..if cmd == "render" { 4 } else { 2 }]);
             assert_eq!(code, 2, "{cmd} {text}: {err}");
             assert!(err.contains(expected), "{cmd}: expected `{expected}` in {err}");
             assert!(!err.contains("panicked"));
@@ -59,6 +59,7 @@ fn missing_file_and_bad_arguments_exit_2() {
         (vec!["trace", &glass, "--ray", "0,0,5"], "--ray"),
         (vec!["trace", &glass, "--ray", "0,0:0,1"], "--ray: the origin must have 3 numbers"),
         (vec!["render", &glass, "--size", "0x3"], "--size"),
+        (vec!["tradeoff", &glass, "--runs", "0"], "--runs"),
     ] {
         let (code, _, err) = whitted(&args);
         assert_eq!(code, 2, "{args:?}: {err}");
@@ -126,4 +127,62 @@ fn check_says_what_the_scene_models() {
     let (code, out, _) = whitted(&["check", &fixture("corridor.json")]);
     assert_eq!(code, 0);
     assert!(out.contains("transmitted: no: no object has kt > 0"), "{out}");
+}
+
+#[test]
+fn tradeoff_measures_every_setting_against_the_reference() {
+    let dir = std::env::temp_dir().join(format!("whitted-cli-{}-tradeoff", std::process::id()));
+    let (code, out, err) = whitted(&[
+        "tradeoff",
+        &fixture("glass.json"),
+        "--runs",
+        "1",
+        "--threads",
+        "2",
+        "--json",
+        "--out",
+        &dir.display().to_string(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let rows = doc["rows"].as_array().unwrap();
+    // max_depth 4: centre, corners, 9 adaptive; depths 0-3; 4 other structures.
+    assert_eq!(rows.len(), 19);
+    assert_eq!(doc["reference"]["rmse"], 0.0);
+    assert_eq!(doc["reference"]["max_depth"], 16);
+    assert_eq!(doc["reference"]["sampling"]["max_level"], 3);
+    // (8·8 + 1)(6·8 + 1) lattice points over 48 pixels.
+    assert_eq!(doc["reference"]["rays"]["primary"], 65 * 49);
+    let first = &rows[0];
+    assert_eq!(first["sampling"]["mode"], "center");
+    assert_eq!(first["rays_per_pixel"]["primary"], 1.0);
+    assert_eq!(rows[1]["sampling"]["mode"], "corners");
+    assert_eq!(rows[1]["rays_per_pixel"]["primary"], 9.0 * 7.0 / 48.0);
+    for row in rows {
+        let rmse = row["rmse"].as_f64().unwrap();
+        assert!(rmse > 0.0 && rmse <= row["max_error"].as_f64().unwrap(), "{row}");
+        // Every structure gives the centre image: the same error.
+        if row["sampling"]["mode"] == "center" && row["max_depth"] == 4 {
+            assert_eq!(row["rmse"], first["rmse"], "{row}");
+        }
+    }
+    // Ray casting (max_depth 0) lacks every reflection and refraction the reference has.
+    let depth_error = |d: u64| {
+        rows.iter()
+            .find(|r| r["sampling"]["mode"] == "center" && r["max_depth"] == d && r["accel"] == "bvh")
+            .map(|r| r["rmse"].as_f64().unwrap())
+            .unwrap()
+    };
+    assert!(depth_error(0) > depth_error(4));
+    let front = doc["pareto"].as_array().unwrap();
+    assert!(!front.is_empty() && front.iter().all(|i| i.as_u64().unwrap() < 19));
+    for file in ["tradeoff.png", "tradeoff.svg", "heat-map.png", "heat-map.svg"] {
+        let bytes = std::fs::read(dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert!(bytes.len() > 1000, "{file}");
+    }
+    // Without --json: the Markdown table, a row per setting and the reference.
+    let (code, out, err) = whitted(&["tradeoff", &fixture("glass.json"), "--runs", "1"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.lines().filter(|l| l.starts_with("| ")).count(), 1 + 19 + 1);
+    assert!(out.contains("| reference |"));
 }

@@ -1,0 +1,235 @@
+//! `whitted tradeoff`: what accuracy costs, measured (product.md). Every setting of
+//! `whitted::tradeoff::settings` is rendered `--runs` times in this process; stdout gets a
+//! Markdown table (or, with `--json`, the same figures as JSON), and with `--out DIR` the plots go
+//! to DIR: the error against the time with the Pareto front, and the reference's rays-per-pixel
+//! heat map.
+
+use super::figure::{canvas, figure_in, scene_name, Format, Request};
+use super::render::resize;
+use super::trace::LangArg;
+use super::{load_scene, parse, print_out, write_file, Failure};
+use clap::Args;
+use indicatif::ProgressBar;
+use serde_json::{json, Value};
+use std::fmt::Write;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use whitted::accel::{AccelKind, AccelOptions};
+use whitted::figure::plane::Planar;
+use whitted::figure::source::Tracing;
+use whitted::figure::tradeoff as tradeoff_plot;
+use whitted::figure::{FigureKind, Options};
+use whitted::sample::Sampling;
+use whitted::scene::{AnyScene, Scene};
+use whitted::tradeoff::{self, Measured, Tradeoff, REFERENCE_DEPTH};
+
+/// Options of `whitted tradeoff`.
+#[derive(Args, Debug)]
+pub struct TradeoffArgs {
+    /// The scene file (JSON).
+    scene: PathBuf,
+    /// Also draw the plots into this folder (created if missing): the error against the time
+    /// with the Pareto front, and the reference's rays-per-pixel heat map, PNG and SVG.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Print the measurements as JSON instead of a Markdown table.
+    #[arg(long)]
+    json: bool,
+    /// Renders per setting; the time is their median.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
+    runs: u32,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    threads: Option<u32>,
+    /// Render at WxH instead of the scene's resolution (the window stays); W alone for a 2D scene.
+    #[arg(long, value_parser = parse::size)]
+    size: Option<(usize, Option<usize>)>,
+    /// The language of the plots' labels.
+    #[arg(long, value_enum, default_value = "en")]
+    lang: LangArg,
+}
+
+/// Runs `whitted tradeoff`.
+pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
+    let pool = {
+        let mut b = rayon::ThreadPoolBuilder::new();
+        if let Some(n) = args.threads {
+            b = b.num_threads(n as usize);
+        }
+        b.build().map_err(|e| Failure::other(format!("cannot start the worker threads: {e}")))?
+    };
+    let threads = pool.current_num_threads();
+    match load_scene(&args.scene)? {
+        AnyScene::Flat(mut s) => {
+            resize(&mut s, args.size);
+            pool.install(|| report(&s, args, threads))
+        }
+        AnyScene::Space(mut s) => {
+            resize(&mut s, args.size);
+            pool.install(|| report(&s, args, threads))
+        }
+    }
+}
+
+fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> Result<(), Failure> {
+    let total = tradeoff::settings(scene.max_depth).len() + 1;
+    let bar = std::io::stderr().is_terminal().then(|| ProgressBar::new(total as u64));
+    let measured = tradeoff::run(scene, args.runs as usize, |setting| {
+        if let Some(bar) = &bar {
+            bar.set_message(describe(setting.sampling));
+            bar.inc(1);
+        }
+    });
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    let front = tradeoff::pareto_front(&measured.rows);
+    plots(scene, args, &measured, &front)?;
+    let (nx, ny) = (scene.camera.nx, scene.camera.ny);
+    if args.json {
+        let doc = json!({
+            "scene": args.scene.display().to_string(),
+            "size": if V::DIM == 2 { json!([nx]) } else { json!([nx, ny]) },
+            "threads": threads,
+            "runs": measured.runs,
+            "errors_on": "linear RGB clamped to [0, 1]",
+            "reference": row_json(&measured.reference),
+            "rows": measured.rows.iter().map(row_json).collect::<Vec<_>>(),
+            "pareto": front,
+        });
+        print_out(&format!("{doc:#}\n"));
+    } else {
+        print_out(&table(scene, args, threads, &measured, &front));
+    }
+    Ok(())
+}
+
+/// A sampling mode in a few words: `center`, `corners`, `adaptive 0.1, K = 2`.
+fn describe(sampling: Sampling) -> String {
+    match sampling {
+        Sampling::Adaptive { threshold, max_level } => format!("adaptive {threshold}, K = {max_level}"),
+        other => other.name().to_owned(),
+    }
+}
+
+fn row_json(m: &Measured) -> Value {
+    let s = m.setting;
+    let sampling = match s.sampling {
+        Sampling::Adaptive { threshold, max_level } => {
+            json!({"mode": "adaptive", "threshold": whitted::doc::float(threshold), "max_level": max_level})
+        }
+        other => json!({"mode": other.name()}),
+    };
+    let r = m.stats.rays;
+    let t = m.stats.tests;
+    let per_pixel = |n: u64| n as f64 / m.pixels.max(1) as f64;
+    json!({
+        "sampling": sampling,
+        "max_depth": s.depth,
+        "accel": s.accel.name(),
+        "seconds": m.seconds,
+        "pixels": m.pixels,
+        "rays": {"primary": r.primary, "reflected": r.reflected, "transmitted": r.transmitted,
+                 "shadow": r.shadow, "total": r.total()},
+        "rays_per_pixel": {"primary": per_pixel(r.primary), "reflected": per_pixel(r.reflected),
+                           "transmitted": per_pixel(r.transmitted), "shadow": per_pixel(r.shadow),
+                           "total": m.rays_per_pixel()},
+        "tests": {"object": t.object, "bound": t.bound, "node": t.node, "voxel": t.voxel},
+        "tests_per_ray": m.tests_per_ray(),
+        "rmse": m.error.rmse,
+        "max_error": m.error.max,
+        "off_share": m.error.off,
+    })
+}
+
+fn table<V: Planar>(
+    scene: &Scene<V>,
+    args: &TradeoffArgs,
+    threads: usize,
+    measured: &Tradeoff,
+    front: &[usize],
+) -> String {
+    let cam = &scene.camera;
+    let size = if V::DIM == 2 { format!("{}", cam.nx) } else { format!("{}x{}", cam.nx, cam.ny) };
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "What accuracy costs: {} at {size}, {threads} thread(s), median of {} render(s) a setting.\n\
+         Error against the reference (adaptive, threshold 0, K = 3, max_depth {REFERENCE_DEPTH}) on the \
+         linear colours clamped to [0, 1]; Pareto: on the front of time against RMSE.\n",
+        args.scene.display(),
+        measured.runs,
+    );
+    let _ = writeln!(
+        out,
+        "| sampling | max_depth | accel | time (ms) | rays/pixel | primary | reflected | transmitted | shadow | tests/ray | RMSE | max error | off > 1/255 | Pareto |"
+    );
+    let _ = writeln!(out, "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    let row = |out: &mut String, m: &Measured, pareto: &str| {
+        let r = m.stats.rays;
+        let per_pixel = |n: u64| n as f64 / m.pixels.max(1) as f64;
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {:.3} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.5} | {:.4} | {:.2} % | {pareto} |",
+            describe(m.setting.sampling),
+            m.setting.depth,
+            m.setting.accel.name(),
+            1e3 * m.seconds,
+            m.rays_per_pixel(),
+            per_pixel(r.primary),
+            per_pixel(r.reflected),
+            per_pixel(r.transmitted),
+            per_pixel(r.shadow),
+            m.tests_per_ray(),
+            m.error.rmse,
+            m.error.max,
+            100.0 * m.error.off,
+        );
+    };
+    for (i, m) in measured.rows.iter().enumerate() {
+        row(&mut out, m, if front.contains(&i) { "yes" } else { "" });
+    }
+    row(&mut out, &measured.reference, "reference");
+    out
+}
+
+/// The plots of `--out DIR`: `tradeoff.png`/`.svg` (error against time, the Pareto front) and
+/// `heat-map.png`/`.svg` (the rays per pixel of adaptive sampling at threshold 0.1, K = 2, the
+/// default of `whitted figure adaptive`, where the counts vary with the image).
+fn plots<V: Planar>(
+    scene: &Scene<V>,
+    args: &TradeoffArgs,
+    measured: &Tradeoff,
+    front: &[usize],
+) -> Result<(), Failure> {
+    let Some(dir) = &args.out else { return Ok(()) };
+    std::fs::create_dir_all(dir)
+        .map_err(|e| Failure::other(format!("{}: cannot create the folder: {e}", dir.display())))?;
+    let (width, height) = canvas(None);
+    let opts = Options { lang: args.lang.lang(), width, height };
+    let name = scene_name(&args.scene);
+    let plot =
+        tradeoff_plot::draw(measured, front, &name, &opts).map_err(|e| Failure::other(e.to_string()))?;
+    let heat = figure_in(
+        scene,
+        &name,
+        &Request {
+            kind: FigureKind::HeatMap,
+            pixel: None,
+            ray: None,
+            tracing: Tracing {
+                depth: None,
+                sampling: Sampling::Adaptive { threshold: 0.1, max_level: 2 },
+                accel: AccelOptions::of(AccelKind::Bvh),
+            },
+            opts,
+        },
+    )?;
+    for (stem, drawing) in [("tradeoff", &plot), ("heat-map", &heat)] {
+        for format in [Format::Png, Format::Svg] {
+            let ext = if format == Format::Png { "png" } else { "svg" };
+            write_file(&dir.join(format!("{stem}.{ext}")), &format.encode(drawing)?)?;
+        }
+    }
+    Ok(())
+}
