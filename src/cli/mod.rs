@@ -88,6 +88,15 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
     std::fs::write(path, bytes).map_err(|e| Failure::other(format!("{}: cannot write: {e}", path.display())))
 }
 
+/// The worker threads of `--threads` (default: rayon's, one per core).
+pub fn thread_pool(threads: Option<u32>) -> Result<rayon::ThreadPool, Failure> {
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = threads {
+        builder = builder.num_threads(n as usize);
+    }
+    builder.build().map_err(|e| Failure::other(format!("cannot start the worker threads: {e}")))
+}
+
 /// Prints to stdout; a closed pipe (`| head`) is not an error.
 pub fn print_out(text: &str) {
     use std::io::Write;

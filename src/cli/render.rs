@@ -4,7 +4,7 @@
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::{default_output, load_scene, parse, print_out, write_file, Failure};
+use super::{default_output, load_scene, parse, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
@@ -67,13 +67,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let start = Instant::now();
     let scene = load_scene(&args.scene)?;
     let load_seconds = start.elapsed().as_secs_f64();
-    let pool = {
-        let mut b = rayon::ThreadPoolBuilder::new();
-        if let Some(n) = args.threads {
-            b = b.num_threads(n as usize);
-        }
-        b.build().map_err(|e| Failure::other(format!("cannot start the worker threads: {e}")))?
-    };
+    let pool = thread_pool(args.threads)?;
     let threads = pool.current_num_threads();
     let dim = match &scene {
         AnyScene::Flat(_) => 2,

@@ -7,7 +7,7 @@
 use super::figure::{canvas, figure_in, scene_name, Format, Request};
 use super::render::resize;
 use super::trace::LangArg;
-use super::{load_scene, parse, print_out, write_file, Failure};
+use super::{load_scene, parse, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::ProgressBar;
 use serde_json::{json, Value};
@@ -51,13 +51,7 @@ pub struct TradeoffArgs {
 
 /// Runs `whitted tradeoff`.
 pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
-    let pool = {
-        let mut b = rayon::ThreadPoolBuilder::new();
-        if let Some(n) = args.threads {
-            b = b.num_threads(n as usize);
-        }
-        b.build().map_err(|e| Failure::other(format!("cannot start the worker threads: {e}")))?
-    };
+    let pool = thread_pool(args.threads)?;
     let threads = pool.current_num_threads();
     match load_scene(&args.scene)? {
         AnyScene::Flat(mut s) => {
