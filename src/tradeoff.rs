@@ -140,16 +140,19 @@ pub struct Tradeoff {
 fn measure<V: Dim>(scene: &Scene<V>, setting: Setting, runs: usize) -> (f64, Rendered) {
     let accel = Accel::build_with(scene, &AccelOptions::of(setting.accel));
     let config = RenderConfig { sampling: setting.sampling, ..RenderConfig::centers(setting.depth) };
-    let mut times = Vec::with_capacity(runs.max(1));
-    let mut last = None;
-    for _ in 0..runs.max(1) {
+    let timed = || {
         let start = Instant::now();
         let rendered = render(scene, &accel, &config);
-        times.push(start.elapsed().as_secs_f64());
-        last = Some(rendered);
+        (start.elapsed().as_secs_f64(), rendered)
+    };
+    let (first, mut rendered) = timed();
+    let mut times = vec![first];
+    for _ in 1..runs {
+        let (seconds, again) = timed();
+        times.push(seconds);
+        rendered = again;
     }
     times.sort_by(f64::total_cmp);
-    let rendered = last.unwrap_or_else(|| render(scene, &accel, &config));
     (median(&times), rendered)
 }
 

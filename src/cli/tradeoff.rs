@@ -9,7 +9,7 @@ use super::render::resize;
 use super::trace::LangArg;
 use super::{load_scene, parse, print_out, thread_pool, write_file, Failure};
 use clap::Args;
-use indicatif::ProgressBar;
+use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
 use std::fmt::Write;
 use std::io::IsTerminal;
@@ -67,7 +67,15 @@ pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
 
 fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> Result<(), Failure> {
     let total = tradeoff::settings(scene.max_depth).len() + 1;
-    let bar = std::io::stderr().is_terminal().then(|| ProgressBar::new(total as u64));
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let bar = ProgressBar::new(total as u64);
+        if let Ok(style) =
+            ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} settings: {msg}")
+        {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar
+    });
     let measured = tradeoff::run(scene, args.runs as usize, |setting| {
         if let Some(bar) = &bar {
             bar.set_message(describe(setting.sampling));
