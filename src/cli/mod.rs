@@ -9,6 +9,7 @@ mod lessons;
 mod parse;
 mod render;
 mod sampling;
+mod step;
 mod trace;
 mod tradeoff;
 
@@ -33,6 +34,9 @@ enum Command {
     Render(render::RenderArgs),
     /// Trace one pixel (or one ray) and tell every step, or print the trace document with --json.
     Trace(trace::TraceArgs),
+    /// Step through one pixel's (or ray's) narrated trace: Enter for the next step, b back, a
+    /// number to jump, a for all the rest, q to quit.
+    Step(step::StepArgs),
     /// Validate a scene and say what it models; every error at once (exit code 2).
     Check(check::CheckArgs),
     /// Draw one diagram of the lecture from a recorded trace, as PNG or SVG (--list names them).
@@ -117,6 +121,7 @@ pub fn main() -> u8 {
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Trace(args) => trace::run(&args),
+        Command::Step(args) => step::run(&args),
         Command::Check(args) => check::run(&args),
         Command::Figure(args) => figure::run(&args),
         Command::Lessons(args) => lessons::run(&args),

@@ -38,9 +38,10 @@ impl LangArg {
     }
 }
 
-/// Options of `whitted trace`.
+/// What `trace` and `step` trace and how they tell it: the scene, the pixel or ray, the depth,
+/// the language, the sampling and the structure.
 #[derive(Args, Debug)]
-pub struct TraceArgs {
+pub struct TraceWhat {
     /// The scene file (JSON).
     scene: PathBuf,
     /// The pixel: I,J (column from the left, row from the BOTTOM); in 2D, I (or I,0).
@@ -49,9 +50,6 @@ pub struct TraceArgs {
     /// A ray given by hand: OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D); traced as a primary ray.
     #[arg(long, value_parser = parse::ray)]
     ray: Option<(Vec<f64>, Vec<f64>)>,
-    /// Print the trace document (JSON) instead of the narration.
-    #[arg(long)]
-    json: bool,
     /// Override the scene's max_depth (0 = ray casting).
     #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
     depth: Option<u32>,
@@ -65,11 +63,39 @@ pub struct TraceArgs {
     accel: AccelArgs,
 }
 
+impl TraceWhat {
+    /// The narration's language.
+    pub fn lang(&self) -> Lang {
+        self.lang.lang()
+    }
+}
+
+/// Options of `whitted trace`.
+#[derive(Args, Debug)]
+pub struct TraceArgs {
+    #[command(flatten)]
+    what: TraceWhat,
+    /// Print the trace document (JSON) instead of the narration.
+    #[arg(long)]
+    json: bool,
+}
+
 /// Runs `whitted trace`.
 pub fn run(args: &TraceArgs) -> Result<(), Failure> {
-    match load_scene(&args.scene)? {
-        AnyScene::Flat(s) => trace_scene(&s, args),
-        AnyScene::Space(s) => trace_scene(&s, args),
+    print_out(&traced(&args.what, args.json)?);
+    Ok(())
+}
+
+/// The numbered narration of what `what` asks for (`whitted step` shows it a step at a time).
+pub fn narration(what: &TraceWhat) -> Result<String, Failure> {
+    traced(what, false)
+}
+
+/// The trace document (`json`) or the narration.
+fn traced(what: &TraceWhat, json: bool) -> Result<String, Failure> {
+    match load_scene(&what.scene)? {
+        AnyScene::Flat(s) => trace_scene(&s, what, json),
+        AnyScene::Space(s) => trace_scene(&s, what, json),
     }
 }
 
@@ -117,7 +143,7 @@ pub fn target<V: Dim>(
     Ok((Ray::new(origin, dir), TraceTarget { pixel: None, uv: None }))
 }
 
-fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure> {
+fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceWhat, json: bool) -> Result<String, Failure> {
     let sampling = args.sampling.sampling()?;
     let (ray, target) = target(scene, args.pixel, args.ray.as_ref())?;
     let options = args.accel.options(V::DIM).map_err(Failure::input)?;
@@ -126,29 +152,25 @@ fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceArgs) -> Result<(), Failure
     if let Some(d) = args.depth {
         tracer.max_depth = d;
     }
+    let pretty = |doc: &serde_json::Value| {
+        serde_json::to_string_pretty(doc).map(|t| t + "\n").map_err(|e| Failure::other(e.to_string()))
+    };
     if sampling != Sampling::Center {
         let Some(pixel) = target.pixel.clone() else {
             return Err(Failure::input("--aa corners|adaptive samples a pixel: give --pixel, not --ray"));
         };
         let traced = trace_pixel(&mut tracer, sampling, pixel[0], pixel.get(1).copied().unwrap_or(0));
-        let text = if args.json {
-            let doc = sampled_document(scene, &tracer.recorder, &tracer.stats, &target, sampling, &traced);
-            serde_json::to_string_pretty(&doc).map_err(|e| Failure::other(e.to_string()))? + "\n"
+        return if json {
+            pretty(&sampled_document(scene, &tracer.recorder, &tracer.stats, &target, sampling, &traced))
         } else {
-            narrate_samples(&target, sampling, &traced, &tracer.stats, args.lang.lang())
+            Ok(narrate_samples(&target, sampling, &traced, &tracer.stats, args.lang.lang()))
         };
-        print_out(&text);
-        return Ok(());
     }
     let uv = target.uv.clone().unwrap_or_default();
     let color = tracer.trace_primary(&ray, &uv);
-    if args.json {
-        let doc = trace_document(scene, &tracer.recorder, &tracer.stats, &target, color);
-        let text = serde_json::to_string_pretty(&doc).map_err(|e| Failure::other(e.to_string()))?;
-        print_out(&format!("{text}\n"));
+    if json {
+        pretty(&trace_document(scene, &tracer.recorder, &tracer.stats, &target, color))
     } else {
-        let lang = args.lang.lang();
-        print_out(&narrate(scene, &tracer.recorder, &tracer.stats, &target, tracer.max_depth, lang));
+        Ok(narrate(scene, &tracer.recorder, &tracer.stats, &target, tracer.max_depth, args.lang.lang()))
     }
-    Ok(())
 }

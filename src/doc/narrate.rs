@@ -569,3 +569,43 @@ pub fn narrate<V: Dim>(
     );
     w.out
 }
+
+/// A narration cut into its numbered steps: each from its `k. title` line (k = 1, 2, … in turn,
+/// indented by a multiple of 3 spaces, one level of nesting each) up to the next, its detail lines
+/// (indented 5 more) included, without the final newline.
+#[must_use]
+pub fn steps(narration: &str) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for line in narration.lines() {
+        let next = format!("{}. ", out.len() + 1);
+        let body = line.trim_start_matches(' ');
+        let indent = line.len() - body.len();
+        if (body.starts_with(&next) && indent % 3 == 0) || out.is_empty() {
+            out.push(line.to_owned());
+        } else if let Some(last) = out.last_mut() {
+            last.push('\n');
+            last.push_str(line);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_narration_is_cut_at_its_numbered_steps_only() {
+        let text = "1. Pixel\n     u = 0.5\n2. Ray\n   3. Test\n        roots t = 2. 5\n        4. not a step\n   4. Hit\n";
+        assert_eq!(
+            steps(text),
+            vec![
+                "1. Pixel\n     u = 0.5",
+                "2. Ray",
+                "   3. Test\n        roots t = 2. 5\n        4. not a step",
+                "   4. Hit"
+            ]
+        );
+        assert!(steps("").is_empty());
+    }
+}

@@ -186,3 +186,33 @@ fn tradeoff_measures_every_setting_against_the_reference() {
     assert_eq!(out.lines().filter(|l| l.starts_with("| ")).count(), 1 + 19 + 1);
     assert!(out.contains("| reference |"));
 }
+
+#[test]
+fn step_shows_the_trace_narration_a_step_at_a_time() {
+    use std::io::Write;
+    let glass = fixture("glass.json");
+    let (_, narration, _) = whitted(&["trace", &glass, "--pixel", "4,3"]);
+    let run = |input: &str| {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_whitted"))
+            .args(["step", &glass, "--pixel", "4,3"])
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
+        let out = child.wait_with_output().unwrap();
+        (out.status.code(), String::from_utf8_lossy(&out.stdout).into_owned())
+    };
+    // Enter twice: steps 1, 2 and 3, no more; then the end of input ends the session.
+    let (code, out) = run("\n\n");
+    assert_eq!(code, Some(0));
+    assert!(out.contains("1. Pixel (i, j) = (4, 3)") && out.contains("\n3. primary ray"), "{out}");
+    assert!(!out.contains("\n   4. "), "{out}");
+    // `a`: the first step, then all the rest: the whole narration, every line of it.
+    let (_, all) = run("a\n");
+    for line in narration.lines() {
+        assert!(all.contains(line), "missing {line}");
+    }
+    let (code, _, err) = whitted(&["step", &glass, "--pixel", "9,9"]);
+    assert_eq!(code, 2, "{err}");
+}
