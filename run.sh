@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The main job: render and trace the example scenes into out/ (English and Romanian narrations)
-# and draw every lesson's figures (lessons/) into out/en/ and out/ro/.
+# The main job: render and trace the example scenes into out/ (English and Romanian narrations),
+# draw every lesson's figures (lessons/) into out/en/ and out/ro/, and measure what accuracy
+# costs on Whitted's scene (out/tradeoff.md, out/tradeoff/).
 set -euo pipefail
 cd "$(dirname "$0")"
 cargo build --release --quiet
@@ -18,4 +19,6 @@ done
 # Every lesson's figures, PNG and SVG, in English (out/en/) and Romanian (out/ro/), with the
 # pages out/index.html and out/ro/index.html.
 "$bin" lessons --out out
+# What accuracy costs on Whitted's scene: the table, and its plots in out/tradeoff/.
+"$bin" tradeoff scenes/whitted.json --out out/tradeoff > out/tradeoff.md
 echo "wrote out/"
