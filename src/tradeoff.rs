@@ -62,6 +62,28 @@ pub fn settings(depth: u32) -> Vec<Setting> {
     out
 }
 
+/// A sampling mode in a few words: `center`, `corners`, `adaptive 0.1, K = 2`.
+#[must_use]
+pub fn sampling_name(sampling: Sampling) -> String {
+    match sampling {
+        Sampling::Adaptive { threshold, max_level } => format!("adaptive {threshold}, K = {max_level}"),
+        other => other.name().to_owned(),
+    }
+}
+
+/// A setting by what it changes from the scene's render `base`: `max_depth 3`, `grid`, or its
+/// sampling ([`sampling_name`]).
+#[must_use]
+pub fn setting_name(setting: &Setting, base: &Setting) -> String {
+    if setting.depth != base.depth {
+        format!("max_depth {}", setting.depth)
+    } else if setting.accel != base.accel {
+        setting.accel.name().to_owned()
+    } else {
+        sampling_name(setting.sampling)
+    }
+}
+
 /// How an image differs from the reference (clamped linear colours).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ImageError {

@@ -21,7 +21,7 @@ use whitted::figure::tradeoff as tradeoff_plot;
 use whitted::figure::{FigureKind, Options};
 use whitted::sample::Sampling;
 use whitted::scene::{AnyScene, Scene};
-use whitted::tradeoff::{self, Measured, Tradeoff, REFERENCE_DEPTH};
+use whitted::tradeoff::{self, Measured, Tradeoff, REFERENCE_DEPTH, REFERENCE_SAMPLING};
 
 /// Options of `whitted tradeoff`.
 #[derive(Args, Debug)]
@@ -66,7 +66,8 @@ pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
 }
 
 fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> Result<(), Failure> {
-    let total = tradeoff::settings(scene.max_depth).len() + 1;
+    let settings = tradeoff::settings(scene.max_depth);
+    let (total, base) = (settings.len() + 1, settings[0]);
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = ProgressBar::new(total as u64);
         if let Ok(style) =
@@ -78,7 +79,12 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
     });
     let measured = tradeoff::run(scene, args.runs as usize, |setting| {
         if let Some(bar) = &bar {
-            bar.set_message(describe(setting.sampling));
+            let reference = setting.sampling == REFERENCE_SAMPLING && setting.depth == REFERENCE_DEPTH;
+            bar.set_message(if reference {
+                "reference".to_owned()
+            } else {
+                tradeoff::setting_name(setting, &base)
+            });
             bar.inc(1);
         }
     });
@@ -104,14 +110,6 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
         print_out(&table(scene, args, threads, &measured, &front));
     }
     Ok(())
-}
-
-/// A sampling mode in a few words: `center`, `corners`, `adaptive 0.1, K = 2`.
-fn describe(sampling: Sampling) -> String {
-    match sampling {
-        Sampling::Adaptive { threshold, max_level } => format!("adaptive {threshold}, K = {max_level}"),
-        other => other.name().to_owned(),
-    }
 }
 
 fn row_json(m: &Measured) -> Value {
@@ -173,7 +171,7 @@ fn table<V: Planar>(
         let _ = writeln!(
             out,
             "| {} | {} | {} | {:.3} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.5} | {:.4} | {:.2} % | {pareto} |",
-            describe(m.setting.sampling),
+            tradeoff::sampling_name(m.setting.sampling),
             m.setting.depth,
             m.setting.accel.name(),
             1e3 * m.seconds,

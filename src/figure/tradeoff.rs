@@ -10,8 +10,7 @@ use crate::figure::labels::{escape, Label};
 use crate::figure::parts::num;
 use crate::figure::style::{self, Rgba, TextSize};
 use crate::figure::{FigureError, Options};
-use crate::sample::Sampling;
-use crate::tradeoff::{Measured, Setting, Tradeoff};
+use crate::tradeoff::{setting_name, Measured, Setting, Tradeoff};
 
 /// The three sweeps, each with its colour: sampling modes, depths, structures.
 const SWEEPS: [(Label, Rgba); 3] = [
@@ -32,23 +31,6 @@ fn sweep(setting: &Setting, base: &Setting) -> (Label, Rgba) {
         SWEEPS[2]
     } else {
         SWEEPS[0]
-    }
-}
-
-/// A setting in a few words: `center`, `corners`, `adaptive 0.1, K = 2`, `depth 3`, `grid`.
-#[must_use]
-pub fn setting_name(setting: &Setting, base: &Setting) -> String {
-    if setting.depth != base.depth {
-        format!("max_depth {}", setting.depth)
-    } else if setting.accel != base.accel {
-        setting.accel.name().to_owned()
-    } else {
-        match setting.sampling {
-            Sampling::Adaptive { threshold, max_level } => {
-                format!("adaptive {}, K = {max_level}", num(threshold))
-            }
-            other => other.name().to_owned(),
-        }
     }
 }
 
