@@ -92,7 +92,6 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
         bar.finish_and_clear();
     }
     let front = tradeoff::pareto_front(&measured.rows);
-    plots(scene, args, &measured, &front)?;
     let (nx, ny) = (scene.camera.nx, scene.camera.ny);
     if args.json {
         let doc = json!({
@@ -109,7 +108,7 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
     } else {
         print_out(&table(scene, args, threads, &measured, &front));
     }
-    Ok(())
+    plots(scene, args, &measured, &front)
 }
 
 fn row_json(m: &Measured) -> Value {
@@ -208,8 +207,15 @@ fn plots<V: Planar>(
     let (width, height) = canvas(None);
     let opts = Options { lang: args.lang.lang(), width, height };
     let name = scene_name(&args.scene);
-    let plot =
-        tradeoff_plot::draw(measured, front, &name, &opts).map_err(|e| Failure::other(e.to_string()))?;
+    // A scene whose every image equals the reference (nothing but background, say) has no
+    // point to plot: the table says so, and only the heat map is drawn.
+    let plot = match tradeoff_plot::draw(measured, front, &name, &opts) {
+        Ok(plot) => Some(plot),
+        Err(e) => {
+            eprintln!("whitted tradeoff: no plot of error against time: {e}");
+            None
+        }
+    };
     let heat = figure_in(
         scene,
         &name,
@@ -225,7 +231,8 @@ fn plots<V: Planar>(
             opts,
         },
     )?;
-    for (stem, drawing) in [("tradeoff", &plot), ("heat-map", &heat)] {
+    for (stem, drawing) in [("tradeoff", plot.as_ref()), ("heat-map", Some(&heat))] {
+        let Some(drawing) = drawing else { continue };
         for format in [Format::Png, Format::Svg] {
             let ext = if format == Format::Png { "png" } else { "svg" };
             write_file(&dir.join(format!("{stem}.{ext}")), &format.encode(drawing)?)?;

@@ -180,6 +180,19 @@ fn tradeoff_measures_every_setting_against_the_reference() {
         let bytes = std::fs::read(dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
         assert!(bytes.len() > 1000, "{file}");
     }
+    // A scene of nothing but background: every image equals the reference, so there is no
+    // error to plot; the table still comes, and the heat map.
+    let empty = scene_file(
+        "empty.json",
+        r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [4,3]}}"#,
+    );
+    let empty_dir = dir.join("empty");
+    let (code, out, err) =
+        whitted(&["tradeoff", &empty, "--runs", "1", "--out", &empty_dir.display().to_string()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("no plot"), "{err}");
+    assert!(out.contains("| reference |"));
+    assert!(empty_dir.join("heat-map.png").exists() && !empty_dir.join("tradeoff.png").exists());
     // Without --json: the Markdown table, a row per setting and the reference.
     let (code, out, err) = whitted(&["tradeoff", &fixture("glass.json"), "--runs", "1"]);
     assert_eq!(code, 0, "{err}");
