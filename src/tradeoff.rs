@@ -71,16 +71,39 @@ pub fn sampling_name(sampling: Sampling) -> String {
     }
 }
 
+/// Which of the three sweeps a setting belongs to: what it changes from the scene's render.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sweep {
+    /// The sampling mode (the scene's render itself belongs here).
+    Sampling,
+    /// The `max_depth`.
+    Depth,
+    /// The acceleration structure.
+    Accel,
+}
+
+impl Sweep {
+    /// The sweep of `setting`, from how it differs from the scene's render `base`.
+    #[must_use]
+    pub fn of(setting: &Setting, base: &Setting) -> Self {
+        if setting.depth != base.depth {
+            Self::Depth
+        } else if setting.accel != base.accel {
+            Self::Accel
+        } else {
+            Self::Sampling
+        }
+    }
+}
+
 /// A setting by what it changes from the scene's render `base`: `max_depth 3`, `grid`, or its
 /// sampling ([`sampling_name`]).
 #[must_use]
 pub fn setting_name(setting: &Setting, base: &Setting) -> String {
-    if setting.depth != base.depth {
-        format!("max_depth {}", setting.depth)
-    } else if setting.accel != base.accel {
-        setting.accel.name().to_owned()
-    } else {
-        sampling_name(setting.sampling)
+    match Sweep::of(setting, base) {
+        Sweep::Depth => format!("max_depth {}", setting.depth),
+        Sweep::Accel => setting.accel.name().to_owned(),
+        Sweep::Sampling => sampling_name(setting.sampling),
     }
 }
 
@@ -133,10 +156,15 @@ pub struct Measured {
 }
 
 impl Measured {
+    /// `n` (rays of some kind) per computed pixel.
+    #[must_use]
+    pub fn per_pixel(&self, n: u64) -> f64 {
+        n as f64 / self.pixels.max(1) as f64
+    }
     /// Rays of every kind per computed pixel.
     #[must_use]
     pub fn rays_per_pixel(&self) -> f64 {
-        self.stats.rays.total() as f64 / self.pixels.max(1) as f64
+        self.per_pixel(self.stats.rays.total())
     }
     /// Intersection tests (objects, bounding volumes, nodes, cells) per ray.
     #[must_use]

@@ -15,6 +15,7 @@ use std::fmt::Write;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use whitted::accel::{AccelKind, AccelOptions};
+use whitted::doc::{float, stats};
 use whitted::figure::plane::Planar;
 use whitted::figure::source::Tracing;
 use whitted::figure::tradeoff as tradeoff_plot;
@@ -113,27 +114,26 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
 
 fn row_json(m: &Measured) -> Value {
     let s = m.setting;
-    let sampling = match s.sampling {
-        Sampling::Adaptive { threshold, max_level } => {
-            json!({"mode": "adaptive", "threshold": whitted::doc::float(threshold), "max_level": max_level})
-        }
-        other => json!({"mode": other.name()}),
-    };
+    // The keys of `render --json` and of a sampled trace document: `aa`, then its parameters.
+    let mut sampling = json!({"aa": s.sampling.name()});
+    if let Sampling::Adaptive { threshold, max_level } = s.sampling {
+        sampling["threshold"] = float(threshold);
+        sampling["max_level"] = json!(max_level);
+    }
     let r = m.stats.rays;
-    let t = m.stats.tests;
-    let per_pixel = |n: u64| n as f64 / m.pixels.max(1) as f64;
+    let mut counts = stats(&m.stats);
+    counts["rays"]["total"] = json!(r.total());
     json!({
         "sampling": sampling,
         "max_depth": s.depth,
         "accel": s.accel.name(),
         "seconds": m.seconds,
         "pixels": m.pixels,
-        "rays": {"primary": r.primary, "reflected": r.reflected, "transmitted": r.transmitted,
-                 "shadow": r.shadow, "total": r.total()},
-        "rays_per_pixel": {"primary": per_pixel(r.primary), "reflected": per_pixel(r.reflected),
-                           "transmitted": per_pixel(r.transmitted), "shadow": per_pixel(r.shadow),
+        "rays": counts["rays"],
+        "rays_per_pixel": {"primary": m.per_pixel(r.primary), "reflected": m.per_pixel(r.reflected),
+                           "transmitted": m.per_pixel(r.transmitted), "shadow": m.per_pixel(r.shadow),
                            "total": m.rays_per_pixel()},
-        "tests": {"object": t.object, "bound": t.bound, "node": t.node, "voxel": t.voxel},
+        "tests": counts["tests"],
         "tests_per_ray": m.tests_per_ray(),
         "rmse": m.error.rmse,
         "max_error": m.error.max,
@@ -166,7 +166,6 @@ fn table<V: Planar>(
     let _ = writeln!(out, "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
     let row = |out: &mut String, m: &Measured, pareto: &str| {
         let r = m.stats.rays;
-        let per_pixel = |n: u64| n as f64 / m.pixels.max(1) as f64;
         let _ = writeln!(
             out,
             "| {} | {} | {} | {:.3} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.5} | {:.4} | {:.2} % | {pareto} |",
@@ -175,10 +174,10 @@ fn table<V: Planar>(
             m.setting.accel.name(),
             1e3 * m.seconds,
             m.rays_per_pixel(),
-            per_pixel(r.primary),
-            per_pixel(r.reflected),
-            per_pixel(r.transmitted),
-            per_pixel(r.shadow),
+            m.per_pixel(r.primary),
+            m.per_pixel(r.reflected),
+            m.per_pixel(r.transmitted),
+            m.per_pixel(r.shadow),
             m.tests_per_ray(),
             m.error.rmse,
             m.error.max,

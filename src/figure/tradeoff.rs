@@ -10,28 +10,21 @@ use crate::figure::labels::{escape, Label};
 use crate::figure::parts::num;
 use crate::figure::style::{self, Rgba, TextSize};
 use crate::figure::{FigureError, Options};
-use crate::tradeoff::{setting_name, Measured, Setting, Tradeoff};
+use crate::tradeoff::{setting_name, Measured, Sweep, Tradeoff};
 
-/// The three sweeps, each with its colour: sampling modes, depths, structures.
-const SWEEPS: [(Label, Rgba); 3] = [
-    (Label::SweepSampling, style::BLUE),
-    (Label::SweepDepth, style::VERMILLION),
-    (Label::SweepAccel, style::BLUISH_GREEN),
+/// The three sweeps in legend order, each with its name and colour.
+const SWEEPS: [(Sweep, Label, Rgba); 3] = [
+    (Sweep::Sampling, Label::SweepSampling, style::BLUE),
+    (Sweep::Depth, Label::SweepDepth, style::VERMILLION),
+    (Sweep::Accel, Label::SweepAccel, style::BLUISH_GREEN),
 ];
 
 /// The height of the empty band above the plot that holds the legend, in plot heights.
 const LEGEND_BAND: f64 = 0.4;
 
-/// Which sweep a setting belongs to, from how it differs from the scene's render (the first
-/// row, which is the sampling sweep's).
-fn sweep(setting: &Setting, base: &Setting) -> (Label, Rgba) {
-    if setting.depth != base.depth {
-        SWEEPS[1]
-    } else if setting.accel != base.accel {
-        SWEEPS[2]
-    } else {
-        SWEEPS[0]
-    }
+/// The colour of a sweep's points.
+fn colour(sweep: Sweep) -> Rgba {
+    SWEEPS.iter().find(|(s, _, _)| *s == sweep).map_or(style::BLUE, |(_, _, c)| *c)
 }
 
 /// A logarithmic axis over `[lo, hi]` (both > 0), widened to whole decades' 1-2-5 steps.
@@ -171,10 +164,9 @@ pub fn draw(
     }
     for &i in &shown {
         let m = &rows[i];
-        let (_, colour) = sweep(&m.setting, &base);
-        let on_front = front.contains(&i);
-        let radius = if on_front { style::DOT_RADIUS * 1.4 } else { style::DOT_RADIUS };
-        d.marker("setting", at(m), radius, colour, Style::solid(style::WHITE, 2.0));
+        let fill = colour(Sweep::of(&m.setting, &base));
+        let radius = if front.contains(&i) { style::DOT_RADIUS * 1.4 } else { style::DOT_RADIUS };
+        d.marker("setting", at(m), radius, fill, Style::solid(style::WHITE, 2.0));
     }
     // Names for the points of the front, clear of each other.
     for &i in &front {
@@ -187,9 +179,9 @@ pub fn draw(
         );
     }
 
-    for (label, colour) in SWEEPS {
-        if rows.iter().any(|m| sweep(&m.setting, &base).0 == label) {
-            d.legend_entry(t(label), Style::NONE, Sample::Dot(colour));
+    for (sweep, label, fill) in SWEEPS {
+        if rows.iter().any(|m| Sweep::of(&m.setting, &base) == sweep) {
+            d.legend_entry(t(label), Style::NONE, Sample::Dot(fill));
         }
     }
     d.legend_entry(t(Label::ParetoFront), front_style, Sample::Line);

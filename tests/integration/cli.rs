@@ -154,22 +154,22 @@ fn tradeoff_measures_every_setting_against_the_reference() {
     // (8·8 + 1)(6·8 + 1) lattice points over 48 pixels.
     assert_eq!(doc["reference"]["rays"]["primary"], 65 * 49);
     let first = &rows[0];
-    assert_eq!(first["sampling"]["mode"], "center");
+    assert_eq!(first["sampling"]["aa"], "center");
     assert_eq!(first["rays_per_pixel"]["primary"], 1.0);
-    assert_eq!(rows[1]["sampling"]["mode"], "corners");
+    assert_eq!(rows[1]["sampling"]["aa"], "corners");
     assert_eq!(rows[1]["rays_per_pixel"]["primary"], 9.0 * 7.0 / 48.0);
     for row in rows {
         let rmse = row["rmse"].as_f64().unwrap();
         assert!(rmse > 0.0 && rmse <= row["max_error"].as_f64().unwrap(), "{row}");
         // Every structure gives the centre image: the same error.
-        if row["sampling"]["mode"] == "center" && row["max_depth"] == 4 {
+        if row["sampling"]["aa"] == "center" && row["max_depth"] == 4 {
             assert_eq!(row["rmse"], first["rmse"], "{row}");
         }
     }
     // Ray casting (max_depth 0) lacks every reflection and refraction the reference has.
     let depth_error = |d: u64| {
         rows.iter()
-            .find(|r| r["sampling"]["mode"] == "center" && r["max_depth"] == d && r["accel"] == "bvh")
+            .find(|r| r["sampling"]["aa"] == "center" && r["max_depth"] == d && r["accel"] == "bvh")
             .map(|r| r["rmse"].as_f64().unwrap())
             .unwrap()
     };

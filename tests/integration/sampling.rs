@@ -1,5 +1,5 @@
 //! Anti-aliasing (algorithm.md §8; numerics.md H1): exact sample counts of corners and adaptive
-//! sampling, sharing across rows, bands and threads, the area-weighted mean by hand, the trace
+//! sampling, sharing across rows, jobs of rows and threads, the area-weighted mean by hand, the trace
 //! document of a sampled pixel, and the options' validation.
 
 use crate::support::{assert_finite, events, f, fixture, fixture_path, scene2, scene3, whitted};
