@@ -113,6 +113,39 @@ struct Rule<const N: usize> {
 /// offsets in half sides (2D: the first two).
 const CORNERS: [(u32, u32); 4] = [(0, 0), (1, 0), (0, 1), (1, 1)];
 
+/// One read of a split square's point by a child: the point's index `3·gy + gx` in the square's
+/// 3×3 grid, and whether no earlier read (nor the parent's corners) holds it yet.
+#[derive(Clone, Copy)]
+struct Read {
+    point: u32,
+    first: bool,
+}
+
+/// The reads of a split square's children, child by child (lower-left, lower-right, upper-left,
+/// upper-right) and corner by corner, in the order the recursion makes them, decided at compile
+/// time: so a child's corner costs no test of whether a sibling already read it.
+const fn reads<const N: usize>() -> [[Read; N]; N] {
+    let mut held = [false; 9];
+    let mut k = 0;
+    while k < N {
+        held[(6 * CORNERS[k].1 + 2 * CORNERS[k].0) as usize] = true;
+        k += 1;
+    }
+    let mut out = [[Read { point: 0, first: false }; N]; N];
+    let mut child = 0;
+    while child < N {
+        let mut k = 0;
+        while k < N {
+            let point = 3 * (CORNERS[child].1 + CORNERS[k].1) + CORNERS[child].0 + CORNERS[k].0;
+            out[child][k] = Read { point, first: !held[point as usize] };
+            held[point as usize] = true;
+            k += 1;
+        }
+        child += 1;
+    }
+    out
+}
+
 impl<const N: usize> Rule<N> {
     /// The pixel: reads its corners, then subdivides. A pixel that is not split (most of an
     /// image) is the mean of its corners at once when no sink records its square: the same
@@ -129,8 +162,9 @@ impl<const N: usize> Rule<N> {
 
     /// One square whose corners are known: decide, then either the mean of its corners or the
     /// mean of its children. A split square's 3×3 points (2D: 3) hold its corners and, as the
-    /// children read them in order, the 5 (2D: 1) new ones, so a child gets what a sibling read
-    /// without asking the source again (which still sees it: [`SampleSource::reuse`]).
+    /// children read them in order ([`reads`]), the 5 (2D: 1) new ones, so a child gets what a
+    /// sibling read without asking the source again (which still sees it:
+    /// [`SampleSource::reuse`]).
     fn square<S: SquareSink>(
         self,
         source: &mut impl SampleSource,
@@ -146,27 +180,25 @@ impl<const N: usize> Rule<N> {
         let handle = sink.open(&Square { a, b, side, level, spread, split });
         let color = if split {
             let half = side / 2;
-            let mut points: [[Option<Rgb>; 3]; 3] = [[None; 3]; 3];
+            // The square's 3×3 points (2D: 3), row by row; READS says which are read first.
+            let mut points = [Rgb::BLACK; 9];
             for (k, (dx, dy)) in CORNERS[..N].iter().enumerate() {
-                points[2 * *dy as usize][2 * *dx as usize] = Some(corners[k]);
+                points[(6 * dy + 2 * dx) as usize] = corners[k];
             }
+            let reads = const { reads::<N>() };
             let mut children = [Rgb::BLACK; N];
             for (child, (cx, cy)) in CORNERS[..N].iter().enumerate() {
                 let mut own = [Rgb::BLACK; N];
-                for (k, (dx, dy)) in CORNERS[..N].iter().enumerate() {
-                    let (gx, gy) = (cx + dx, cy + dy);
+                for (k, read) in reads[child].iter().enumerate() {
+                    let (gx, gy) = (read.point % 3, read.point / 3);
                     let (x, y) = (a + gx * half, b + gy * half);
-                    let slot = &mut points[gy as usize][gx as usize];
-                    own[k] = match *slot {
-                        Some(c) => {
-                            source.reuse(x, y, c);
-                            c
-                        }
-                        None => {
-                            let c = source.color(x, y);
-                            *slot = Some(c);
-                            c
-                        }
+                    let slot = &mut points[read.point as usize];
+                    own[k] = if read.first {
+                        *slot = source.color(x, y);
+                        *slot
+                    } else {
+                        source.reuse(x, y, *slot);
+                        *slot
                     };
                 }
                 children[child] =

@@ -40,7 +40,7 @@ impl<V: Dim, R: Recorder<V>> Tracer<'_, V, R> {
             // H = normalize(L + V); undefined when L = −V, and then there is no highlight. With
             // ks = 0 the term is 0 whatever (N·H)^n ∈ [0, 1], so it is not computed.
             let highlight = match (material.ks > 0.0).then(|| (l + view).try_unit()).flatten() {
-                Some(h) => at.n_f.dot(h).max(0.0).powf(material.n),
+                Some(h) => material.highlight(at.n_f.dot(h)),
                 None => 0.0,
             };
             let specular = light.intensity * (weight * material.ks * highlight);

@@ -137,7 +137,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 "{}: N·H = {}, (N·H)^n = {} (n = {})",
                 name("H", m),
                 num(n_dot_h),
-                num(n_dot_h.max(0.0).powf(material.n)),
+                num(material.highlight(n_dot_h)),
                 num(material.n)
             ));
         }
