@@ -26,7 +26,7 @@ use crate::record::event::{Event, ObjectRef};
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::plane::Plane;
-use crate::shape::{Dim, Facet, Shape, SurfaceHit};
+use crate::shape::{Dim, Facet, Found, Shape, SurfaceHit};
 use crate::trace::stats::Stats;
 use std::cell::RefCell;
 
@@ -316,7 +316,8 @@ pub struct Nearest<'a, V: Dim> {
     /// node and primitive. Kept beside `best` on purpose: reading it out of the `Option` cost
     /// 1.6 % more instructions on mesh-100k (callgrind).
     best_t: f64,
-    best: Option<(Prim, SurfaceHit<V>)>,
+    /// The nearest so far, its surface left to compute where it can wait ([`Found`]).
+    best: Option<(Prim, Found<V>)>,
 }
 
 impl<'a, V: Dim> Nearest<'a, V> {
@@ -328,7 +329,10 @@ impl<'a, V: Dim> Nearest<'a, V> {
     /// The nearest hit found, named as traces name it.
     #[must_use]
     pub fn found(self) -> Option<(ObjectRef, SurfaceHit<V>)> {
-        self.best.map(|(prim, hit)| (object_ref(self.scene, prim), hit))
+        let (scene, ray) = (self.scene, self.ray);
+        self.best.map(|(prim, found)| {
+            (object_ref(scene, prim), scene.objects[prim.object()].shape.surface(ray, found))
+        })
     }
 }
 
@@ -339,8 +343,13 @@ impl<V: Dim> Visitor<V> for Nearest<'_, V> {
     }
     #[inline(always)]
     fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool {
-        let hit = test_prim(self.scene, prim, self.ray, stats, rec);
-        self.offer(prim, hit);
+        let found = if R::ENABLED {
+            test_prim(self.scene, prim, self.ray, stats, rec).map(Found::Hit)
+        } else {
+            stats.tests.object += 1;
+            self.scene.objects[prim.object()].shape.part_found(prim.part(), self.ray)
+        };
+        self.offer(prim, found);
         false
     }
     #[inline(always)]
@@ -351,8 +360,13 @@ impl<V: Dim> Visitor<V> for Nearest<'_, V> {
         stats: &mut Stats,
         rec: &mut R,
     ) -> bool {
-        let hit = counted(self.scene, prim, self.ray, stats, rec, plane.hit(self.ray));
-        self.offer(prim, hit);
+        let found = if R::ENABLED {
+            counted(self.scene, prim, self.ray, stats, rec, plane.hit(self.ray)).map(Found::Hit)
+        } else {
+            stats.tests.object += 1;
+            plane.hit_t(self.ray).map(Found::At)
+        };
+        self.offer(prim, found);
         false
     }
 }
@@ -360,15 +374,16 @@ impl<V: Dim> Visitor<V> for Nearest<'_, V> {
 impl<V: Dim> Nearest<'_, V> {
     /// Keeps `hit` if it is nearer than the best so far.
     #[inline(always)]
-    fn offer(&mut self, prim: Prim, hit: Option<SurfaceHit<V>>) {
-        if let Some(hit) = hit {
+    fn offer(&mut self, prim: Prim, found: Option<Found<V>>) {
+        if let Some(found) = found {
+            let t = found.t();
             // §6: equal t goes to the smaller object, then the smaller triangle.
             #[allow(clippy::float_cmp)] // An exact tie is exactly what the rule is about.
-            let closer = hit.t < self.best_t
-                || (hit.t == self.best_t && self.best.as_ref().is_none_or(|(p, _)| prim < *p));
+            let closer =
+                t < self.best_t || (t == self.best_t && self.best.as_ref().is_none_or(|(p, _)| prim < *p));
             if closer {
-                self.best_t = hit.t;
-                self.best = Some((prim, hit));
+                self.best_t = t;
+                self.best = Some((prim, found));
             }
         }
     }

@@ -47,6 +47,30 @@ pub struct SurfaceHit<V> {
     pub normal: V,
 }
 
+/// What the nearest-hit search keeps of a primitive's hit until it knows the nearest: the whole
+/// hit where finding I and N again would mean testing again (boxes, flat primitives, meshes), and
+/// `t` alone for spheres and planes, whose I and N follow from `t`
+/// ([`Shape::surface`]): a ray that meets the floor and then a sphere in front of it computes
+/// one surface, not two, and the search copies a `t`, not a whole hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Found<V> {
+    /// A sphere's or a plane's hit at this `t`.
+    At(f64),
+    /// The whole hit.
+    Hit(SurfaceHit<V>),
+}
+
+impl<V> Found<V> {
+    /// The hit's distance.
+    #[inline(always)]
+    pub fn t(&self) -> f64 {
+        match self {
+            Self::At(t) => *t,
+            Self::Hit(hit) => hit.t,
+        }
+    }
+}
+
 /// A flat primitive: the dimension-specific part of [`Shape`].
 pub trait Facet<V>: Clone + std::fmt::Debug + Send + Sync + 'static {
     /// The nearest hit with `t > 0`, with the outward normal.
@@ -224,6 +248,27 @@ impl<V: Dim> Shape<V> {
             _ => self.part_hit(k, ray).map(|h| h.t),
         }
     }
+    /// [`Shape::part_hit`] as the nearest-hit search keeps it (see [`Found`]).
+    #[inline(always)]
+    pub fn part_found(&self, k: usize, ray: &Ray<V>) -> Option<Found<V>> {
+        match self {
+            Self::Sphere(s) => s.hit_t(ray).map(Found::At),
+            Self::Plane(p) => p.hit_t(ray).map(Found::At),
+            _ => self.part_hit(k, ray).map(Found::Hit),
+        }
+    }
+    /// The hit that [`Shape::part_found`] found: for `Found::At(t)` the sphere's or plane's
+    /// I and N at `t`, computed as [`Shape::part_hit`] computes them (the same value).
+    #[inline]
+    pub fn surface(&self, ray: &Ray<V>, found: Found<V>) -> SurfaceHit<V> {
+        match (self, found) {
+            (_, Found::Hit(hit)) => hit,
+            (Self::Sphere(s), Found::At(t)) => s.surface_at(ray, t),
+            (Self::Plane(p), Found::At(t)) => p.surface_at(ray, t),
+            // `part_found` gives `At` for spheres and planes only; a bare point stays harmless.
+            (_, Found::At(t)) => SurfaceHit { t, point: ray.at(t), normal: V::ZERO },
+        }
+    }
     /// Every root of part `k`, ascending.
     #[must_use]
     pub fn part_roots(&self, k: usize, ray: &Ray<V>) -> Vec<f64> {
@@ -247,5 +292,81 @@ impl<V: Dim> Shape<V> {
             Self::Mesh(m) => Some(m.id(k)),
             _ => None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::plane::Plane;
+    use crate::shape::sphere::Sphere;
+    use glam::{DVec2, DVec3};
+
+    /// `part_found` then `surface` is `part_hit`, bit for bit, on the shapes that defer their
+    /// surface: the nearest-hit search must not change a hit by keeping only its t.
+    fn found_then_surface_is_the_hit<V: Dim>(shapes: &[Shape<V>], rays: &[Ray<V>]) -> usize {
+        let mut hits = 0;
+        for shape in shapes {
+            for ray in rays {
+                let deferred = shape.part_found(0, ray).map(|f| shape.surface(ray, f));
+                assert_eq!(deferred, shape.part_hit(0, ray), "{shape:?} {ray:?}");
+                hits += usize::from(deferred.is_some());
+            }
+        }
+        hits
+    }
+
+    /// Deterministic directions and origins around the unit cell, with numerics.md's edge cases.
+    fn rays3() -> Vec<Ray<DVec3>> {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+        };
+        let mut rays: Vec<Ray<DVec3>> = (0..400)
+            .filter_map(|_| {
+                let o = DVec3::new(next(), next(), next()) * 3.0;
+                let d = DVec3::new(next(), next(), next()).try_unit()?;
+                Some(Ray::new(o, d))
+            })
+            .collect();
+        // Tangent (B1), from the surface (B1), from the centre, parallel to the plane (C1),
+        // huge and tiny scales (B2, B3).
+        rays.push(Ray::new(DVec3::new(-2.0, 1.0, 0.0), DVec3::X));
+        rays.push(Ray::new(DVec3::new(0.0, 1.0, 0.0), DVec3::X));
+        rays.push(Ray::new(DVec3::ZERO, DVec3::Z));
+        rays.push(Ray::new(DVec3::new(0.0, -1.25, 3.0), DVec3::NEG_Z));
+        rays.push(Ray::new(DVec3::new(0.5, 0.0, 1e8), DVec3::NEG_Z));
+        rays.push(Ray::new(DVec3::new(0.5e-8, 0.0, 0.0), DVec3::NEG_Z));
+        rays
+    }
+
+    #[test]
+    fn deferred_surfaces_equal_the_hits() {
+        let shapes = vec![
+            Shape::Sphere(Sphere { center: DVec3::ZERO, radius: 1.0 }),
+            Shape::Sphere(Sphere { center: DVec3::new(0.45, 0.2, 0.9), radius: 0.75 }),
+            Shape::Sphere(Sphere { center: DVec3::new(0.0, 0.0, -1.0), radius: 1e-8 }),
+            Shape::Plane(Plane { point: DVec3::new(0.0, -1.25, 0.0), normal: DVec3::Y }),
+            Shape::Plane(Plane {
+                point: DVec3::new(0.3, 0.1, -0.2),
+                normal: DVec3::new(1.0, 2.0, 2.0) / 3.0,
+            }),
+        ];
+        let hits = found_then_surface_is_the_hit(&shapes, &rays3());
+        assert!(hits > 300, "{hits} hits: the rays must exercise the hit path");
+        let circle = [
+            Shape::Sphere(Sphere { center: DVec2::new(0.2, -0.1), radius: 0.8 }),
+            Shape::Plane(Plane { point: DVec2::ZERO, normal: DVec2::Y }),
+        ];
+        let rays2: Vec<Ray<DVec2>> = (0..64)
+            .map(|k| {
+                let a = f64::from(k) * 0.02 - 0.6;
+                Ray::new(DVec2::new(-2.0, 0.5 - f64::from(k) * 0.02), DVec2::new(a.cos(), a.sin()))
+            })
+            .collect();
+        assert!(found_then_surface_is_the_hit(&circle, &rays2) > 10);
     }
 }

@@ -27,10 +27,14 @@ impl<V: Vector> Plane<V> {
     /// The hit with `t > 0`; I re-projected by subtracting its signed distance to the plane.
     #[inline]
     pub fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
-        let t = self.hit_t(ray)?;
+        self.hit_t(ray).map(|t| self.surface_at(ray, t))
+    }
+    /// The hit at a `t` that [`Plane::hit_t`] accepted, I re-projected onto the plane.
+    #[inline]
+    pub fn surface_at(&self, ray: &Ray<V>, t: f64) -> SurfaceHit<V> {
         let raw = ray.at(t);
         let point = raw - self.normal * (raw - self.point).dot(self.normal);
-        Some(SurfaceHit { t, point, normal: self.normal })
+        SurfaceHit { t, point, normal: self.normal }
     }
     /// The t of [`Plane::hit`] alone (a shadow ray needs no point).
     #[inline]

@@ -19,12 +19,19 @@ impl<V: Vector> Sphere<V> {
     /// The least root `t > 0` of `|O + t·D − C|² = r²`; I re-projected as `C + r·(I − C)/|I − C|`.
     #[inline]
     pub fn hit(&self, ray: &Ray<V>) -> Option<SurfaceHit<V>> {
-        let (t, radial) = self.crossing(ray)?;
-        let normal = radial.try_unit()?;
-        Some(SurfaceHit { t, point: self.center + normal * self.radius, normal })
+        self.hit_t(ray).map(|t| self.surface_at(ray, t))
     }
-    /// The t of [`Sphere::hit`] without its point and normal (a shadow ray needs only t): the
-    /// same root, refused in the same cases.
+    /// The hit at a `t` that [`Sphere::hit_t`] accepted: `N = (I − C)/|I − C|` for the raw
+    /// `I = O + t·D`, and I re-projected as `C + r·N`.
+    #[inline]
+    pub fn surface_at(&self, ray: &Ray<V>, t: f64) -> SurfaceHit<V> {
+        let radial = ray.at(t) - self.center;
+        // `hit_t` accepted t only where I − C normalises; the fallback is never taken.
+        let normal = radial.try_unit().unwrap_or(radial);
+        SurfaceHit { t, point: self.center + normal * self.radius, normal }
+    }
+    /// The t of [`Sphere::hit`] without its point and normal (a shadow ray needs only t; the
+    /// nearest-hit search computes them once, for the nearest).
     #[inline]
     pub fn hit_t(&self, ray: &Ray<V>) -> Option<f64> {
         let (t, radial) = self.crossing(ray)?;
