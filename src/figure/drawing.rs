@@ -330,9 +330,17 @@ pub struct Text {
     pub size: TextSize,
     /// The weight.
     pub weight: Weight,
+    /// Whether a thin line joins the anchor to the box: set when a label placed with
+    /// [`TextOpts::avoid_overlap_with_leader`] lands farther than [`LEADER_FROM`] from its
+    /// anchor, so that it still points at what it names.
+    pub leader: bool,
     /// Whether a white halo outlines the glyphs so the text reads over lines.
     pub halo: bool,
 }
+
+/// A label placed farther than this many reference pixels from its anchor gets a leader
+/// ([`TextOpts::avoid_overlap_with_leader`]).
+pub const LEADER_FROM: f64 = 30.0;
 
 /// How a label is drawn: built from a named baseline such as [`TextOpts::LABEL`], then adjusted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -351,6 +359,8 @@ pub struct TextOpts {
     pub halo: bool,
     /// Where the label may move when it would overlap an earlier one (see [`Drawing::text`]).
     pub placement: Placement,
+    /// A leader from the anchor when [`Placement::Clear`] moved the label far ([`Text::leader`]).
+    pub leader: bool,
 }
 
 /// How [`Drawing::text`] places a label against the labels already drawn.
@@ -380,6 +390,7 @@ impl TextOpts {
         weight: Weight::Regular,
         halo: true,
         placement: Placement::AsGiven,
+        leader: false,
     };
     /// A secondary note: small, centred, with a halo.
     pub const NOTE: Self = Self { size: TextSize::Small, ..Self::LABEL };
@@ -418,6 +429,13 @@ impl TextOpts {
     #[must_use]
     pub const fn avoid_overlap(self) -> Self {
         Self { placement: Placement::Clear, ..self }
+    }
+    /// Placed clear as [`TextOpts::avoid_overlap`], and joined to its anchor by a leader when it
+    /// lands farther than [`LEADER_FROM`] from it: for names of points in a plot and of objects,
+    /// not for the symbols of a construction, where one more line would read as geometry.
+    #[must_use]
+    pub const fn avoid_overlap_with_leader(self) -> Self {
+        Self { placement: Placement::Clear, leader: true, ..self }
     }
     /// Stacked below the earlier labels it would overlap, no lower than world height `floor`
     /// ([`Placement::StackDown`]).
@@ -624,6 +642,9 @@ pub struct PlacedText {
     pub bbox: PxRect,
     /// Font size in pixels.
     pub size: f64,
+    /// The leader from the anchor to the nearest point of the box (pixels), when the label has
+    /// one ([`Text::leader`]) and the anchor lies outside the box.
+    pub leader: Option<(DVec2, DVec2)>,
 }
 
 /// An arrow laid out in pixels: the shaft to draw and the head to fill.
@@ -830,11 +851,15 @@ impl Drawing {
             align: opts.align,
             size: opts.size,
             weight: opts.weight,
+            leader: false,
             halo: opts.halo,
         };
         match opts.placement {
             Placement::AsGiven => {}
-            Placement::Clear => self.place_clear(&mut label),
+            Placement::Clear => {
+                self.place_clear(&mut label);
+                label.leader = opts.leader && label.offset.length() > LEADER_FROM;
+            }
             Placement::StackDown { floor } => self.place_stacked(&mut label, floor),
         }
         let style = Style { color: opts.color, width: 0.0, dash: None };
@@ -932,7 +957,14 @@ impl Drawing {
             min: DVec2::new(x, baseline - laid.ascent),
             max: DVec2::new(x + laid.width, baseline + laid.descent),
         };
-        PlacedText { origin, bbox, size }
+        let leader = label.leader.then(|| tf.to_px(label.anchor)).and_then(|a| {
+            // The nearest point of the box, a few pixels off it so the line stops short of the glyphs.
+            let on_box = a.clamp(bbox.min, bbox.max);
+            let gap = tf.ref_px(4.0);
+            let length = (on_box - a).length();
+            (length > 2.0 * gap).then(|| (a, a + (on_box - a) * ((length - gap) / length)))
+        });
+        PlacedText { origin, bbox, size, leader }
     }
 
     /// The pixel segments of every stroked item (circles as 48-gons, dots as their boxes'
@@ -1306,6 +1338,37 @@ mod tests {
         for b in &boxes {
             assert!(b.min.y > y || b.max.y < y, "label crosses the ray: {b:?}");
         }
+    }
+
+    #[test]
+    fn a_name_set_far_from_its_anchor_gets_a_leader_to_its_box() {
+        let mut d = Drawing::slide();
+        d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
+        // Three names of one point: the later ones must move away, the last farther than
+        // LEADER_FROM; only labels that ask for a leader get one.
+        for _ in 0..3 {
+            d.text("name", v(0.0, 0.0), "a long name", TextOpts::LABEL.avoid_overlap_with_leader());
+        }
+        d.text("symbol", v(0.0, 0.0), "a long name", TextOpts::LABEL.avoid_overlap());
+        let tf = d.transform();
+        let texts: Vec<&Text> = d
+            .items
+            .iter()
+            .filter_map(|item| if let Shape::Text(t) = &item.shape { Some(t) } else { None })
+            .collect();
+        assert!(!texts[0].leader, "the first name sits where asked");
+        let far = texts[2];
+        assert!(far.leader && far.offset.length() > LEADER_FROM, "{far:?}");
+        let placed = Drawing::place_text(far, &tf);
+        let (from, to) = placed.leader.expect("a leader in pixels");
+        assert_eq!(from, tf.to_px(far.anchor));
+        // It stops just short of the box, on the side facing the anchor.
+        let inside =
+            |r: &PxRect, p: DVec2| r.min.x <= p.x && p.x <= r.max.x && r.min.y <= p.y && p.y <= r.max.y;
+        let near = placed.bbox.inflate(tf.ref_px(4.5));
+        assert!(inside(&near, to) && !inside(&placed.bbox, to), "{to:?} {:?}", placed.bbox);
+        assert!(!texts[3].leader, "a symbol never gets a leader");
+        assert!(Drawing::place_text(texts[3], &tf).leader.is_none());
     }
 
     #[test]

@@ -261,7 +261,7 @@ pub fn draw_objects<V: Planar>(
 pub fn label_objects<V: Planar>(d: &mut Drawing, scene: &Scene<V>, anchors: &[(usize, DVec2)]) {
     for &(index, a) in anchors {
         let name = escape(&scene.object_label(index));
-        let opts = TextOpts::NOTE.color(style::DARK_GREY).avoid_overlap();
+        let opts = TextOpts::NOTE.color(style::DARK_GREY).avoid_overlap_with_leader();
         d.text(&format!("object-name:{index}"), a, &name, opts);
     }
 }

@@ -218,6 +218,11 @@ impl Canvas<'_> {
             }
             Shape::Text(label) => {
                 let placed = Drawing::place_text(label, &tf);
+                if let Some((a, b)) = placed.leader {
+                    if let Some(path) = Self::polyline([a, b], false) {
+                        self.draw_stroke(&path, &style::leader(), true);
+                    }
+                }
                 let halo = label.halo.then(|| tf.ref_px(style::HALO_WIDTH));
                 self.text(&label.text, placed.origin, placed.size, label.weight, style.color, halo);
             }

@@ -234,6 +234,12 @@ pub const fn grid() -> Style {
     Style { color: LIGHT_GREY, width: GRID_WIDTH, dash: None }
 }
 
+/// The stroke of a label's leader (a label moved away from what it names): thin dark grey.
+#[must_use]
+pub const fn leader() -> Style {
+    Style { color: DARK_GREY, width: GRID_WIDTH, dash: None }
+}
+
 /// A solid stroke of `color` at [`CONSTRUCTION_WIDTH`], for outlines of highlights and markers.
 #[must_use]
 pub const fn outline(color: Rgba) -> Style {

@@ -164,6 +164,14 @@ fn shape(out: &mut String, tf: &Transform, style: &Style, shape: &Shape) {
         }
         Shape::Text(label) => {
             let placed = Drawing::place_text(label, tf);
+            if let Some((a, b)) = placed.leader {
+                let pts = points_attr([a, b]);
+                let _ = write!(
+                    out,
+                    "<polyline points=\"{pts}\" fill=\"none\"{}/>",
+                    stroke_attrs(tf, &style::leader())
+                );
+            }
             let halo = label.halo.then(|| tf.ref_px(style::HALO_WIDTH));
             text_element(out, label, placed.origin, placed.size, style.color, halo);
         }

@@ -168,14 +168,18 @@ pub fn draw(
         let radius = if front.contains(&i) { style::DOT_RADIUS * 1.4 } else { style::DOT_RADIUS };
         d.marker("setting", at(m), radius, fill, Style::solid(style::WHITE, 2.0));
     }
-    // Names for the points of the front, clear of each other.
+    // Names for the points of the front, clear of each other, a leader to a name set apart.
     for &i in &front {
         let m: &Measured = &rows[i];
         d.text(
             "setting-name",
             at(m),
             &escape(&setting_name(&m.setting, &base)),
-            TextOpts::NOTE.align(Align::RIGHT_OF).offset(22.0, 14.0).size(TextSize::Small).avoid_overlap(),
+            TextOpts::NOTE
+                .align(Align::RIGHT_OF)
+                .offset(22.0, 14.0)
+                .size(TextSize::Small)
+                .avoid_overlap_with_leader(),
         );
     }
 
