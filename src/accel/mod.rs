@@ -343,12 +343,7 @@ impl<V: Dim> Visitor<V> for Nearest<'_, V> {
     }
     #[inline(always)]
     fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool {
-        let found = if R::ENABLED {
-            test_prim(self.scene, prim, self.ray, stats, rec).map(Found::Hit)
-        } else {
-            stats.tests.object += 1;
-            self.scene.objects[prim.object()].shape.part_found(prim.part(), self.ray)
-        };
+        let found = test_prim_found(self.scene, prim, self.ray, stats, rec);
         self.offer(prim, found);
         false
     }
@@ -360,13 +355,11 @@ impl<V: Dim> Visitor<V> for Nearest<'_, V> {
         stats: &mut Stats,
         rec: &mut R,
     ) -> bool {
-        let found = if R::ENABLED {
-            counted(self.scene, prim, self.ray, stats, rec, plane.hit(self.ray)).map(Found::Hit)
-        } else {
-            stats.tests.object += 1;
-            plane.hit_t(self.ray).map(Found::At)
-        };
-        self.offer(prim, found);
+        if R::ENABLED {
+            return self.visit(prim, stats, rec);
+        }
+        stats.tests.object += 1;
+        self.offer(prim, plane.hit_t(self.ray).map(Found::At));
         false
     }
 }
@@ -518,24 +511,12 @@ pub fn test_prim<V: Dim, R: Recorder<V>>(
     stats: &mut Stats,
     rec: &mut R,
 ) -> Option<SurfaceHit<V>> {
-    let hit = scene.objects[prim.object()].shape.part_hit(prim.part(), ray);
-    counted(scene, prim, ray, stats, rec, hit)
-}
-
-/// Counts and records the test of `prim` whose answer was `hit`.
-#[inline(always)]
-fn counted<V: Dim, R: Recorder<V>>(
-    scene: &Scene<V>,
-    prim: Prim,
-    ray: &Ray<V>,
-    stats: &mut Stats,
-    rec: &mut R,
-    hit: Option<SurfaceHit<V>>,
-) -> Option<SurfaceHit<V>> {
     stats.tests.object += 1;
+    let shape = &scene.objects[prim.object()].shape;
+    let hit = shape.part_hit(prim.part(), ray);
     rec.event(|| Event::ObjectTest {
         object: object_ref(scene, prim),
-        roots: scene.objects[prim.object()].shape.part_roots(prim.part(), ray),
+        roots: shape.part_roots(prim.part(), ray),
         accepted: hit.map(|h| h.t),
     });
     hit
@@ -554,6 +535,23 @@ pub(crate) fn node_visit<V: Dim, R: Recorder<V>>(
     stats.tests.node += 1;
     rec.event(|| Event::NodeVisit { structure, node, depth, t_in, t_out });
     BoundHit { t_in, t_out, hit: culling_hit(t_in, t_out) }
+}
+
+/// [`test_prim`] as the nearest-hit search keeps it ([`Shape::part_found`]): the same count, the
+/// same event, the same hit, but a sphere's or plane's point and normal wait for the nearest.
+#[inline(always)]
+pub fn test_prim_found<V: Dim, R: Recorder<V>>(
+    scene: &Scene<V>,
+    prim: Prim,
+    ray: &Ray<V>,
+    stats: &mut Stats,
+    rec: &mut R,
+) -> Option<Found<V>> {
+    if R::ENABLED {
+        return test_prim(scene, prim, ray, stats, rec).map(Found::Hit);
+    }
+    stats.tests.object += 1;
+    scene.objects[prim.object()].shape.part_found(prim.part(), ray)
 }
 
 /// [`test_prim`] for a question that needs only t (a shadow segment): the same count, the same

@@ -44,7 +44,7 @@ pub trait Vector:
     }
     /// The infinity norm `‖a‖∞`, the largest |component|.
     fn max_abs(self) -> f64 {
-        (0..Self::DIM).fold(0.0, |m, i| max_onto(m, self[i].abs()))
+        (0..Self::DIM).fold(0.0, |m, i| f64::max(m, self[i].abs()))
     }
     /// Component-wise minimum.
     fn min_by_axis(self, other: Self) -> Self {
@@ -143,32 +143,6 @@ pub fn diff_of_products(a: f64, b: f64, c: f64, d: f64) -> f64 {
     let err = (-c).mul_add(d, cd);
     let dop = a.mul_add(b, -cd);
     dop + err
-}
-
-/// `acc.max(x)` for an accumulator that is never NaN: `x` when `x > acc`, else `acc` (so a NaN
-/// `x` leaves `acc`, as `f64::max` does). One `maxsd` on x86-64, where `f64::max`, which must also
-/// order a NaN `acc`, takes a compare and three masks: it sits in every spawn offset and every
-/// adaptive square.
-#[inline(always)]
-#[must_use]
-pub fn max_onto(acc: f64, x: f64) -> f64 {
-    if x > acc {
-        x
-    } else {
-        acc
-    }
-}
-
-/// `acc.min(x)` for an accumulator that is never NaN: `x` when `x < acc`, else `acc` (see
-/// [`max_onto`]).
-#[inline(always)]
-#[must_use]
-pub fn min_onto(acc: f64, x: f64) -> f64 {
-    if x < acc {
-        x
-    } else {
-        acc
-    }
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! The self-intersection policy (algorithm.md §3, §11 "The spawn offset"): a secondary or shadow
 //! ray starts at the hit point pushed off the surface, along ±N_f, on the side it travels to.
 
-use super::{max_onto, Vector};
+use super::Vector;
 
 /// `2^-44`, the relative size of the spawn offset (about 256 ulps of the magnitude M).
 pub const OFFSET_SCALE: f64 = 1.0 / 17_592_186_044_416.0;
@@ -11,7 +11,7 @@ pub const OFFSET_SCALE: f64 = 1.0 / 17_592_186_044_416.0;
 #[inline]
 #[must_use]
 pub fn offset_distance<V: Vector>(point: V, ray_origin: V, t: f64, object_scale: f64) -> f64 {
-    let m = max_onto(max_onto(max_onto(point.max_abs(), ray_origin.max_abs()), t.abs()), object_scale);
+    let m = point.max_abs().max(ray_origin.max_abs()).max(t.abs()).max(object_scale);
     OFFSET_SCALE * m
 }
 
