@@ -198,6 +198,11 @@ impl PxRect {
         let d = (hi - lo).max(DVec2::ZERO);
         d.x * d.y
     }
+    /// Whether `p` lies inside (edges included).
+    #[must_use]
+    pub fn contains_point(&self, p: DVec2) -> bool {
+        p.cmpge(self.min).all() && p.cmple(self.max).all()
+    }
     /// Whether `other` lies wholly inside.
     #[must_use]
     pub fn contains_rect(&self, other: &Self) -> bool {
@@ -361,7 +366,18 @@ pub struct TextOpts {
     pub placement: Placement,
     /// A leader from the anchor when [`Placement::Clear`] moved the label far ([`Text::leader`]).
     pub leader: bool,
+    /// How far [`Placement::Clear`] may move the label: [`NEAR_STEPS`] or, for a plot with room
+    /// to spare, [`FAR_STEPS`] ([`TextOpts::far`]).
+    pub far: bool,
 }
+
+/// The distances, in gaps of 14 reference pixels, at which [`Placement::Clear`] tries the eight
+/// directions around the anchor: near, for a crowded diagram, where a name far from its object
+/// would be lost among the others.
+pub const NEAR_STEPS: [f64; 4] = [1.0, 2.5, 4.5, 7.0];
+/// [`NEAR_STEPS`] and two more rings, for a plot whose points crowd one band of a mostly empty
+/// area: a name may go to the empty part, with its leader.
+pub const FAR_STEPS: [f64; 6] = [1.0, 2.5, 4.5, 7.0, 10.0, 14.0];
 
 /// How [`Drawing::text`] places a label against the labels already drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -391,6 +407,7 @@ impl TextOpts {
         halo: true,
         placement: Placement::AsGiven,
         leader: false,
+        far: false,
     };
     /// A secondary note: small, centred, with a halo.
     pub const NOTE: Self = Self { size: TextSize::Small, ..Self::LABEL };
@@ -436,6 +453,11 @@ impl TextOpts {
     #[must_use]
     pub const fn avoid_overlap_with_leader(self) -> Self {
         Self { placement: Placement::Clear, leader: true, ..self }
+    }
+    /// Free to go as far as [`FAR_STEPS`] from its anchor when placed clear.
+    #[must_use]
+    pub const fn far(self) -> Self {
+        Self { far: true, ..self }
     }
     /// Stacked below the earlier labels it would overlap, no lower than world height `floor`
     /// ([`Placement::StackDown`]).
@@ -585,6 +607,9 @@ pub struct Drawing {
     pub caption: Option<String>,
     /// The title above the plot (markup), in bold.
     pub title: Option<String>,
+    /// Where labels placed clear ([`TextOpts::avoid_overlap`]) may go: a world rectangle, or the
+    /// whole plot area when `None` ([`Drawing::keep_labels_within`]).
+    pub label_area: Option<(DVec2, DVec2)>,
 }
 
 /// A text line placed in canvas pixels.
@@ -702,6 +727,7 @@ impl Drawing {
             legend_place: LegendPlace::Auto,
             caption: None,
             title: None,
+            label_area: None,
         })
     }
 
@@ -717,6 +743,7 @@ impl Drawing {
             legend_place: LegendPlace::Auto,
             caption: None,
             title: None,
+            label_area: None,
         }
     }
 
@@ -747,6 +774,14 @@ impl Drawing {
     /// Sets the caption (markup).
     pub fn set_caption(&mut self, caption: &str) -> &mut Self {
         self.caption = Some(caption.to_owned());
+        self
+    }
+
+    /// Keeps the labels placed from now on with [`TextOpts::avoid_overlap`] inside the world
+    /// rectangle spanned by `a` and `b` where they can be (a plot's data area, so that no name
+    /// lands among the tick names).
+    pub fn keep_labels_within(&mut self, a: DVec2, b: DVec2) -> &mut Self {
+        self.label_area = Some((a.min(b), a.max(b)));
         self
     }
 
@@ -857,8 +892,8 @@ impl Drawing {
         match opts.placement {
             Placement::AsGiven => {}
             Placement::Clear => {
-                self.place_clear(&mut label);
-                label.leader = opts.leader && label.offset.length() > LEADER_FROM;
+                let steps: &[f64] = if opts.far { &FAR_STEPS } else { &NEAR_STEPS };
+                self.place_clear(&mut label, opts.leader, steps);
             }
             Placement::StackDown { floor } => self.place_stacked(&mut label, floor),
         }
@@ -968,7 +1003,7 @@ impl Drawing {
     }
 
     /// The pixel segments of every stroked item (circles as 48-gons, dots as their boxes'
-    /// diagonals), for the overlap tests of label and legend placement.
+    /// diagonals, labels' leaders), for the overlap tests of label and legend placement.
     fn segments(&self, tf: &Transform) -> Vec<(DVec2, DVec2)> {
         let mut out = Vec::new();
         let chain = |pts: &[DVec2], closed: bool, out: &mut Vec<(DVec2, DVec2)>| {
@@ -996,13 +1031,14 @@ impl Drawing {
                         .collect();
                     chain(&ring, true, &mut out);
                 }
+                // A leader is a line like any other: a later label keeps off it.
+                Shape::Text(label) => out.extend(Self::place_text(label, tf).leader),
                 Shape::Dot { center, radius, .. } => {
                     let c = tf.to_px(*center);
                     let r = tf.ref_px(*radius);
                     out.push((c - DVec2::splat(r), c + DVec2::splat(r)));
                     out.push((c + DVec2::new(-r, r), c + DVec2::new(r, -r)));
                 }
-                Shape::Text(_) => {}
             }
         }
         out
@@ -1048,23 +1084,49 @@ impl Drawing {
         label.offset = best.1;
     }
 
-    /// Moves `label` to the clearest candidate spot (see [`Drawing::text`]).
-    fn place_clear(&self, label: &mut Text) {
+    /// Moves `label` to the clearest candidate spot `steps` gaps from its anchor (see
+    /// [`Drawing::text`]), with a leader when `leader` and the spot is farther than
+    /// [`LEADER_FROM`]. A spot costs the share of it that covers earlier labels and other points'
+    /// markers (×100), one per line it crosses, 100 outside the label area, 20 per label its
+    /// leader would cross, and 1.5 per ring away from the anchor.
+    fn place_clear(&self, label: &mut Text, leader: bool, steps: &[f64]) {
         let (tf, plot, _) = self.placed_legend();
         let segments = self.segments(&tf);
-        let boxes = self.text_boxes(&tf);
+        let mut boxes = self.text_boxes(&tf);
+        // Other points' markers are data: a name must not hide one (its own point is the anchor).
+        boxes.extend(self.items.iter().filter_map(|item| match item.shape {
+            Shape::Dot { center, radius, .. } if center != label.anchor => {
+                let (c, r) = (tf.to_px(center), tf.ref_px(radius));
+                Some(PxRect { min: c - DVec2::splat(r), max: c + DVec2::splat(r) })
+            }
+            _ => None,
+        }));
         let pad = tf.ref_px(4.0);
-        let cost = |candidate: &Text| {
-            let b = Self::place_text(candidate, &tf).bbox.inflate(pad);
-            let area = (b.width() * b.height()).max(1.0);
-            let overlap: f64 = boxes.iter().map(|o| b.overlap(o)).sum::<f64>() / area;
-            let crossings = segments.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
-            let outside = if plot.contains_rect(&b) { 0.0 } else { 1.0 };
-            100.0 * overlap + crossings as f64 + 100.0 * outside
+        let area = self.label_area.map_or(plot, |(lo, hi)| {
+            let (a, b) = (tf.to_px(lo), tf.to_px(hi));
+            PxRect { min: a.min(b), max: a.max(b) }
+        });
+        let with_leader = |mut candidate: Text| {
+            candidate.leader = leader && candidate.offset.length() > LEADER_FROM;
+            candidate
         };
-        let requested = label.clone();
+        let cost = |candidate: &Text| {
+            let placed = Self::place_text(candidate, &tf);
+            let b = placed.bbox.inflate(pad);
+            let area_px = (b.width() * b.height()).max(1.0);
+            let overlap: f64 = boxes.iter().map(|o| b.overlap(o)).sum::<f64>() / area_px;
+            let crossings = segments.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
+            let outside = if area.contains_rect(&b) { 0.0 } else { 1.0 };
+            // A box that holds the anchor meets every leader: only the others count.
+            let leader_over_labels = placed.leader.map_or(0, |(a, c)| {
+                boxes.iter().filter(|o| !o.contains_point(a) && o.meets_segment(a, c)).count()
+            });
+            100.0 * overlap + crossings as f64 + 100.0 * outside + 20.0 * leader_over_labels as f64
+        };
+        let requested = with_leader(label.clone());
         let mut best = (cost(&requested), requested.offset, requested.align);
         if best.0 <= 0.0 {
+            *label = requested;
             return;
         }
         let gap = 14.0;
@@ -1081,9 +1143,10 @@ impl Drawing {
         ];
         // A label far from its anchor loses its meaning: each step away costs as much as crossing
         // one and a half lines (the halo keeps a label readable over a line).
-        for (step, distance) in [1.0, 2.5, 4.5, 7.0].into_iter().enumerate() {
+        for (step, &distance) in steps.iter().enumerate() {
             for (dir, align) in directions {
-                let candidate = Text { offset: dir * gap * distance, align, ..requested.clone() };
+                let candidate =
+                    with_leader(Text { offset: dir * gap * distance, align, ..requested.clone() });
                 let c = cost(&candidate) + 1.5 * step as f64;
                 if c < best.0 {
                     best = (c, candidate.offset, candidate.align);
@@ -1096,8 +1159,7 @@ impl Drawing {
                 break;
             }
         }
-        label.offset = best.1;
-        label.align = best.2;
+        *label = with_leader(Text { offset: best.1, align: best.2, ..requested });
     }
 
     /// Lays out the canvas for the back ends: transform, plot area, title, caption and legend.
@@ -1338,6 +1400,68 @@ mod tests {
         for b in &boxes {
             assert!(b.min.y > y || b.max.y < y, "label crosses the ray: {b:?}");
         }
+    }
+
+    fn text_items(d: &Drawing) -> Vec<&Text> {
+        d.items
+            .iter()
+            .filter_map(|item| if let Shape::Text(t) = &item.shape { Some(t) } else { None })
+            .collect()
+    }
+
+    #[test]
+    fn a_plot_keeps_its_names_inside_the_axes() {
+        // A point on the x axis, the area above it: the name must not go below the axis.
+        let mut d = Drawing::slide();
+        d.set_view(View::new(-1.0, 3.0, -1.0, 1.0).unwrap());
+        d.keep_labels_within(v(0.0, 0.0), v(3.0, 1.0));
+        d.marker("point", v(1.0, 0.0), 6.0, style::BLUE, Style::NONE);
+        d.text(
+            "name",
+            v(1.0, 0.0),
+            "a name",
+            TextOpts::NOTE.align(Align::BELOW).offset(0.0, -14.0).avoid_overlap(),
+        );
+        let tf = d.transform();
+        let placed = Drawing::place_text(text_items(&d)[0], &tf);
+        assert!(placed.bbox.max.y <= tf.to_px(v(0.0, 0.0)).y, "above the axis: {:?}", placed.bbox);
+    }
+
+    #[test]
+    fn a_name_keeps_off_other_points_and_its_leader_off_other_names() {
+        let mut d = Drawing::slide();
+        d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
+        // A marker just right of the anchor, where the name is asked to go.
+        d.marker("other", v(0.12, 0.0), 6.0, style::BLUE, Style::NONE);
+        let right = TextOpts::NOTE.align(Align::RIGHT_OF).offset(14.0, 0.0);
+        d.text("name", v(0.0, 0.0), "a name", right.avoid_overlap());
+        let tf = d.transform();
+        let dot = tf.to_px(v(0.12, 0.0));
+        let b = Drawing::place_text(text_items(&d)[0], &tf).bbox;
+        assert!(!b.contains_point(dot), "the name left the other point visible: {b:?} {dot:?}");
+
+        // Hatching around the anchor makes every near spot cost more than the third ring; of the
+        // third ring's spots, the first tried (right) has a leader through the label "b": the
+        // name goes to the next clear one (above) instead.
+        let mut d = Drawing::slide();
+        d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
+        let tf = d.transform();
+        // World units per reference pixel.
+        let world = tf.ref_px(1.0) / (tf.to_px(v(1.0, 0.0)).x - tf.to_px(v(0.0, 0.0)).x);
+        let at = |x: f64, y: f64| v(x * world, y * world);
+        for k in -5..=5 {
+            let x = 10.0 * f64::from(k);
+            d.segment("hatch", at(x, -50.0), at(x, 50.0), Style::solid(style::BLACK, 1.0));
+        }
+        d.text("b", at(40.0, 0.0), "b", TextOpts::NOTE);
+        d.text("name", v(0.0, 0.0), "a name", right.avoid_overlap_with_leader());
+        let tf = d.transform();
+        let texts = text_items(&d);
+        let name = Drawing::place_text(texts[1], &tf);
+        let b = Drawing::place_text(texts[0], &tf).bbox;
+        let (from, to) = name.leader.expect("set apart, with a leader");
+        assert!(!b.meets_segment(from, to), "the leader crosses b: {name:?} {b:?}");
+        assert!(name.bbox.min.y < tf.to_px(v(0.0, 0.0)).y, "above the anchor: {name:?}");
     }
 
     #[test]

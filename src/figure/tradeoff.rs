@@ -168,7 +168,9 @@ pub fn draw(
         let radius = if front.contains(&i) { style::DOT_RADIUS * 1.4 } else { style::DOT_RADIUS };
         d.marker("setting", at(m), radius, fill, Style::solid(style::WHITE, 2.0));
     }
-    // Names for the points of the front, clear of each other, a leader to a name set apart.
+    // Names for the points of the front, clear of each other and inside the axes, a leader to a
+    // name set apart.
+    d.keep_labels_within(DVec2::ZERO, DVec2::new(x_end, 1.0 + LEGEND_BAND));
     for &i in &front {
         let m: &Measured = &rows[i];
         d.text(
@@ -179,7 +181,8 @@ pub fn draw(
                 .align(Align::RIGHT_OF)
                 .offset(22.0, 14.0)
                 .size(TextSize::Small)
-                .avoid_overlap_with_leader(),
+                .avoid_overlap_with_leader()
+                .far(),
         );
     }
 
