@@ -261,6 +261,10 @@ fn text_line(
     if weight == Weight::Bold {
         out.push_str(" font-weight=\"bold\"");
     }
+    // Spaces are laid out as the PNG lays them out (an indented line, two spaces), not collapsed.
+    if markup.contains("  ") || markup.starts_with(' ') || markup.ends_with(' ') {
+        out.push_str(" xml:space=\"preserve\"");
+    }
     if let Some(width) = halo {
         let _ = write!(
             out,
@@ -406,6 +410,28 @@ mod tests {
             label.descendants().filter(|n| n.attribute("baseline-shift") == Some("sub")).collect();
         assert_eq!(subs.len(), 3);
         assert!(svg.contains("Refracție &lt;T&gt; &amp; &quot;R&quot;"));
+    }
+
+    #[test]
+    fn an_indented_line_keeps_its_spaces() {
+        let mut d = Drawing::new(960, 540).unwrap();
+        d.text("note", DVec2::ZERO, "   indented", TextOpts::LABEL).text(
+            "plain",
+            DVec2::Y,
+            "a b",
+            TextOpts::LABEL,
+        );
+        let svg = to_svg(&d);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let text_of = |tag: &str| {
+            doc.descendants()
+                .find(|n| n.attribute("data-tag") == Some(tag))
+                .and_then(|g| g.children().find(|c| c.has_tag_name("text")))
+                .unwrap()
+        };
+        let space = ("http://www.w3.org/XML/1998/namespace", "space");
+        assert_eq!(text_of("note").attribute(space), Some("preserve"));
+        assert_eq!(text_of("plain").attribute(space), None, "single spaces need nothing");
     }
 
     #[test]

@@ -372,12 +372,13 @@ pub fn cap_height(size: f64) -> f64 {
 }
 
 /// Splits markup into lines no wider than `max_width` pixels at `size`, breaking at spaces outside
-/// `{…}` groups. A word wider than the limit gets a line of its own.
+/// `{…}` groups, but never beside a relation (`K = 2`, `16 × 10` stay on one line). A word wider
+/// than the limit gets a line of its own.
 #[must_use]
 pub fn wrap(markup: &str, size: f64, weight: Weight, max_width: f64) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     let mut line = String::new();
-    for word in words(markup) {
+    for word in unbreakable(words(markup)) {
         let candidate = if line.is_empty() { word.clone() } else { format!("{line} {word}") };
         if line.is_empty() || layout(&candidate, size, weight).width <= max_width {
             line = candidate;
@@ -389,6 +390,27 @@ pub fn wrap(markup: &str, size: f64, weight: Weight, max_width: f64) -> Vec<Stri
         lines.push(line);
     }
     lines
+}
+
+/// Symbols that bind the words on both sides: a line never ends or starts with one.
+const RELATIONS: [&str; 8] = ["=", "<", ">", "≤", "≥", "≠", "≈", "×"];
+
+/// `words` with every relation joined to its neighbours: `["K", "=", "2"]` → `["K = 2"]`.
+fn unbreakable(words: Vec<String>) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    let mut bind_next = false;
+    for word in words {
+        let relation = RELATIONS.contains(&word.as_str());
+        match out.last_mut() {
+            Some(last) if relation || bind_next => {
+                last.push(' ');
+                last.push_str(&word);
+            }
+            _ => out.push(word),
+        }
+        bind_next = relation;
+    }
+    out
 }
 
 /// The space-separated words of markup, keeping `{…}` groups and escaped spaces whole.
@@ -614,5 +636,13 @@ mod tests {
         assert!(lines.len() >= 3, "{lines:?}");
         assert!(lines.iter().any(|l| l.contains("t_{a b}")));
         assert_eq!(wrap("", 40.0, Weight::Regular, 10.0), vec![String::new()]);
+    }
+
+    #[test]
+    fn wrapping_keeps_a_relation_with_both_its_sides() {
+        // Narrow enough to break at every space otherwise.
+        let lines = wrap("pragul = 0.1, K = 2 · grila 16 × 10", 40.0, Weight::Regular, 10.0);
+        assert_eq!(lines, ["pragul = 0.1,", "K = 2", "·", "grila", "16 × 10"]);
+        assert_eq!(unbreakable(words("= a")), ["= a"], "a leading relation binds what follows");
     }
 }
