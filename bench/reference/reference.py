@@ -1,0 +1,860 @@
+#!/usr/bin/env python3
+"""Independent reference implementation of the Whitted ray tracer described in
+shared/docs/algorithm.md (conventions + section 11) and shared/docs/product.md
+(scene format, defaults, image writing).  Python 3 standard library only.
+
+Scope: 3D scenes; camera (perspective / orthographic), background, ambient,
+max_depth, point lights with attenuation, materials (by name or inline, with
+checker), objects sphere / plane / box / triangle.  Brute force over all objects.
+
+Usage:
+    python3 ref.py SCENE.json [--size WxH] [--aa center|corners|adaptive]
+                   [--threshold X] [--max-level K] [--depth N] -o OUT.json
+
+OUT.json = {"width", "height", "primary_rays", "pixels", "bytes"}; pixels in
+row-major order, row 0 = BOTTOM row of the image (j counted from the bottom),
+i from the left.
+"""
+
+import argparse
+import json
+import math
+import sys
+import time
+from fractions import Fraction
+
+INF = float("inf")
+
+
+# ----------------------------------------------------------------------------
+# Small vector helpers (3-tuples of floats)
+# ----------------------------------------------------------------------------
+
+def add(a, b):
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def scale(a, s):
+    return (a[0] * s, a[1] * s, a[2] * s)
+
+
+def neg(a):
+    return (-a[0], -a[1], -a[2])
+
+
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0])
+
+
+def length(a):
+    return math.sqrt(dot(a, a))
+
+
+def norm_inf(a):
+    return max(abs(a[0]), abs(a[1]), abs(a[2]))
+
+
+def normalize(a):
+    """Checked normalisation: returns None instead of producing NaN/inf."""
+    n = length(a)
+    if not (n > 0.0) or not math.isfinite(n):
+        return None
+    return (a[0] / n, a[1] / n, a[2] / n)
+
+
+def normalize_scaled(a):
+    """Scene vectors (up, normal) and derived normals: divide by the largest
+    |component| first, so tiny and huge vectors work (algorithm.md section 11)."""
+    m = norm_inf(a)
+    if not (m > 0.0) or not math.isfinite(m):
+        return None
+    return normalize((a[0] / m, a[1] / m, a[2] / m))
+
+
+# ----------------------------------------------------------------------------
+# Scene loading and validation
+# ----------------------------------------------------------------------------
+
+class SceneError(Exception):
+    pass
+
+
+class Loader:
+    """Collects every validation error and reports them at once."""
+
+    def __init__(self, lenient=False):
+        self.errors = []
+        self.lenient = lenient
+
+    def err(self, field, msg):
+        self.errors.append("%s: %s" % (field, msg))
+
+    def unknown(self, field):
+        if self.lenient:
+            sys.stderr.write("warning: %s: unknown field (ignored)\n" % field)
+        else:
+            self.err(field, "unknown field")
+
+    def check_fields(self, obj, field, allowed):
+        if not isinstance(obj, dict):
+            self.err(field, "must be an object")
+            return False
+        for k in obj:
+            if k not in allowed:
+                self.unknown("%s.%s" % (field, k))
+        return True
+
+    def number(self, v, field):
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            self.err(field, "must be a number, got %r" % (v,))
+            return None
+        v = float(v)
+        if not math.isfinite(v) or abs(v) > 1e100:
+            self.err(field, "must be finite and at most 1e100 in magnitude, got %r" % v)
+            return None
+        return v
+
+    def vec3(self, v, field):
+        if not isinstance(v, list) or len(v) != 3:
+            self.err(field, "must be a list of 3 numbers, got %r" % (v,))
+            return None
+        out = [self.number(x, "%s[%d]" % (field, k)) for k, x in enumerate(v)]
+        if any(x is None for x in out):
+            return None
+        return tuple(out)
+
+    def colour(self, v, field, grey_ok=False, lo=None, hi=None):
+        """An RGB triple (or, where grey_ok, one number meaning grey)."""
+        if grey_ok and not isinstance(v, list):
+            x = self.number(v, field)
+            if x is None:
+                return None
+            c = (x, x, x)
+        else:
+            c = self.vec3(v, field)
+            if c is None:
+                return None
+        for k in range(3):
+            if (lo is not None and c[k] < lo) or (hi is not None and c[k] > hi):
+                self.err(field, "must be in [%s, %s] per channel, got %r" % (lo, hi, list(c)))
+                break
+        return c
+
+
+class Material:
+    def __init__(self):
+        self.ka = (0.1, 0.1, 0.1)
+        self.kd = (0.7, 0.7, 0.7)
+        self.ks = 0.0
+        self.n = 32.0
+        self.kt = 0.0
+        self.ior = 1.0
+        self.checker = None  # (size, kd2, ka2)
+
+    def colours_at(self, p):
+        """(ka, kd) at point p, with the product.md checker rule."""
+        if self.checker is None:
+            return self.ka, self.kd
+        size, kd2, ka2 = self.checker
+        s = (math.floor(p[0] / size + 1e-10)
+             + math.floor(p[1] / size + 1e-10)
+             + math.floor(p[2] / size + 1e-10))
+        if s % 2 == 1:          # Python's % on ints is rem_euclid for divisor 2
+            return ka2, kd2
+        return self.ka, self.kd
+
+
+def load_material(L, m, field):
+    mat = Material()
+    if not L.check_fields(m, field, ("ka", "kd", "ks", "n", "kt", "ior", "checker")):
+        return mat
+    if "ka" in m:
+        c = L.colour(m["ka"], field + ".ka", grey_ok=True, lo=0.0, hi=1.0)
+        if c is not None:
+            mat.ka = c
+    if "kd" in m:
+        c = L.colour(m["kd"], field + ".kd", grey_ok=True, lo=0.0, hi=1.0)
+        if c is not None:
+            mat.kd = c
+    for key, lo, hi in (("ks", 0.0, 1.0), ("kt", 0.0, 1.0), ("n", 0.0, None), ("ior", None, None)):
+        if key in m:
+            x = L.number(m[key], field + "." + key)
+            if x is None:
+                continue
+            if key == "ior" and not x > 0:
+                L.err(field + ".ior", "must be > 0, got %r" % x)
+                continue
+            if (lo is not None and x < lo) or (hi is not None and x > hi):
+                L.err(field + "." + key, "out of range, got %r" % x)
+                continue
+            setattr(mat, key, x)
+    if "checker" in m:
+        ch = m["checker"]
+        cf = field + ".checker"
+        if L.check_fields(ch, cf, ("size", "kd2", "ka2")):
+            size = 1.0   # NOTE: product.md documents no default for checker.size; 1 is our choice
+            if "size" in ch:
+                x = L.number(ch["size"], cf + ".size")
+                if x is not None:
+                    if x > 0:
+                        size = x
+                    else:
+                        L.err(cf + ".size", "must be > 0, got %r" % x)
+            kd2 = None
+            if "kd2" in ch:
+                kd2 = L.colour(ch["kd2"], cf + ".kd2", grey_ok=True, lo=0.0, hi=1.0)
+            else:
+                L.err(cf + ".kd2", "required")
+            ka2 = mat.ka  # default: the material's ka (product.md)
+            if "ka2" in ch:
+                c = L.colour(ch["ka2"], cf + ".ka2", grey_ok=True, lo=0.0, hi=1.0)
+                if c is not None:
+                    ka2 = c
+            if kd2 is not None:
+                mat.checker = (size, kd2, ka2)
+    return mat
+
+
+# ----------------------------------------------------------------------------
+# Objects.  intersect(O, D) -> (t, extra) for the least root t > 0, or None.
+# surface(O, D, t, extra) -> (reprojected hit point, outward unit normal).
+# ----------------------------------------------------------------------------
+
+class Sphere:
+    def __init__(self, c, r):
+        self.c = c
+        self.r = r
+        self.scale = norm_inf(c) + r
+
+    def intersect(self, O, D):
+        f = sub(O, self.c)
+        b = dot(f, D)
+        perp = sub(f, scale(D, b))
+        disc = self.r * self.r - dot(perp, perp)
+        if disc < 0.0:
+            return None
+        cc = dot(f, f) - self.r * self.r
+        sgn = 1.0 if math.copysign(1.0, b) > 0 else -1.0   # sign(b'), Rust signum style
+        q = -(b + sgn * math.sqrt(disc))
+        if q == 0.0:
+            roots = [-b, -b]
+        else:
+            roots = [q, cc / q]
+        best = None
+        for t in roots:
+            if t > 0.0 and math.isfinite(t) and (best is None or t < best):
+                best = t
+        if best is None:
+            return None
+        return (best, None)
+
+    def surface(self, O, D, t, extra):
+        p = add(O, scale(D, t))
+        d = sub(p, self.c)
+        dl = length(d)
+        if dl > 0.0:
+            p = add(self.c, scale(d, self.r / dl))
+        n = sub(p, self.c)
+        n = (n[0] / self.r, n[1] / self.r, n[2] / self.r)   # N = (I - C)/r
+        return p, n
+
+
+class Plane:
+    def __init__(self, point, normal):
+        self.point = point
+        self.n = normal
+        self.scale = norm_inf(point)
+
+    def intersect(self, O, D):
+        den = dot(D, self.n)
+        if den == 0.0:
+            return None
+        t = dot(sub(self.point, O), self.n) / den
+        if not (t > 0.0) or not math.isfinite(t):
+            return None
+        return (t, None)
+
+    def surface(self, O, D, t, extra):
+        p = add(O, scale(D, t))
+        sd = dot(sub(p, self.point), self.n)   # signed distance
+        p = sub(p, scale(self.n, sd))
+        return p, self.n
+
+
+class Box:
+    def __init__(self, lo, hi):
+        self.lo = lo
+        self.hi = hi
+        self.scale = max(norm_inf(lo), norm_inf(hi))
+
+    def intersect(self, O, D):
+        t_in, t_out = -INF, INF
+        ax_in, ax_out = None, None
+        for a in range(3):
+            o, d = O[a], D[a]
+            if d == 0.0:
+                # parallel slab: inside iff min <= o <= max, recorded (-inf, +inf)
+                if self.lo[a] <= o <= self.hi[a]:
+                    continue
+                return None
+            t1 = (self.lo[a] - o) / d
+            t2 = (self.hi[a] - o) / d
+            ti, te = min(t1, t2), max(t1, t2)
+            if ti > t_in:               # strict: ties keep the earlier axis (x, y, z)
+                t_in, ax_in = ti, a
+            if te < t_out:
+                t_out, ax_out = te, a
+        if not (t_in <= t_out):
+            return None
+        if t_in > 0.0:
+            return (t_in, (ax_in, True))
+        if t_out > 0.0:
+            return (t_out, (ax_out, False))
+        return None
+
+    def surface(self, O, D, t, extra):
+        axis, is_entry = extra
+        d = D[axis]
+        # entry face: min plane if d > 0, max plane if d < 0; exit face the other one
+        on_max = (d < 0.0) if is_entry else (d > 0.0)
+        p = list(add(O, scale(D, t)))
+        p[axis] = self.hi[axis] if on_max else self.lo[axis]   # face coordinate set exactly
+        n = [0.0, 0.0, 0.0]
+        n[axis] = 1.0 if on_max else -1.0
+        return tuple(p), tuple(n)
+
+
+class Triangle:
+    def __init__(self, a, b, c, normal):
+        self.a, self.b, self.c = a, b, c
+        self.n = normal
+        self.scale = max(norm_inf(a), norm_inf(b), norm_inf(c))
+
+    def intersect(self, O, D):
+        # Woop, Benthin, Wald 2013 watertight test (f64), exact re-evaluation on a 0 edge function.
+        ad = (abs(D[0]), abs(D[1]), abs(D[2]))
+        kz = 0
+        if ad[1] > ad[kz]:
+            kz = 1
+        if ad[2] > ad[kz]:
+            kz = 2
+        kx = (kz + 1) % 3
+        ky = (kx + 1) % 3
+        if D[kz] < 0.0:
+            kx, ky = ky, kx
+        Sx = D[kx] / D[kz]
+        Sy = D[ky] / D[kz]
+        Sz = 1.0 / D[kz]
+        A = sub(self.a, O)
+        B = sub(self.b, O)
+        C = sub(self.c, O)
+        Ax = A[kx] - Sx * A[kz]
+        Ay = A[ky] - Sy * A[kz]
+        Bx = B[kx] - Sx * B[kz]
+        By = B[ky] - Sy * B[kz]
+        Cx = C[kx] - Sx * C[kz]
+        Cy = C[ky] - Sy * C[kz]
+        U = Cx * By - Cy * Bx
+        V = Ax * Cy - Ay * Cx
+        W = Bx * Ay - By * Ax
+        if U == 0.0 or V == 0.0 or W == 0.0:
+            F = Fraction
+            U = float(F(Cx) * F(By) - F(Cy) * F(Bx))
+            V = float(F(Ax) * F(Cy) - F(Ay) * F(Cx))
+            W = float(F(Bx) * F(Ay) - F(By) * F(Ax))
+        if (U < 0.0 or V < 0.0 or W < 0.0) and (U > 0.0 or V > 0.0 or W > 0.0):
+            return None
+        det = U + V + W
+        if det == 0.0:
+            return None      # edge-on (or degenerate): invisible
+        Az = Sz * A[kz]
+        Bz = Sz * B[kz]
+        Cz = Sz * C[kz]
+        T = U * Az + V * Bz + W * Cz
+        if det < 0.0 and T >= 0.0:
+            return None
+        if det > 0.0 and T <= 0.0:
+            return None
+        t = T / det
+        if not (t > 0.0) or not math.isfinite(t):
+            return None
+        return (t, None)
+
+    def surface(self, O, D, t, extra):
+        return add(O, scale(D, t)), self.n
+
+
+class Obj:
+    def __init__(self, shape, material, name):
+        self.shape = shape
+        self.mat = material
+        self.name = name
+
+
+class Light:
+    def __init__(self, pos, intensity, att):
+        self.pos = pos
+        self.intensity = intensity
+        self.att = att
+
+
+class Camera:
+    pass
+
+
+class Scene:
+    pass
+
+
+def reject_constant(name):
+    # Python's json accepts NaN / Infinity literals; JSON (and serde_json) does not.
+    raise SceneError("JSON syntax error: %s is not a JSON literal" % name)
+
+
+def load_scene(path, size_override=None, depth_override=None, lenient=False):
+    with open(path) as fh:
+        text = fh.read()
+    try:
+        data = json.loads(text, parse_constant=reject_constant)
+    except json.JSONDecodeError as e:
+        raise SceneError("JSON syntax error at line %d column %d: %s" % (e.lineno, e.colno, e.msg))
+    L = Loader(lenient)
+    L.check_fields(data, "scene", ("camera", "background", "ambient", "max_depth",
+                                   "lights", "materials", "objects"))
+    sc = Scene()
+
+    # camera
+    cam = Camera()
+    cj = data.get("camera")
+    if cj is None:
+        raise SceneError("camera: required")
+    L.check_fields(cj, "camera", ("eye", "center", "up", "projection", "p", "window", "resolution"))
+    for req in ("eye", "center", "window", "resolution"):
+        if req not in cj:
+            L.err("camera." + req, "required")
+    eye = L.vec3(cj.get("eye", [0, 0, 1]), "camera.eye")
+    ctr = L.vec3(cj.get("center", [0, 0, 0]), "camera.center")
+    up = L.vec3(cj.get("up", [0, 1, 0]), "camera.up")
+    proj = cj.get("projection", "perspective")
+    if proj not in ("perspective", "orthographic"):
+        L.err("camera.projection", "must be perspective or orthographic, got %r" % (proj,))
+    cam.ortho = (proj == "orthographic")
+    p = L.number(cj.get("p", 1.0), "camera.p")
+    if p is not None and not p > 0:
+        L.err("camera.p", "must be > 0, got %r" % p)
+    cam.p = p
+    win = cj.get("window", {})
+    if L.check_fields(win, "camera.window", ("l", "r", "b", "t")):
+        for k in ("l", "r", "b", "t"):
+            if k not in win:
+                L.err("camera.window." + k, "required")
+        cam.l = L.number(win.get("l", -1), "camera.window.l")
+        cam.r = L.number(win.get("r", 1), "camera.window.r")
+        cam.b = L.number(win.get("b", -1), "camera.window.b")
+        cam.t = L.number(win.get("t", 1), "camera.window.t")
+        if None not in (cam.l, cam.r) and not cam.r > cam.l:
+            L.err("camera.window", "r must be > l")
+        if None not in (cam.b, cam.t) and not cam.t > cam.b:
+            L.err("camera.window", "t must be > b")
+    res = cj.get("resolution", [1, 1])
+    if not (isinstance(res, list) and len(res) == 2 and all(isinstance(x, int) and not isinstance(x, bool) for x in res)):
+        L.err("camera.resolution", "must be [Nx, Ny] integers (3D only)")
+        res = [1, 1]
+    cam.nx, cam.ny = res
+    if size_override is not None:
+        cam.nx, cam.ny = size_override     # --size keeps the window
+    if cam.nx < 1 or cam.ny < 1:
+        L.err("camera.resolution", "must be >= 1")
+    if eye is not None and ctr is not None and up is not None:
+        w = normalize(sub(eye, ctr))
+        if w is None:
+            L.err("camera.eye", "equals camera.center")
+        else:
+            upn = normalize_scaled(up)
+            if upn is None:
+                L.err("camera.up", "zero vector")
+            else:
+                cu = cross(upn, w)
+                if length(cu) < 1e-12:        # |up x w| < 1e-12 |up| with |upn| = 1
+                    L.err("camera.up", "parallel to eye - center")
+                else:
+                    u = normalize(cu)
+                    v = cross(w, u)
+                    cam.eye, cam.U, cam.V, cam.W = eye, u, v, w
+    sc.camera = cam
+
+    # globals
+    sc.background = L.colour(data.get("background", [0, 0, 0]), "background") or (0.0, 0.0, 0.0)
+    sc.ambient = L.colour(data.get("ambient", [1, 1, 1]), "ambient") or (1.0, 1.0, 1.0)
+    md = data.get("max_depth", 5)
+    if not isinstance(md, int) or isinstance(md, bool) or md < 0 or md > 64:
+        L.err("max_depth", "must be an integer in [0, 64], got %r" % (md,))
+        md = 5
+    sc.max_depth = md if depth_override is None else depth_override
+
+    # lights
+    sc.lights = []
+    for k, lj in enumerate(data.get("lights", [])):
+        f = "lights[%d]" % k
+        if not L.check_fields(lj, f, ("position", "intensity", "attenuation", "name")):
+            continue
+        if "position" not in lj:
+            L.err(f + ".position", "required")
+            continue
+        pos = L.vec3(lj["position"], f + ".position")
+        inten = L.colour(lj.get("intensity", [1, 1, 1]), f + ".intensity")
+        att = L.vec3(lj.get("attenuation", [1, 0, 0]), f + ".attenuation")
+        if att is not None:
+            if min(att) < 0 or max(att) == 0:
+                L.err(f + ".attenuation", "coefficients must be >= 0 and not all 0")
+        if pos is not None and inten is not None and att is not None:
+            sc.lights.append(Light(pos, inten, att))
+
+    # materials
+    mats = {}
+    mj = data.get("materials", {})
+    if isinstance(mj, dict):
+        for name, m in mj.items():
+            mats[name] = load_material(L, m, "materials." + name)
+    else:
+        L.err("materials", "must be an object")
+
+    # objects
+    sc.objects = []
+    allowed = {
+        "sphere": ("center", "radius"),
+        "plane": ("point", "normal"),
+        "box": ("min", "max"),
+        "triangle": ("vertices",),
+    }
+    for k, oj in enumerate(data.get("objects", [])):
+        f = "objects[%d]" % k
+        if not isinstance(oj, dict):
+            L.err(f, "must be an object")
+            continue
+        typ = oj.get("type")
+        if typ not in allowed:
+            L.err(f + ".type", "unsupported in this reference: %r" % (typ,))
+            continue
+        L.check_fields(oj, f, ("type", "name", "material") + allowed[typ])
+        for g in allowed[typ]:
+            if g not in oj:
+                L.err(f + "." + g, "required")
+        if "material" in oj:
+            mref = oj["material"]
+            if isinstance(mref, str):
+                if mref in mats:
+                    mat = mats[mref]
+                else:
+                    L.err(f + ".material", "unknown material %r" % mref)
+                    mat = Material()
+            else:
+                mat = load_material(L, mref, f + ".material")
+        else:
+            mat = Material()
+        shape = None
+        try:
+            if typ == "sphere":
+                c = L.vec3(oj["center"], f + ".center")
+                r = L.number(oj["radius"], f + ".radius")
+                if r is not None and not r > 0:
+                    L.err(f + ".radius", "must be > 0, got %r" % r)
+                elif c is not None and r is not None:
+                    shape = Sphere(c, r)
+            elif typ == "plane":
+                pt = L.vec3(oj["point"], f + ".point")
+                nv = L.vec3(oj["normal"], f + ".normal")
+                if nv is not None:
+                    nn = normalize_scaled(nv)
+                    if nn is None:
+                        L.err(f + ".normal", "zero vector")
+                    elif pt is not None:
+                        shape = Plane(pt, nn)
+            elif typ == "box":
+                lo = L.vec3(oj["min"], f + ".min")
+                hi = L.vec3(oj["max"], f + ".max")
+                if lo is not None and hi is not None:
+                    if not all(lo[a] < hi[a] for a in range(3)):
+                        L.err(f, "box needs min < max on every axis")
+                    else:
+                        shape = Box(lo, hi)
+            elif typ == "triangle":
+                vs = oj["vertices"]
+                if not isinstance(vs, list) or len(vs) != 3:
+                    L.err(f + ".vertices", "must be 3 points")
+                else:
+                    pts = [L.vec3(vv, "%s.vertices[%d]" % (f, q)) for q, vv in enumerate(vs)]
+                    if None not in pts:
+                        a, b, c = pts
+                        nn = normalize_scaled(cross(sub(b, a), sub(c, a)))
+                        if nn is None:
+                            L.err(f + ".vertices", "zero-area triangle")
+                        else:
+                            shape = Triangle(a, b, c, nn)
+        except KeyError:
+            pass   # missing field already reported
+        if shape is not None:
+            sc.objects.append(Obj(shape, mat, oj.get("name", k)))
+
+    if L.errors:
+        raise SceneError("\n".join(L.errors))
+    return sc
+
+
+# ----------------------------------------------------------------------------
+# Tracing
+# ----------------------------------------------------------------------------
+
+class Stats:
+    def __init__(self):
+        self.rays = {"primary": 0, "reflected": 0, "transmitted": 0, "shadow": 0}
+        self.tir = 0
+
+
+def offset_origin(P, Nf, delta, omega):
+    """Spawned ray origin: I + delta*N_f if omega.N_f >= 0 else I - delta*N_f."""
+    if dot(omega, Nf) >= 0.0:
+        return add(P, scale(Nf, delta))
+    return sub(P, scale(Nf, delta))
+
+
+def nearest_hit(scene, O, D):
+    best = None
+    for idx, obj in enumerate(scene.objects):
+        h = obj.shape.intersect(O, D)
+        if h is not None and (best is None or h[0] < best[0]):   # ties: smaller index wins
+            best = (h[0], h[1], idx)
+    return best
+
+
+def trace_ray(scene, O, D, level, stats):
+    hit = nearest_hit(scene, O, D)
+    if hit is None:
+        return scene.background
+    t, extra, idx = hit
+    obj = scene.objects[idx]
+    P, N = obj.shape.surface(O, D, t, extra)
+    return shade_point(scene, obj, O, D, t, P, N, level, stats)
+
+
+def shade_point(scene, obj, O, D, t, P, N, level, stats):
+    mat = obj.mat
+    entering = dot(D, N) <= 0.0          # tangent counts as entering
+    Nf = N if entering else neg(N)
+    ka, kd = mat.colours_at(P)
+    delta = 2.0 ** -44 * max(norm_inf(P), norm_inf(O), t, obj.shape.scale)
+    V = neg(D)
+
+    c = [scene.ambient[k] * ka[k] for k in range(3)]
+
+    for light in scene.lights:
+        Lvec = sub(light.pos, P)
+        L = normalize(Lvec)
+        if L is None:
+            continue                      # light at the hit point: lum = 0
+        n_dot_l = dot(Nf, L)
+        if not n_dot_l > 0.0:
+            continue                      # lum = 0: no shadow ray
+        d = length(Lvec)                  # distance from I (for fat)
+        # shadow segment from the offset origin to the light
+        so = offset_origin(P, Nf, delta, L)
+        seg = sub(light.pos, so)
+        d_L = length(seg)
+        sdir = normalize(seg)
+        s = 1.0
+        stats.rays["shadow"] += 1
+        if sdir is not None:
+            for occ in scene.objects:
+                h = occ.shape.intersect(so, sdir)
+                if h is not None and h[0] < d_L:
+                    s *= occ.mat.kt       # once per distinct object
+        c0, c1, c2 = light.att
+        fat = min(1.0, 1.0 / (c0 + c1 * d + c2 * d * d))
+        H = normalize(add(L, V))
+        if H is None:
+            nh_term = 0.0
+        else:
+            nh_term = max(0.0, dot(Nf, H)) ** mat.n     # 0**0 == 1 in Python
+        for k in range(3):
+            diffuse = light.intensity[k] * fat * s * kd[k] * n_dot_l
+            specular = light.intensity[k] * fat * s * mat.ks * nh_term
+            c[k] += diffuse + specular
+
+    if level <= scene.max_depth:
+        if mat.ks > 0.0:
+            # R = 2(N.V)N - V with V = -D
+            nv = dot(Nf, V)
+            R = normalize(sub(scale(Nf, 2.0 * nv), V))
+            if R is not None:
+                stats.rays["reflected"] += 1
+                ro = offset_origin(P, Nf, delta, R)
+                rc = trace_ray(scene, ro, R, level + 1, stats)
+                for k in range(3):
+                    c[k] += mat.ks * rc[k]
+        if mat.kt > 0.0:
+            if entering:
+                n1, n2 = 1.0, mat.ior
+            else:
+                n1, n2 = mat.ior, 1.0
+            eta = n1 / n2
+            ci = min(1.0, max(-1.0, -dot(D, Nf)))
+            kk = (1.0 - eta * eta) + (eta * ci) * (eta * ci)
+            if kk < 0.0:
+                stats.tir += 1            # total internal reflection: kt*T dropped
+            else:
+                if eta == 1.0:
+                    T = D
+                else:
+                    T = normalize(add(scale(D, eta), scale(Nf, eta * ci - math.sqrt(kk))))
+                if T is not None:
+                    stats.rays["transmitted"] += 1
+                    to = offset_origin(P, Nf, delta, T)
+                    tc = trace_ray(scene, to, T, level + 1, stats)
+                    for k in range(3):
+                        c[k] += mat.kt * tc[k]
+    return (c[0], c[1], c[2])
+
+
+def primary_ray(cam, u, v):
+    if cam.ortho:
+        S = sub(add(add(cam.eye, scale(cam.U, u)), scale(cam.V, v)), scale(cam.W, cam.p))
+        return S, neg(cam.W)
+    # D = S - O = u*U + v*V - p*W, normalised
+    D = sub(add(scale(cam.U, u), scale(cam.V, v)), scale(cam.W, cam.p))
+    return cam.eye, normalize(D)
+
+
+def trace_uv(scene, u, v, stats):
+    O, D = primary_ray(scene.camera, u, v)
+    stats.rays["primary"] += 1
+    return trace_ray(scene, O, D, 1, stats)
+
+
+def mean4(a, b, c, d):
+    return tuple((a[k] + b[k] + c[k] + d[k]) / 4.0 for k in range(3))
+
+
+def render(scene, aa, threshold, max_level, stats):
+    cam = scene.camera
+    nx, ny = cam.nx, cam.ny
+    l, r, b, t = cam.l, cam.r, cam.b, cam.t
+    pixels = [None] * (nx * ny)
+
+    if aa == "center":
+        for j in range(ny):
+            v = b + (t - b) * (j + 0.5) / ny
+            for i in range(nx):
+                u = l + (r - l) * (i + 0.5) / nx
+                pixels[j * nx + i] = trace_uv(scene, u, v, stats)
+        return pixels, nx * ny
+
+    K = 0 if aa == "corners" else max_level
+    S = 2 ** K
+    NX, NY = nx * S, ny * S         # lattice size (in lattice steps)
+    cache = {}
+
+    def sample(I, J):
+        key = (I, J)
+        col = cache.get(key)
+        if col is None:
+            u = l + (r - l) * I / NX
+            v = b + (t - b) * J / NY
+            col = trace_uv(scene, u, v, stats)
+            cache[key] = col
+        return col
+
+    def square(I0, J0, s, level):
+        cs = (sample(I0, J0), sample(I0 + s, J0), sample(I0, J0 + s), sample(I0 + s, J0 + s))
+        spread = max(max(cc[k] for cc in cs) - min(cc[k] for cc in cs) for k in range(3))
+        if level < K and spread >= threshold:
+            h = s // 2
+            return mean4(square(I0, J0, h, level + 1),
+                         square(I0 + h, J0, h, level + 1),
+                         square(I0, J0 + h, h, level + 1),
+                         square(I0 + h, J0 + h, h, level + 1))
+        return mean4(*cs)
+
+    for j in range(ny):
+        for i in range(nx):
+            pixels[j * nx + i] = square(i * S, j * S, S, 0)
+    return pixels, len(cache)
+
+
+def to_byte(c):
+    """round(255*clamp(c, 0, 1)), round half away from zero."""
+    x = 255.0 * min(1.0, max(0.0, c))
+    fl = math.floor(x)
+    return int(fl + 1) if x - fl >= 0.5 else int(fl)
+
+
+def parse_size(s):
+    try:
+        w, h = s.lower().split("x")
+        w, h = int(w), int(h)
+    except ValueError:
+        raise SystemExit("--size must be WxH")
+    return w, h
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("scene")
+    ap.add_argument("--size")
+    ap.add_argument("--aa", choices=("center", "corners", "adaptive"), default="center")
+    ap.add_argument("--threshold", type=float, default=0.1)
+    ap.add_argument("--max-level", type=int, default=2)
+    ap.add_argument("--depth", type=int, default=None, help="override max_depth")
+    ap.add_argument("-o", "--out", required=True)
+    ap.add_argument("--lenient", action="store_true",
+                    help="unknown scene fields are warnings instead of errors")
+    args = ap.parse_args(argv)
+
+    if math.isnan(args.threshold) or args.threshold < 0:
+        raise SystemExit("--threshold must be >= 0 and not NaN")
+    if not 0 <= args.max_level <= 8:
+        raise SystemExit("--max-level must be in [0, 8]")
+    if args.depth is not None and not 0 <= args.depth <= 64:
+        raise SystemExit("--depth must be in [0, 64]")
+
+    t0 = time.time()
+    try:
+        scene = load_scene(args.scene, parse_size(args.size) if args.size else None,
+                           args.depth, args.lenient)
+    except SceneError as e:
+        sys.stderr.write("scene error:\n%s\n" % e)
+        return 2
+    sys.setrecursionlimit(10000)
+    stats = Stats()
+    pixels, nprimary = render(scene, args.aa, args.threshold, args.max_level, stats)
+    assert nprimary == stats.rays["primary"], (nprimary, stats.rays)
+    for px in pixels:
+        for x in px:
+            if not math.isfinite(x):
+                raise SystemExit("BUG: non-finite pixel value %r" % (px,))
+    out = {
+        "width": scene.camera.nx,
+        "height": scene.camera.ny,
+        "primary_rays": nprimary,
+        "pixels": [list(px) for px in pixels],
+        "bytes": [[to_byte(x) for x in px] for px in pixels],
+    }
+    with open(args.out, "w") as fh:
+        json.dump(out, fh, allow_nan=False)
+    sys.stderr.write("%s: %dx%d aa=%s primary=%d rays=%s tir=%d %.2fs\n" % (
+        args.scene, scene.camera.nx, scene.camera.ny, args.aa, nprimary,
+        stats.rays, stats.tir, time.time() - t0))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
