@@ -3,17 +3,20 @@
 shared/docs/algorithm.md (conventions + section 11) and shared/docs/product.md
 (scene format, defaults, image writing).  Python 3 standard library only.
 
-Scope: 3D scenes; camera (perspective / orthographic), background, ambient,
-max_depth, point lights with attenuation, materials (by name or inline, with
-checker), objects sphere / plane / box / triangle.  Brute force over all objects.
+Scope: 3D and 2D scenes (the camera's eye and center decide: 3 or 2 numbers);
+camera (perspective / orthographic), background, ambient, max_depth, point lights
+with attenuation, materials (by name or inline, with checker).  Objects in 3D:
+sphere / plane / box / triangle; in 2D: sphere (circle) / plane (line) / box
+(rectangle) / triangle / segment / polygon.  Brute force over all objects.
 
 Usage:
-    python3 ref.py SCENE.json [--size WxH] [--aa center|corners|adaptive]
+    python3 reference.py SCENE.json [--size WxH | --size W] [--aa center|corners|adaptive]
                    [--threshold X] [--max-level K] [--depth N] -o OUT.json
 
 OUT.json = {"width", "height", "primary_rays", "pixels", "bytes"}; pixels in
 row-major order, row 0 = BOTTOM row of the image (j counted from the bottom),
-i from the left.
+i from the left.  A 2D scene gives a strip Nx wide and max(1, Nx/8) rows tall
+(H rows with --size WxH), every row the same; primary_rays counts the one line.
 """
 
 import argparse
@@ -27,33 +30,45 @@ INF = float("inf")
 
 
 # ----------------------------------------------------------------------------
-# Small vector helpers (3-tuples of floats)
+# Small vector helpers: tuples of floats of any length (3 in 3D, 2 in 2D).
+# Sums are evaluated left to right from the first term (a0*b0 + a1*b1 + a2*b2),
+# never from a 0.0 start, so 3D results are bit-identical to the 3-term forms
+# and the sign of a zero survives.
 # ----------------------------------------------------------------------------
 
 def add(a, b):
-    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+    return tuple(x + y for x, y in zip(a, b))
 
 
 def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+    return tuple(x - y for x, y in zip(a, b))
 
 
 def scale(a, s):
-    return (a[0] * s, a[1] * s, a[2] * s)
+    return tuple(x * s for x in a)
 
 
 def neg(a):
-    return (-a[0], -a[1], -a[2])
+    return tuple(-x for x in a)
 
 
 def dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    s = a[0] * b[0]
+    for k in range(1, len(a)):
+        s += a[k] * b[k]
+    return s
 
 
 def cross(a, b):
+    """3D only."""
     return (a[1] * b[2] - a[2] * b[1],
             a[2] * b[0] - a[0] * b[2],
             a[0] * b[1] - a[1] * b[0])
+
+
+def turn_cw(a):
+    """2D: a turned by -90 degrees, (a_y, -a_x) (algorithm.md section 2 and section 3)."""
+    return (a[1], -a[0])
 
 
 def length(a):
@@ -61,7 +76,7 @@ def length(a):
 
 
 def norm_inf(a):
-    return max(abs(a[0]), abs(a[1]), abs(a[2]))
+    return max(abs(x) for x in a)
 
 
 def normalize(a):
@@ -69,7 +84,7 @@ def normalize(a):
     n = length(a)
     if not (n > 0.0) or not math.isfinite(n):
         return None
-    return (a[0] / n, a[1] / n, a[2] / n)
+    return tuple(x / n for x in a)
 
 
 def normalize_scaled(a):
@@ -78,7 +93,7 @@ def normalize_scaled(a):
     m = norm_inf(a)
     if not (m > 0.0) or not math.isfinite(m):
         return None
-    return normalize((a[0] / m, a[1] / m, a[2] / m))
+    return normalize(tuple(x / m for x in a))
 
 
 # ----------------------------------------------------------------------------
@@ -124,14 +139,28 @@ class Loader:
             return None
         return v
 
-    def vec3(self, v, field):
-        if not isinstance(v, list) or len(v) != 3:
-            self.err(field, "must be a list of 3 numbers, got %r" % (v,))
+    def vec(self, v, field, dim):
+        """A point or direction of the scene's dimension (product.md: "3D vectors have 3
+        numbers, 2D vectors 2; the camera's vectors decide the dimension, and mixing is an
+        error")."""
+        if not isinstance(v, list) or len(v) != dim:
+            if dim == 2 and isinstance(v, list) and len(v) == 3:
+                self.err(field, "must be a list of 2 numbers in a 2D scene (the camera's vectors "
+                                "have 2), got %r" % (v,))
+            elif dim == 3 and isinstance(v, list) and len(v) == 2:
+                self.err(field, "must be a list of 3 numbers in a 3D scene (the camera's vectors "
+                                "have 3), got %r" % (v,))
+            else:
+                self.err(field, "must be a list of %d numbers, got %r" % (dim, v))
             return None
         out = [self.number(x, "%s[%d]" % (field, k)) for k, x in enumerate(v)]
         if any(x is None for x in out):
             return None
         return tuple(out)
+
+    def vec3(self, v, field):
+        """Three numbers whatever the dimension: RGB colours, attenuation (c0, c1, c2)."""
+        return self.vec(v, field, 3)
 
     def colour(self, v, field, grey_ok=False, lo=None, hi=None):
         """An RGB triple (or, where grey_ok, one number meaning grey)."""
@@ -166,9 +195,10 @@ class Material:
         if self.checker is None:
             return self.ka, self.kd
         size, kd2, ka2 = self.checker
-        s = (math.floor(p[0] / size + 1e-10)
-             + math.floor(p[1] / size + 1e-10)
-             + math.floor(p[2] / size + 1e-10))
+        # floor(x/size + 1e-10) + floor(y/size + 1e-10) [+ floor(z/size + 1e-10)]: "in 2D, x and y"
+        s = 0
+        for x in p:
+            s += math.floor(x / size + 1e-10)
         if s % 2 == 1:          # Python's % on ints is rem_euclid for divisor 2
             return ka2, kd2
         return self.ka, self.kd
@@ -231,6 +261,8 @@ def load_material(L, m, field):
 # ----------------------------------------------------------------------------
 
 class Sphere:
+    """A sphere, or in 2D a circle (the same formulas in 2 coordinates)."""
+
     def __init__(self, c, r):
         self.c = c
         self.r = r
@@ -265,11 +297,13 @@ class Sphere:
         if dl > 0.0:
             p = add(self.c, scale(d, self.r / dl))
         n = sub(p, self.c)
-        n = (n[0] / self.r, n[1] / self.r, n[2] / self.r)   # N = (I - C)/r
+        n = tuple(x / self.r for x in n)   # N = (I - C)/r
         return p, n
 
 
 class Plane:
+    """A plane, or in 2D a line (point, unit normal)."""
+
     def __init__(self, point, normal):
         self.point = point
         self.n = normal
@@ -292,6 +326,8 @@ class Plane:
 
 
 class Box:
+    """An axis-aligned box, or in 2D a rectangle; a closed set, tested exactly."""
+
     def __init__(self, lo, hi):
         self.lo = lo
         self.hi = hi
@@ -300,7 +336,7 @@ class Box:
     def intersect(self, O, D):
         t_in, t_out = -INF, INF
         ax_in, ax_out = None, None
-        for a in range(3):
+        for a in range(len(O)):
             o, d = O[a], D[a]
             if d == 0.0:
                 # parallel slab: inside iff min <= o <= max, recorded (-inf, +inf)
@@ -310,7 +346,7 @@ class Box:
             t1 = (self.lo[a] - o) / d
             t2 = (self.hi[a] - o) / d
             ti, te = min(t1, t2), max(t1, t2)
-            if ti > t_in:               # strict: ties keep the earlier axis (x, y, z)
+            if ti > t_in:               # strict: ties keep the earlier axis (x, y[, z])
                 t_in, ax_in = ti, a
             if te < t_out:
                 t_out, ax_out = te, a
@@ -329,7 +365,7 @@ class Box:
         on_max = (d < 0.0) if is_entry else (d > 0.0)
         p = list(add(O, scale(D, t)))
         p[axis] = self.hi[axis] if on_max else self.lo[axis]   # face coordinate set exactly
-        n = [0.0, 0.0, 0.0]
+        n = [0.0] * len(D)
         n[axis] = 1.0 if on_max else -1.0
         return tuple(p), tuple(n)
 
@@ -394,6 +430,138 @@ class Triangle:
         return add(O, scale(D, t)), self.n
 
 
+# ---- 2D: segments and polygons (2D triangles are polygons of 3 vertices) ----
+
+def edge_hit_2d(a, b, O, D):
+    """t > 0 where the ray O + t*D (unit D) crosses the closed segment [a, b], or None.
+
+    algorithm.md section 11 fixes the watertight Woop-Benthin-Wald test for (3D) triangles and
+    names no method for 2D edges; this is the same test in one dimension less: translate to O,
+    shear so that D becomes the kz axis, and the sheared transverse coordinates ea, eb of a and b
+    are the edge functions (exactly re-evaluated where one is 0).  The ray crosses [a, b] iff
+    they do not have the same strict sign, so two polygon edges sharing a vertex (whose value is
+    computed once per vertex, identically) are never both missed.  Both 0: the ray runs along
+    the segment, an edge-on hit, invisible (as edge-on triangles are)."""
+    kz = 0 if abs(D[0]) >= abs(D[1]) else 1   # the larger |component| (ties: x), as in 3D
+    kx = 1 - kz
+    S = D[kx] / D[kz]
+    A = sub(a, O)
+    B = sub(b, O)
+    ea = A[kx] - S * A[kz]
+    eb = B[kx] - S * B[kz]
+    if ea == 0.0 or eb == 0.0:
+        F = Fraction
+        ea = float(F(A[kx]) - F(S) * F(A[kz]))
+        eb = float(F(B[kx]) - F(S) * F(B[kz]))
+    if (ea < 0.0 and eb < 0.0) or (ea > 0.0 and eb > 0.0):
+        return None
+    det = ea - eb
+    if det == 0.0:
+        return None          # edge-on: invisible
+    Sz = 1.0 / D[kz]
+    ta = Sz * A[kz]          # t of a's and b's projections on the ray
+    tb = Sz * B[kz]
+    t = (ea * tb - eb * ta) / det    # = ta + (ea / (ea - eb)) * (tb - ta)
+    if not (t > 0.0) or not math.isfinite(t):
+        return None
+    return t
+
+
+def segment_normal(a, b):
+    """algorithm.md section 3: "for a 2D segment from a to b, (d_y, -d_x)/|d| with d = b - a"."""
+    return normalize_scaled(turn_cw(sub(b, a)))
+
+
+class Segment:
+    def __init__(self, a, b):
+        self.a, self.b = a, b
+        self.n = segment_normal(a, b)
+        self.scale = max(norm_inf(a), norm_inf(b))
+
+    def intersect(self, O, D):
+        t = edge_hit_2d(self.a, self.b, O, D)
+        return None if t is None else (t, None)
+
+    def surface(self, O, D, t, extra):
+        # section 11 lists no re-projection for segments: O + t*D, as for triangles
+        return add(O, scale(D, t)), self.n
+
+
+class Polygon:
+    """A simple polygon (a 2D triangle too), either winding.  algorithm.md section 3: the
+    normal is "the outward edge normal whatever the winding (by the sign of its area)"."""
+
+    def __init__(self, vertices, area_sign):
+        self.v = vertices
+        n = len(vertices)
+        self.edges = [(vertices[k], vertices[(k + 1) % n]) for k in range(n)]
+        # (d_y, -d_x) is the right of a -> b: outward for a counter-clockwise polygon (area > 0)
+        self.normals = [segment_normal(a, b) if area_sign > 0 else neg(segment_normal(a, b))
+                        for a, b in self.edges]
+        self.scale = max(norm_inf(p) for p in vertices)
+
+    def intersect(self, O, D):
+        best = None
+        for k, (a, b) in enumerate(self.edges):
+            t = edge_hit_2d(a, b, O, D)
+            if t is not None and (best is None or t < best[0]):   # ties: the lower edge index
+                best = (t, k)
+        return best
+
+    def surface(self, O, D, t, extra):
+        return add(O, scale(D, t)), self.normals[extra]
+
+
+def orient_exact(p, q, r):
+    """Sign of (q - p) x (r - p), exactly (for validating polygons at load)."""
+    F = Fraction
+    v = ((F(q[0]) - F(p[0])) * (F(r[1]) - F(p[1]))
+         - (F(q[1]) - F(p[1])) * (F(r[0]) - F(p[0])))
+    return (v > 0) - (v < 0)
+
+
+def on_segment_exact(p, q, r):
+    """r on the closed segment [p, q], given that the three are collinear."""
+    return (min(p[0], q[0]) <= r[0] <= max(p[0], q[0])
+            and min(p[1], q[1]) <= r[1] <= max(p[1], q[1]))
+
+
+def segments_meet_exact(p1, q1, p2, q2):
+    o1, o2 = orient_exact(p1, q1, p2), orient_exact(p1, q1, q2)
+    o3, o4 = orient_exact(p2, q2, p1), orient_exact(p2, q2, q1)
+    if o1 != o2 and o3 != o4 and o1 * o2 <= 0 and o3 * o4 <= 0:
+        return True
+    return ((o1 == 0 and on_segment_exact(p1, q1, p2)) or (o2 == 0 and on_segment_exact(p1, q1, q2))
+            or (o3 == 0 and on_segment_exact(p2, q2, p1)) or (o4 == 0 and on_segment_exact(p2, q2, q1)))
+
+
+def polygon_problem(vs):
+    """None for a simple polygon with non-zero area, else what is wrong; and the area's sign."""
+    F = Fraction
+    n = len(vs)
+    twice_area = sum(F(vs[k][0]) * F(vs[(k + 1) % n][1]) - F(vs[(k + 1) % n][0]) * F(vs[k][1])
+                     for k in range(n))
+    sign = (twice_area > 0) - (twice_area < 0)
+    for k in range(n):
+        if vs[k] == vs[(k + 1) % n]:
+            return "vertices %d and %d coincide (zero-length edge)" % (k, (k + 1) % n), sign
+    for k in range(n):
+        a, b, c = vs[k], vs[(k + 1) % n], vs[(k + 2) % n]
+        # adjacent edges a-b, b-c may only share b: collinear and folding back is an overlap
+        if orient_exact(a, b, c) == 0 and ((F(b[0]) - F(a[0])) * (F(c[0]) - F(b[0]))
+                                           + (F(b[1]) - F(a[1])) * (F(c[1]) - F(b[1]))) < 0:
+            return "edges %d and %d overlap (not simple)" % (k, (k + 1) % n), sign
+    for i in range(n):
+        for j in range(i + 2, n):
+            if i == 0 and j == n - 1:
+                continue       # adjacent through vertex 0
+            if segments_meet_exact(vs[i], vs[(i + 1) % n], vs[j], vs[(j + 1) % n]):
+                return "edges %d and %d cross or touch (not simple)" % (i, j), sign
+    if sign == 0:
+        return "zero area", sign
+    return None, sign
+
+
 class Obj:
     def __init__(self, shape, material, name):
         self.shape = shape
@@ -421,30 +589,26 @@ def reject_constant(name):
     raise SceneError("JSON syntax error: %s is not a JSON literal" % name)
 
 
-def load_scene(path, size_override=None, depth_override=None, lenient=False):
-    with open(path) as fh:
-        text = fh.read()
-    try:
-        data = json.loads(text, parse_constant=reject_constant)
-    except json.JSONDecodeError as e:
-        raise SceneError("JSON syntax error at line %d column %d: %s" % (e.lineno, e.colno, e.msg))
-    L = Loader(lenient)
-    L.check_fields(data, "scene", ("camera", "background", "ambient", "max_depth",
-                                   "lights", "materials", "objects"))
-    sc = Scene()
+def scene_dimension(L, cj):
+    """product.md: "3D vectors have 3 numbers, 2D vectors 2; the camera's vectors decide the
+    dimension, and mixing is an error".  The camera's vectors are eye and center (2D has no up)."""
+    lens = [len(cj[k]) for k in ("eye", "center") if isinstance(cj, dict) and isinstance(cj.get(k), list)]
+    if lens and lens[0] == 2 and all(n == 2 for n in lens):
+        return 2
+    if len(lens) == 2 and set(lens) == {2, 3}:
+        L.err("camera.center", "has %d numbers but camera.eye has %d (mixing 2D and 3D is an error)"
+              % (lens[1], lens[0]))
+    return 3
 
-    # camera
-    cam = Camera()
-    cj = data.get("camera")
-    if cj is None:
-        raise SceneError("camera: required")
-    L.check_fields(cj, "camera", ("eye", "center", "up", "projection", "p", "window", "resolution"))
+
+def camera_common(L, cj, cam, dim, fields, window_keys):
+    """eye, center, projection, p and the window sides, for either dimension."""
+    L.check_fields(cj, "camera", fields)
     for req in ("eye", "center", "window", "resolution"):
         if req not in cj:
             L.err("camera." + req, "required")
-    eye = L.vec3(cj.get("eye", [0, 0, 1]), "camera.eye")
-    ctr = L.vec3(cj.get("center", [0, 0, 0]), "camera.center")
-    up = L.vec3(cj.get("up", [0, 1, 0]), "camera.up")
+    eye = L.vec(cj.get("eye", [0, 0, 1][3 - dim:]), "camera.eye", dim)
+    ctr = L.vec(cj.get("center", [0, 0, 0][3 - dim:]), "camera.center", dim)
     proj = cj.get("projection", "perspective")
     if proj not in ("perspective", "orthographic"):
         L.err("camera.projection", "must be perspective or orthographic, got %r" % (proj,))
@@ -454,25 +618,36 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
         L.err("camera.p", "must be > 0, got %r" % p)
     cam.p = p
     win = cj.get("window", {})
-    if L.check_fields(win, "camera.window", ("l", "r", "b", "t")):
-        for k in ("l", "r", "b", "t"):
+    if L.check_fields(win, "camera.window", ("l", "r", "b", "t")):   # 2D reports b, t itself
+        for k in window_keys:
             if k not in win:
                 L.err("camera.window." + k, "required")
         cam.l = L.number(win.get("l", -1), "camera.window.l")
         cam.r = L.number(win.get("r", 1), "camera.window.r")
-        cam.b = L.number(win.get("b", -1), "camera.window.b")
-        cam.t = L.number(win.get("t", 1), "camera.window.t")
         if None not in (cam.l, cam.r) and not cam.r > cam.l:
             L.err("camera.window", "r must be > l")
-        if None not in (cam.b, cam.t) and not cam.t > cam.b:
-            L.err("camera.window", "t must be > b")
+        if dim == 3:
+            cam.b = L.number(win.get("b", -1), "camera.window.b")
+            cam.t = L.number(win.get("t", 1), "camera.window.t")
+            if None not in (cam.b, cam.t) and not cam.t > cam.b:
+                L.err("camera.window", "t must be > b")
+    return eye, ctr
+
+
+def load_camera_3d(L, cj, cam, size_override):
+    eye, ctr = camera_common(L, cj, cam, 3, ("eye", "center", "up", "projection", "p", "window",
+                                             "resolution"), ("l", "r", "b", "t"))
+    up = L.vec3(cj.get("up", [0, 1, 0]), "camera.up")
     res = cj.get("resolution", [1, 1])
     if not (isinstance(res, list) and len(res) == 2 and all(isinstance(x, int) and not isinstance(x, bool) for x in res)):
-        L.err("camera.resolution", "must be [Nx, Ny] integers (3D only)")
+        L.err("camera.resolution", "must be [Nx, Ny] integers in a 3D scene")
         res = [1, 1]
     cam.nx, cam.ny = res
     if size_override is not None:
-        cam.nx, cam.ny = size_override     # --size keeps the window
+        if size_override[1] is None:
+            L.err("--size", "a 3D scene needs WxH")
+        else:
+            cam.nx, cam.ny = size_override     # --size keeps the window
     if cam.nx < 1 or cam.ny < 1:
         L.err("camera.resolution", "must be >= 1")
     if eye is not None and ctr is not None and up is not None:
@@ -491,6 +666,86 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
                     u = normalize(cu)
                     v = cross(w, u)
                     cam.eye, cam.U, cam.V, cam.W = eye, u, v, w
+
+
+def load_camera_2d(L, cj, cam, size_override):
+    """product.md: "resolution is [Nx]; the window has only l and r; eye, center ... have 2
+    numbers; there is no up"."""
+    if isinstance(cj, dict) and "up" in cj:
+        L.err("camera.up", "a 2D scene has no up (the camera's eye and center have 2 numbers)")
+    if isinstance(cj, dict) and isinstance(cj.get("window"), dict):
+        for k in ("b", "t"):
+            if k in cj["window"]:
+                L.err("camera.window." + k, "a 2D window has only l and r")
+    fields = ("eye", "center", "up", "projection", "p", "window", "resolution")  # up: reported above
+    eye, ctr = camera_common(L, cj, cam, 2, fields, ("l", "r"))
+    res = cj.get("resolution", [1])
+    if not (isinstance(res, list) and len(res) == 1 and isinstance(res[0], int) and not isinstance(res[0], bool)):
+        L.err("camera.resolution", "must be [Nx] (one integer) in a 2D scene, got %r" % (res,))
+        res = [1]
+    cam.nx = res[0]
+    if size_override is not None:
+        cam.nx = size_override[0]               # --size keeps the window
+    if cam.nx < 1:
+        L.err("camera.resolution", "must be >= 1")
+    # product.md: "A 2D scene renders to a strip Nx wide and max(1, Nx/8) rows tall, every row the
+    # same (--size W or WxH)".  Our reading: --size WxH gives the strip H rows, --size W (or none)
+    # max(1, W/8).
+    cam.ny = max(1, cam.nx // 8)
+    if size_override is not None and size_override[1] is not None:
+        cam.ny = size_override[1]
+        if cam.ny < 1:
+            L.err("--size", "H must be >= 1")
+    if eye is not None and ctr is not None:
+        w = normalize(sub(eye, ctr))
+        if w is None:
+            L.err("camera.eye", "equals camera.center")
+        else:
+            # algorithm.md section 2: "w = normalize(O - C) and u = (w_y, -w_x) (w turned by -90 deg)"
+            cam.eye, cam.U, cam.V, cam.W = eye, turn_cw(w), None, w
+
+
+def load_polygon(L, vs, f, count):
+    """A 2D triangle (count 3) or polygon (count None: 3 or more), validated: no repeated
+    vertex, non-zero area, simple.  Either winding (algorithm.md section 3)."""
+    what = "3 points" if count == 3 else "a list of 3 or more points"
+    if not isinstance(vs, list) or (len(vs) != count if count else len(vs) < 3):
+        L.err(f + ".vertices", "must be %s" % what)
+        return None
+    pts = [L.vec(vv, "%s.vertices[%d]" % (f, q), 2) for q, vv in enumerate(vs)]
+    if None in pts:
+        return None
+    problem, sign = polygon_problem(pts)
+    if problem is not None:
+        L.err(f + ".vertices", ("zero-area triangle" if count == 3 and sign == 0 else problem))
+        return None
+    return Polygon(pts, sign)
+
+
+def load_scene(path, size_override=None, depth_override=None, lenient=False):
+    with open(path) as fh:
+        text = fh.read()
+    try:
+        data = json.loads(text, parse_constant=reject_constant)
+    except json.JSONDecodeError as e:
+        raise SceneError("JSON syntax error at line %d column %d: %s" % (e.lineno, e.colno, e.msg))
+    L = Loader(lenient)
+    L.check_fields(data, "scene", ("camera", "background", "ambient", "max_depth",
+                                   "lights", "materials", "objects"))
+    sc = Scene()
+
+    # camera: it decides the dimension
+    cam = Camera()
+    cj = data.get("camera")
+    if cj is None:
+        raise SceneError("camera: required")
+    dim = scene_dimension(L, cj)
+    cam.dim = dim
+    if dim == 3:
+        load_camera_3d(L, cj, cam, size_override)
+    else:
+        load_camera_2d(L, cj, cam, size_override)
+    sc.dim = dim
     sc.camera = cam
 
     # globals
@@ -511,7 +766,7 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
         if "position" not in lj:
             L.err(f + ".position", "required")
             continue
-        pos = L.vec3(lj["position"], f + ".position")
+        pos = L.vec(lj["position"], f + ".position", dim)
         inten = L.colour(lj.get("intensity", [1, 1, 1]), f + ".intensity")
         att = L.vec3(lj.get("attenuation", [1, 0, 0]), f + ".attenuation")
         if att is not None:
@@ -529,7 +784,9 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
     else:
         L.err("materials", "must be an object")
 
-    # objects
+    # objects (product.md: "In 2D: sphere is a circle (center, radius), plane a line (point,
+    # normal), box a rectangle (min, max); triangle (vertices: 3 points), segment (a, b) and
+    # polygon (vertices: 3 or more points, simple, either winding) are available")
     sc.objects = []
     allowed = {
         "sphere": ("center", "radius"),
@@ -537,6 +794,9 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
         "box": ("min", "max"),
         "triangle": ("vertices",),
     }
+    if dim == 2:
+        allowed["segment"] = ("a", "b")
+        allowed["polygon"] = ("vertices",)
     for k, oj in enumerate(data.get("objects", [])):
         f = "objects[%d]" % k
         if not isinstance(oj, dict):
@@ -544,7 +804,10 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
             continue
         typ = oj.get("type")
         if typ not in allowed:
-            L.err(f + ".type", "unsupported in this reference: %r" % (typ,))
+            if typ in ("segment", "polygon"):
+                L.err(f + ".type", "%s is a 2D object (this scene's camera is 3D)" % typ)
+            else:
+                L.err(f + ".type", "unsupported in this reference: %r" % (typ,))
             continue
         L.check_fields(oj, f, ("type", "name", "material") + allowed[typ])
         for g in allowed[typ]:
@@ -565,15 +828,15 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
         shape = None
         try:
             if typ == "sphere":
-                c = L.vec3(oj["center"], f + ".center")
+                c = L.vec(oj["center"], f + ".center", dim)
                 r = L.number(oj["radius"], f + ".radius")
                 if r is not None and not r > 0:
                     L.err(f + ".radius", "must be > 0, got %r" % r)
                 elif c is not None and r is not None:
                     shape = Sphere(c, r)
             elif typ == "plane":
-                pt = L.vec3(oj["point"], f + ".point")
-                nv = L.vec3(oj["normal"], f + ".normal")
+                pt = L.vec(oj["point"], f + ".point", dim)
+                nv = L.vec(oj["normal"], f + ".normal", dim)
                 if nv is not None:
                     nn = normalize_scaled(nv)
                     if nn is None:
@@ -581,13 +844,25 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
                     elif pt is not None:
                         shape = Plane(pt, nn)
             elif typ == "box":
-                lo = L.vec3(oj["min"], f + ".min")
-                hi = L.vec3(oj["max"], f + ".max")
+                lo = L.vec(oj["min"], f + ".min", dim)
+                hi = L.vec(oj["max"], f + ".max", dim)
                 if lo is not None and hi is not None:
-                    if not all(lo[a] < hi[a] for a in range(3)):
+                    if not all(lo[a] < hi[a] for a in range(dim)):
                         L.err(f, "box needs min < max on every axis")
                     else:
                         shape = Box(lo, hi)
+            elif typ == "triangle" and dim == 2:
+                shape = load_polygon(L, oj["vertices"], f, 3)
+            elif typ == "polygon":
+                shape = load_polygon(L, oj["vertices"], f, None)
+            elif typ == "segment":
+                a = L.vec(oj["a"], f + ".a", 2)
+                b = L.vec(oj["b"], f + ".b", 2)
+                if a is not None and b is not None:
+                    if a == b:
+                        L.err(f, "segment needs a != b")
+                    else:
+                        shape = Segment(a, b)
             elif typ == "triangle":
                 vs = oj["vertices"]
                 if not isinstance(vs, list) or len(vs) != 3:
@@ -619,6 +894,7 @@ class Stats:
     def __init__(self):
         self.rays = {"primary": 0, "reflected": 0, "transmitted": 0, "shadow": 0}
         self.tir = 0
+        self.log = None      # a list to record every hit (level, object index, P, N, entering)
 
 
 def offset_origin(P, Nf, delta, omega):
@@ -644,6 +920,8 @@ def trace_ray(scene, O, D, level, stats):
     t, extra, idx = hit
     obj = scene.objects[idx]
     P, N = obj.shape.surface(O, D, t, extra)
+    if stats.log is not None:
+        stats.log.append((level, idx, P, N, dot(D, N) <= 0.0))
     return shade_point(scene, obj, O, D, t, P, N, level, stats)
 
 
@@ -726,6 +1004,14 @@ def shade_point(scene, obj, O, D, t, P, N, level, stats):
 
 
 def primary_ray(cam, u, v):
+    if cam.dim == 2:
+        # algorithm.md section 2, "2D scenes": "The same in a plane: basis (u, w), a window [l, r]
+        # on the image line, Nx pixels, no v".
+        if cam.ortho:
+            S = sub(add(cam.eye, scale(cam.U, u)), scale(cam.W, cam.p))   # S = O + u*u - p*w
+            return S, neg(cam.W)
+        D = sub(scale(cam.U, u), scale(cam.W, cam.p))                     # S - O = u*u - p*w
+        return cam.eye, normalize(D)
     if cam.ortho:
         S = sub(add(add(cam.eye, scale(cam.U, u)), scale(cam.V, v)), scale(cam.W, cam.p))
         return S, neg(cam.W)
@@ -744,8 +1030,56 @@ def mean4(a, b, c, d):
     return tuple((a[k] + b[k] + c[k] + d[k]) / 4.0 for k in range(3))
 
 
+def mean2(a, b):
+    return tuple((a[k] + b[k]) / 2.0 for k in range(3))
+
+
+def render_2d(scene, aa, threshold, max_level, stats):
+    """A 2D scene: one image line of Nx pixels, repeated on every row of the strip (product.md:
+    "A 2D scene renders to a strip Nx wide and max(1, Nx/8) rows tall, every row the same").
+    algorithm.md section 8: "In 2D the same holds along the one axis: a pixel's "square" is its
+    interval, with 2 ends" -- corners traces Nx + 1 ends, adaptive splits an interval in 2 halves
+    (threshold 0, level K: Nx*2^K + 1 samples)."""
+    cam = scene.camera
+    nx, ny = cam.nx, cam.ny
+    l, r = cam.l, cam.r
+
+    if aa == "center":
+        line = []
+        for i in range(nx):
+            u = l + (r - l) * (i + 0.5) / nx
+            line.append(trace_uv(scene, u, None, stats))
+        return line * ny, nx
+
+    K = 0 if aa == "corners" else max_level
+    S = 2 ** K
+    NX = nx * S                     # lattice size (in lattice steps)
+    cache = {}
+
+    def sample(I):
+        col = cache.get(I)
+        if col is None:
+            u = l + (r - l) * I / NX
+            col = trace_uv(scene, u, None, stats)
+            cache[I] = col
+        return col
+
+    def interval(I0, s, level):
+        ends = (sample(I0), sample(I0 + s))
+        spread = max(max(cc[k] for cc in ends) - min(cc[k] for cc in ends) for k in range(3))
+        if level < K and spread >= threshold:
+            h = s // 2
+            return mean2(interval(I0, h, level + 1), interval(I0 + h, h, level + 1))
+        return mean2(*ends)
+
+    line = [interval(i * S, S, 0) for i in range(nx)]
+    return line * ny, len(cache)
+
+
 def render(scene, aa, threshold, max_level, stats):
     cam = scene.camera
+    if cam.dim == 2:
+        return render_2d(scene, aa, threshold, max_level, stats)
     nx, ny = cam.nx, cam.ny
     l, r, b, t = cam.l, cam.r, cam.b, cam.t
     pixels = [None] * (nx * ny)
@@ -798,11 +1132,15 @@ def to_byte(c):
 
 
 def parse_size(s):
+    """WxH -> (W, H); W (2D scenes only) -> (W, None)."""
     try:
-        w, h = s.lower().split("x")
+        parts = s.lower().split("x")
+        if len(parts) == 1:
+            return int(parts[0]), None
+        w, h = parts
         w, h = int(w), int(h)
     except ValueError:
-        raise SystemExit("--size must be WxH")
+        raise SystemExit("--size must be WxH (or W for a 2D scene)")
     return w, h
 
 

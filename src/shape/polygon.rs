@@ -3,6 +3,9 @@
 //! `f(P) = D × (P − O)`, is computed once per vertex, so two edges sharing a vertex agree on it.
 //! Outward normal of an edge `d = b − a`: `(d_y, −d_x)/|d|`; for a polygon or triangle the
 //! outward one whatever the winding (by the sign of its area); a segment keeps `(d_y, −d_x)`.
+//! The side values decide whether an edge is crossed; the crossing's t is the edge line's,
+//! `((a − O)·N)/(D·N)` as a 2D line computes it, so an edge lying on a line object meets a ray at
+//! exactly the line's t and §6's index rule settles the tie.
 
 use super::{Facet, SurfaceHit};
 use crate::geom::ray::Ray;
@@ -128,8 +131,15 @@ impl Polygon {
             #[allow(clippy::float_cmp)]
             let edge_on = f_a == f_b;
             if crosses && !edge_on {
-                // The point where f = 0, measured along D.
-                let t = (along(a) * f_b - along(b) * f_a) / (f_b - f_a);
+                // t by the edge's line, as a 2D line computes it, `((a − O)·N)/(D·N)`: an edge
+                // lying on a line object (a prism standing on the floor) then meets a ray at
+                // exactly the line's t, and §6's index rule decides the tie, not the last bit of
+                // two formulas. The side values decided that the edge is crossed; t stays within
+                // the edge's extent along D (a near-grazing ray could round past it).
+                let normal = self.normals[k];
+                let t = (a - ray.origin).dot(normal) / d.dot(normal);
+                let (lo, hi) = (along(a).min(along(b)), along(a).max(along(b)));
+                let t = t.max(lo).min(hi);
                 if t.is_finite() {
                     each(t, k);
                 }
@@ -201,6 +211,30 @@ mod tests {
             assert_eq!(h.normal, DVec2::Y);
             assert_eq!(h.t, 2.0);
         }
+    }
+
+    #[test]
+    fn an_edge_on_a_line_meets_a_ray_at_the_lines_t_bit_for_bit() {
+        // A prism standing on the floor y = −1, its bottom edge on the floor line: rays from
+        // inside (a transmitted ray) and from above meet both at the same t, so the tie is exact
+        // and §6's object index decides, not rounding.
+        use crate::shape::plane::Plane;
+        let floor = Plane { point: DVec2::new(0.0, -1.0), normal: DVec2::Y };
+        let prism = Polygon::closed(vec![DVec2::new(0.8, -1.0), DVec2::new(2.0, -1.0), DVec2::new(1.2, 1.2)])
+            .unwrap();
+        let mut met = 0;
+        for k in 0..200 {
+            let f = f64::from(k) / 200.0;
+            let origin = DVec2::new(0.9 + 0.7 * f, -0.99 + 0.9 * f);
+            let dir = DVec2::new(0.3 - 0.6 * f, -1.0).normalize();
+            let ray = Ray::new(origin, dir);
+            let (Some(edge), Some(line)) = (prism.hit(&ray), floor.hit(&ray)) else { continue };
+            if edge.normal == DVec2::NEG_Y {
+                assert_eq!(edge.t, line.t, "ray {k}");
+                met += 1;
+            }
+        }
+        assert!(met > 100, "{met} rays met the bottom edge");
     }
 
     #[test]
