@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Render every scene of bench/reference/scenes with whitted and with reference.py, in each sampling
 mode, and compare: the 8-bit pixels (whitted's PNG against the reference's bytes) and the number
-of primary rays, which algorithm.md §8 makes exact. Prints a Markdown table; exits 1 on a mismatch.
+of primary rays, which algorithm.md §8 makes exact; then whitted's other acceleration structures
+against the reference's `center` image. Prints a Markdown table; exits 1 on a mismatch.
 
 reference.py is an independent implementation of algorithm.md and product.md, written from those
 documents alone (see README.md). A pixel may differ by 1/255 where the two sum the same terms in a
@@ -33,6 +34,9 @@ MODES = [
     ("corners, depth 2", ["--aa", "corners", "--depth", "2"]),
 ]
 SIZE = "48x36"
+# whitted's other acceleration structures (the default is bvh), each held to the reference's
+# `center` image: every structure must give brute force's nearest hit (§11).
+STRUCTURES = ["none", "bounds", "grid", "octree"]
 
 
 def load_png_reader():
@@ -84,10 +88,17 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         for name in scenes:
             scene = os.path.join(HERE, "scenes", name + ".json")
-            for label, mode in MODES:
-                png, ref_path = os.path.join(work, "w.png"), os.path.join(work, "r.json")
-                ours = whitted(args.binary, scene, mode, png)
-                ref = reference(scene, mode, ref_path)
+            runs = [(label, mode, mode) for label, mode in MODES]
+            runs += [(f"center, --accel {a}", ["--aa", "center", "--accel", a], ["--aa", "center"])
+                     for a in STRUCTURES]
+            refs = {}
+            for label, ours_args, ref_args in runs:
+                png = os.path.join(work, "w.png")
+                ours = whitted(args.binary, scene, ours_args, png)
+                key = tuple(ref_args)
+                if key not in refs:
+                    refs[key] = reference(scene, ref_args, os.path.join(work, f"r{len(refs)}.json"))
+                ref = refs[key]
                 worst, off = compare(read_png, png, ref)
                 ours_primary, ref_primary = ours["rays"]["primary"], ref["primary_rays"]
                 ok = off == 0 and ours_primary == ref_primary

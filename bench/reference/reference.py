@@ -6,8 +6,10 @@ shared/docs/algorithm.md (conventions + section 11) and shared/docs/product.md
 Scope: 3D and 2D scenes (the camera's eye and center decide: 3 or 2 numbers);
 camera (perspective / orthographic), background, ambient, max_depth, point lights
 with attenuation, materials (by name or inline, with checker).  Objects in 3D:
-sphere / plane / box / triangle; in 2D: sphere (circle) / plane (line) / box
-(rectangle) / triangle / segment / polygon.  Brute force over all objects.
+sphere / plane / box / triangle / mesh (a Wavefront OBJ file); in 2D: sphere
+(circle) / plane (line) / box (rectangle) / triangle / segment / polygon.  Brute
+force over all objects (a mesh is one object: its triangles are all tested, after
+a padded bounding-box pre-test that never changes a result).
 
 Usage:
     python3 reference.py SCENE.json [--size WxH | --size W] [--aa center|corners|adaptive]
@@ -22,6 +24,8 @@ i from the left.  A 2D scene gives a strip Nx wide and max(1, Nx/8) rows tall
 import argparse
 import json
 import math
+import os
+import re
 import sys
 import time
 from fractions import Fraction
@@ -430,6 +434,163 @@ class Triangle:
         return add(O, scale(D, t)), self.n
 
 
+class Mesh:
+    """A triangle mesh read from a Wavefront OBJ file: ONE object (algorithm.md section 6: "Where
+    two objects are hit at the same t, the nearest hit is the one with the smaller index in
+    objects (within a mesh, the smaller triangle index)"; section 11: "Each distinct object
+    multiplies s by its kt once, however many times the segment crosses it").  Every triangle is a
+    Triangle (the watertight test, normal (b - a) x (c - a) normalised); the nearest hit is the
+    least t over the triangles, ties to the lower triangle index.  extra = the triangle index.
+
+    The offset scale is "the largest |coordinate| of its vertices" (section 11), taken over the
+    vertices the triangles use.
+
+    Pre-test: the ray must meet the triangles' bounding box grown by pad = 2^-32 * max(scale,
+    |O|_inf) on every side (closed slabs, a parallel slab inside iff within the grown bounds).  A
+    triangle hit of the watertight test lies within a few ulps of max(|vertex|, |O|) of the
+    triangle, about 1e6 times less than pad, so the pre-test only skips rays that miss every
+    triangle and never changes a result (selftest.py checks it against CULL = False)."""
+
+    CULL = True
+
+    def __init__(self, tris):
+        self.tris = tris
+        self.scale = max(tr.scale for tr in tris)
+        pts = [p for tr in tris for p in (tr.a, tr.b, tr.c)]
+        self.lo = tuple(min(p[k] for p in pts) for k in range(3))
+        self.hi = tuple(max(p[k] for p in pts) for k in range(3))
+
+    def box_maybe(self, O, D):
+        pad = 2.0 ** -32 * max(self.scale, norm_inf(O))
+        t_in, t_out = -INF, INF
+        for k in range(3):
+            lo, hi = self.lo[k] - pad, self.hi[k] + pad
+            if D[k] == 0.0:
+                if lo <= O[k] <= hi:
+                    continue
+                return False
+            t1 = (lo - O[k]) / D[k]
+            t2 = (hi - O[k]) / D[k]
+            t_in = max(t_in, min(t1, t2))
+            t_out = min(t_out, max(t1, t2))
+        return t_in <= t_out and t_out >= 0.0
+
+    def intersect(self, O, D):
+        if Mesh.CULL and not self.box_maybe(O, D):
+            return None
+        best = None
+        for k, tr in enumerate(self.tris):
+            h = tr.intersect(O, D)
+            if h is not None and (best is None or h[0] < best[0]):   # ties: the lower triangle index
+                best = (h[0], k)
+        return best
+
+    def surface(self, O, D, t, extra):
+        return self.tris[extra].surface(O, D, t, None)
+
+
+# ---- Wavefront OBJ reading ----
+
+OBJ_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?$")
+# i, i/j, i//k or i/j/k
+OBJ_FACE_VERTEX = re.compile(r"([+-]?[0-9]+)(?:/[+-]?[0-9]+|//[+-]?[0-9]+|/[+-]?[0-9]+/[+-]?[0-9]+)?$")
+
+
+def read_obj(L, path, field):
+    """The triangles of an OBJ file, or None after reporting to L (every message names field).
+
+    Read: `v x y z` (more numbers, a w or vertex colours, are ignored) and `f` with 3 or more
+    vertices written i, i/j, i//k or i/j/k (only i is used), 1-based; a negative i counts back from
+    the last `v` read so far (-1 = the latest), as the OBJ format defines it; a positive i may name
+    any `v` of the file.  A face of n > 3 vertices is the fan (v0, v1, v2), (v0, v2, v3), ...,
+    (v0, v_{n-2}, v_{n-1}); triangle indices run over the whole file in that order.  Every other
+    line kind (vt, vn, vp, o, g, s, usemtl, mtllib, l, p, ...) and `#` comments are ignored.
+    Errors: unreadable file, a malformed number or index, a number that is not finite or above
+    1e100 in magnitude (as for the scene's numbers), index 0 or out of range, a face of fewer than
+    3 vertices, a zero-area triangle (section 11: "Degenerate triangles (zero area) are rejected
+    when the scene loads"), a file with no face."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            text = fh.read()
+    except (OSError, UnicodeDecodeError) as e:
+        L.err(field, "cannot read OBJ file %r: %s" % (path, e))
+        return None
+    name = os.path.basename(path)
+    verts = []
+    faces = []        # (line number, [0-based vertex indices], [as written])
+    ok = True
+    for lineno, line in enumerate(text.split("\n"), 1):
+        line = line.split("#", 1)[0]
+        tok = line.split()
+        if not tok:
+            continue
+        where = "%s line %d" % (name, lineno)
+        if tok[0] == "v":
+            if len(tok) < 4:
+                L.err(field, "%s: a vertex needs 3 numbers, got %d" % (where, len(tok) - 1))
+                ok = False
+                verts.append((0.0, 0.0, 0.0))     # keeps later indices where the file means them
+                continue
+            xyz = []
+            for s in tok[1:4]:
+                x = float(s) if OBJ_NUMBER.match(s) else None
+                if x is None or not math.isfinite(x) or abs(x) > 1e100:
+                    L.err(field, "%s: %r is not a finite number of magnitude at most 1e100" % (where, s))
+                    ok = False
+                    x = 0.0
+                xyz.append(x)
+            verts.append(tuple(xyz))
+        elif tok[0] == "f":
+            if len(tok) < 4:
+                L.err(field, "%s: a face needs 3 or more vertices, got %d" % (where, len(tok) - 1))
+                ok = False
+                continue
+            idx = []
+            for s in tok[1:]:
+                m = OBJ_FACE_VERTEX.match(s)
+                i = int(m.group(1)) if m else None
+                if i is None or i == 0:
+                    L.err(field, "%s: bad face vertex %r (i, i/j, i//k or i/j/k, i != 0)" % (where, s))
+                    ok = False
+                    idx = None
+                    break
+                if i < 0:
+                    j = len(verts) + i          # relative to the vertices read so far
+                    if j < 0:
+                        L.err(field, "%s: face vertex %d: only %d vertices before this line" % (where, i, len(verts)))
+                        ok = False
+                        idx = None
+                        break
+                    idx.append(j)
+                else:
+                    idx.append(i - 1)
+            if idx is not None:
+                faces.append((lineno, idx, tok[1:]))
+        # every other line kind is ignored
+    tris = []
+    for lineno, idx, written in faces:
+        where = "%s line %d" % (name, lineno)
+        bad = [w for w, i in zip(written, idx) if i >= len(verts)]
+        if bad:
+            L.err(field, "%s: face vertex %s out of range (%d vertices)" % (where, bad[0], len(verts)))
+            ok = False
+            continue
+        for q in range(1, len(idx) - 1):                  # the fan from v0
+            a, b, c = verts[idx[0]], verts[idx[q]], verts[idx[q + 1]]
+            nn = normalize_scaled(cross(sub(b, a), sub(c, a)))
+            if nn is None:
+                L.err(field, "%s: zero-area triangle (triangle %d, face vertices %s %s %s)"
+                      % (where, len(tris), written[0], written[q], written[q + 1]))
+                ok = False
+                tris.append(None)
+            else:
+                tris.append(Triangle(a, b, c, nn))
+    if ok and not tris:
+        L.err(field, "%s: no face" % name)
+        ok = False
+    return tris if ok else None
+
+
 # ---- 2D: segments and polygons (2D triangles are polygons of 3 vertices) ----
 
 def edge_hit_2d(a, b, O, D):
@@ -794,6 +955,8 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
         "box": ("min", "max"),
         "triangle": ("vertices",),
     }
+    if dim == 3:
+        allowed["mesh"] = ("obj",)
     if dim == 2:
         allowed["segment"] = ("a", "b")
         allowed["polygon"] = ("vertices",)
@@ -806,6 +969,8 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
         if typ not in allowed:
             if typ in ("segment", "polygon"):
                 L.err(f + ".type", "%s is a 2D object (this scene's camera is 3D)" % typ)
+            elif typ == "mesh":
+                L.err(f + ".type", "mesh is a 3D object (this scene's camera is 2D)")
             else:
                 L.err(f + ".type", "unsupported in this reference: %r" % (typ,))
             continue
@@ -876,6 +1041,16 @@ def load_scene(path, size_override=None, depth_override=None, lenient=False):
                             L.err(f + ".vertices", "zero-area triangle")
                         else:
                             shape = Triangle(a, b, c, nn)
+            elif typ == "mesh":
+                # product.md: "A mesh reads a Wavefront OBJ file, the path relative to the scene
+                # file; its triangles share the mesh's material."
+                of = oj["obj"]
+                if not isinstance(of, str) or not of:
+                    L.err(f + ".obj", "must be a file name (a string), got %r" % (of,))
+                else:
+                    tris = read_obj(L, os.path.join(os.path.dirname(os.path.abspath(path)), of), f + ".obj")
+                    if tris is not None:
+                        shape = Mesh(tris)
         except KeyError:
             pass   # missing field already reported
         if shape is not None:
