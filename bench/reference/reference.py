@@ -1143,17 +1143,20 @@ def shade_point(scene, obj, O, D, t, P, N, level, stats):
             specular = light.intensity[k] * fat * s * mat.ks * nh_term
             c[k] += diffuse + specular
 
+    def child(kind, direction, weight):
+        """Trace a secondary ray from the offset origin and add weight * its colour."""
+        if direction is None:
+            return
+        stats.rays[kind] += 1
+        colour = trace_ray(scene, offset_origin(P, Nf, delta, direction), direction, level + 1, stats)
+        for k in range(3):
+            c[k] += weight * colour[k]
+
     if level <= scene.max_depth:
         if mat.ks > 0.0:
             # R = 2(N.V)N - V with V = -D
             nv = dot(Nf, V)
-            R = normalize(sub(scale(Nf, 2.0 * nv), V))
-            if R is not None:
-                stats.rays["reflected"] += 1
-                ro = offset_origin(P, Nf, delta, R)
-                rc = trace_ray(scene, ro, R, level + 1, stats)
-                for k in range(3):
-                    c[k] += mat.ks * rc[k]
+            child("reflected", normalize(sub(scale(Nf, 2.0 * nv), V)), mat.ks)
         if mat.kt > 0.0:
             if entering:
                 n1, n2 = 1.0, mat.ior
@@ -1169,12 +1172,7 @@ def shade_point(scene, obj, O, D, t, P, N, level, stats):
                     T = D
                 else:
                     T = normalize(add(scale(D, eta), scale(Nf, eta * ci - math.sqrt(kk))))
-                if T is not None:
-                    stats.rays["transmitted"] += 1
-                    to = offset_origin(P, Nf, delta, T)
-                    tc = trace_ray(scene, to, T, level + 1, stats)
-                    for k in range(3):
-                        c[k] += mat.kt * tc[k]
+                child("transmitted", T, mat.kt)
     return (c[0], c[1], c[2])
 
 
