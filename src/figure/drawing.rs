@@ -1475,11 +1475,7 @@ mod tests {
         }
         d.text("symbol", v(0.0, 0.0), "a long name", TextOpts::LABEL.avoid_overlap());
         let tf = d.transform();
-        let texts: Vec<&Text> = d
-            .items
-            .iter()
-            .filter_map(|item| if let Shape::Text(t) = &item.shape { Some(t) } else { None })
-            .collect();
+        let texts = text_items(&d);
         assert!(!texts[0].leader, "the first name sits where asked");
         let far = texts[2];
         assert!(far.leader && far.offset.length() > LEADER_FROM, "{far:?}");
@@ -1487,10 +1483,8 @@ mod tests {
         let (from, to) = placed.leader.expect("a leader in pixels");
         assert_eq!(from, tf.to_px(far.anchor));
         // It stops just short of the box, on the side facing the anchor.
-        let inside =
-            |r: &PxRect, p: DVec2| r.min.x <= p.x && p.x <= r.max.x && r.min.y <= p.y && p.y <= r.max.y;
         let near = placed.bbox.inflate(tf.ref_px(4.5));
-        assert!(inside(&near, to) && !inside(&placed.bbox, to), "{to:?} {:?}", placed.bbox);
+        assert!(near.contains_point(to) && !placed.bbox.contains_point(to), "{to:?} {:?}", placed.bbox);
         assert!(!texts[3].leader, "a symbol never gets a leader");
         assert!(Drawing::place_text(texts[3], &tf).leader.is_none());
     }

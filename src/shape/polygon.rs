@@ -138,8 +138,8 @@ impl Polygon {
                 // the edge's extent along D (a near-grazing ray could round past it).
                 let normal = self.normals[k];
                 let t = (a - ray.origin).dot(normal) / d.dot(normal);
-                let (lo, hi) = (along(a).min(along(b)), along(a).max(along(b)));
-                let t = t.max(lo).min(hi);
+                let (t_a, t_b) = (along(a), along(b));
+                let t = t.max(t_a.min(t_b)).min(t_a.max(t_b));
                 if t.is_finite() {
                     each(t, k);
                 }
