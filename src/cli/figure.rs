@@ -3,7 +3,7 @@
 //! kind with one line.
 
 use super::accel::AccelArgs;
-use super::sampling::SamplingArgs;
+use super::sampling::{AaArg, SamplingArgs};
 use super::trace::{target, LangArg};
 use super::{load_scene, parse, print_out, write_file, Failure};
 use clap::Args;
@@ -42,8 +42,8 @@ pub struct FigureArgs {
     /// Override the scene's max_depth (0 = ray casting).
     #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
     depth: Option<u32>,
-    /// Sampling, for `adaptive` (default: adaptive, threshold 0.1, K = 2) and `heat-map`; the other
-    /// kinds trace the pixel's centre.
+    /// Sampling, for `adaptive` and `heat-map` (default: adaptive, threshold 0.1, K = 2); the
+    /// other kinds trace the pixel's centre.
     #[command(flatten)]
     sampling: SamplingArgs,
     /// The structure (--accel, --bounds, --grid) the other kinds trace with; `slab-test`,
@@ -92,7 +92,10 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         ray: args.ray.clone(),
         tracing: Tracing {
             depth: args.depth,
-            sampling: args.sampling.sampling()?,
+            sampling: match kind {
+                FigureKind::Adaptive | FigureKind::HeatMap => args.sampling.sampling_or(AaArg::Adaptive)?,
+                _ => args.sampling.sampling()?,
+            },
             accel: args.accel.options(dim_of(&scene)).map_err(Failure::input)?,
         },
         opts: Options { lang: args.lang.lang(), width, height },

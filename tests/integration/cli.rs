@@ -119,6 +119,64 @@ fn render_json_lists_the_statistics() {
 }
 
 #[test]
+fn sampling_options_a_mode_does_not_use_are_reported() {
+    let out_png = std::env::temp_dir().join(format!("whitted-cli-{}-options.png", std::process::id()));
+    let out_png = out_png.display().to_string();
+    let glass = fixture("glass.json");
+    let (code, _, err) = whitted(&["render", &glass, "-o", &out_png, "--threshold", "0.2"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("--threshold applies to --aa adaptive only; ignored with --aa center"), "{err}");
+    assert!(err.contains("48 samples (center)"), "{err}");
+    let (code, _, err) = whitted(&["render", &glass, "-o", &out_png, "--aa", "corners", "--max-level", "3"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("--max-level applies to --aa adaptive only; ignored with --aa corners"), "{err}");
+    // Adaptive uses both: nothing to report.
+    let (code, _, err) = whitted(&[
+        "render",
+        &glass,
+        "-o",
+        &out_png,
+        "--aa",
+        "adaptive",
+        "--threshold",
+        "0.2",
+        "--max-level",
+        "3",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("applies to"), "{err}");
+}
+
+#[test]
+fn the_adaptive_figure_takes_the_threshold_it_is_given() {
+    // `figure adaptive` samples adaptively without --aa, with --threshold and --max-level as given:
+    // threshold 0 splits the pixel to level 2, inf never splits it.
+    let dir = std::env::temp_dir().join(format!("whitted-cli-{}-adaptive", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let draw = |threshold: &str| {
+        let svg = dir.join(format!("adaptive-{threshold}.svg")).display().to_string();
+        let args = [
+            "figure",
+            "adaptive",
+            &fixture("glass.json"),
+            "--pixel",
+            "4,3",
+            "--threshold",
+            threshold,
+            "-o",
+            &svg,
+        ];
+        let (code, _, err) = whitted(&args);
+        assert_eq!(code, 0, "{err}");
+        assert!(!err.contains("applies to"), "{err}");
+        std::fs::read_to_string(&svg).unwrap()
+    };
+    let (all, none) = (draw("0"), draw("inf"));
+    assert!(all.contains("25 / 25"), "threshold 0: every point of the 5×5 lattice");
+    assert!(none.contains("4 / 25"), "threshold inf: the 4 corners");
+}
+
+#[test]
 fn check_says_what_the_scene_models() {
     let (code, out, _) = whitted(&["check", &fixture("glass.json")]);
     assert_eq!(code, 0);
