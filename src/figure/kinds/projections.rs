@@ -192,15 +192,16 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             let opts = TextOpts::LABEL.align(Align::RIGHT_OF).offset(18.0, -6.0);
             d.text("label", *s, "S", opts);
         }
-        let middle = primaries(traced, &panel);
-        if let Some(p) = middle.get(middle.len() / 2) {
+        // D beside the leftmost ray, in the open space left of the bundle (not on the rays).
+        if let Some(p) = primaries(traced, &panel).first() {
             let to = end(p, offset);
             let text = if traced.projection == Projection::Orthographic {
                 "D = [0, 0, −1]"
             } else {
                 "D = S − O"
             };
-            label(d, p.from + (to - p.from) * 0.6, text);
+            let opts = TextOpts::LABEL.align(Align::LEFT_OF).offset(-12.0, 0.0).avoid_overlap();
+            d.text("label", p.from + (to - p.from) * 0.45, text, opts);
         }
         if traced.projection == Projection::Perspective {
             // The distance p, as a dimension line left of the window.
