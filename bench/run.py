@@ -21,6 +21,10 @@ keeps the wall time, user/system CPU and peak resident memory of the process (fr
 the CPU time other processes used meanwhile (from /proc/stat), so a disturbed run shows.
 Rays/s: whitted = (primary + reflected + transmitted + shadow) / trace seconds;
         POV-Ray = (Rays + Shadow Ray Tests) / Trace Time.
+Each round of a mode also runs two `whitted --threads 1` renders of the scene at once: the machine's
+own ceiling for two threads on this work is 2 x (trace time alone) / (trace time of each of the two
+at once), which is 2 only where two busy CPUs run as fast as one (shared or throttled CPUs, a busy
+host make it less). The 2-thread speed-ups are shown against it.
 Last, the images of each mode at one thread are compared pixel by pixel (a small PNG reader,
 stdlib only): the share of pixels whose every channel is within 2/255 of POV-Ray's.
 
@@ -121,6 +125,32 @@ def measure(cmd, cwd, timeout):
         "other_cpu_s": (jiffies1 - jiffies0) / os.sysconf("SC_CLK_TCK") - cpu,
         "stdout": stdout, "stderr": stderr,
     }
+
+
+def measure_pair(cmds, cwd, timeout):
+    """Run the commands at once; return each one's trace seconds (None for a failed run)."""
+    procs, outs = [], []
+    for cmd in cmds:
+        out = tempfile.TemporaryFile()
+        outs.append(out)
+        procs.append(subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out,
+                                      stderr=subprocess.DEVNULL))
+    seconds = []
+    for proc, out in zip(procs, outs):
+        try:
+            code = proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+            code = None
+        out.seek(0)
+        text = out.read().decode("utf-8", "replace")
+        out.close()
+        try:
+            seconds.append(parse_whitted(text)["seconds"] if code == 0 else None)
+        except (ValueError, KeyError, TypeError):
+            seconds.append(None)
+    return seconds
 
 
 # ----------------------------------------------------------------------------------------------
@@ -481,6 +511,31 @@ def tables(results):
             f(ratio(mrays(w), mrays(p))), speed))
     out.append("")
 
+    ceilings = [c for c in results.get("ceilings", []) if any(t is not None for p in c["pairs"] for t in p)]
+    if ceilings:
+        pick = median if results.get("stat") != "min" else (lambda vs: min([v for v in vs if v is not None], default=None))
+        out.append("The machine's ceiling for two threads, measured in the same rounds: two `whitted --threads 1` "
+                   "renders at once against one alone (%s; ceiling = 2 x alone / each at once, 2 where two busy "
+                   "CPUs run as fast as one):" % ("minima" if results.get("stat") == "min" else "medians"))
+        out.append("")
+        out.append("| scene | AA | one alone: trace (s) | each of two at once: trace (s) | ceiling | 2-thread "
+                   "speed-up whitted / POV | speed-up / ceiling whitted / POV |")
+        out.append("|---|---|---:|---:|---:|---:|---:|")
+        for c in ceilings:
+            one, two = by_key.get((c["scene"], c["mode"], 1)), by_key.get((c["scene"], c["mode"], 2))
+            alone = one and one["whitted"]["summary"] and one["whitted"]["summary"]["trace_s"]
+            both = pick([t for p in c["pairs"] for t in p])
+            top = ratio(2 * alone, both) if alone else None
+            def speed_up(prog):
+                s1 = one and one[prog]["summary"]
+                s2 = two and two[prog]["summary"]
+                return ratio(s1 and s1["trace_s"], s2 and s2["trace_s"])
+            w, p = speed_up("whitted"), speed_up("povray")
+            out.append("| %s | %s | %s | %s | %s | %s | %s |" % (
+                c["scene"], c["mode"], f(alone, 3), f(both, 3), f(top), pair(w, p),
+                pair(ratio(w, top), ratio(p, top))))
+        out.append("")
+
     out.append("Whole process (%s wall time) and the work before tracing:" % ("least" if results.get("stat") == "min" else "median"))
     out.append("")
     out.append("| scene | AA | threads | whitted wall (s) | whitted load + build (s) | whitted accel "
@@ -724,7 +779,7 @@ def main():
 
     results = {"machine": machine_info(binary, povray), "runs": runs, "stat": args.stat,
                "accel_option": args.accel,
-               "povray_options": POV_COMMON, "configs": [], "images": [], "notes": []}
+               "povray_options": POV_COMMON, "configs": [], "ceilings": [], "images": [], "notes": []}
     for scene, json_file, pov_args in selected:
         gave_up = {"whitted": False, "povray": False}
         for mode, our_mode, pov_mode in MODES:
@@ -752,9 +807,19 @@ def main():
                         os.remove(image)
                 config.setdefault("povray", {"runs": []})
                 configs.append(config)
+            # Two 1-thread renders at once, once a round: the machine's ceiling for 2 threads.
+            ceiling = {"scene": scene, "mode": mode, "pairs": []}
+            pair_cmds = [whitted_command(binary, os.path.join(SCENE_DIR, json_file), our_mode, 1,
+                                         os.path.join(image_dir, "%s-%s-pair%d.png" % (scene, mode, n)),
+                                         args.accel) for n in (0, 1)]
             for k in range(runs):
                 for config in configs:
                     run_round(config, k, args.timeout, gave_up, results["notes"])
+                if not gave_up["whitted"]:
+                    ceiling["pairs"].append(measure_pair(pair_cmds, REPO, args.timeout))
+                    log("%-28s whitted two 1-thread renders at once: trace %s s" % (
+                        "%s-%s" % (scene, mode), " and ".join(f(t, 3) for t in ceiling["pairs"][-1])))
+            results["ceilings"].append(ceiling)
             for config in configs:
                 finish_config(config, gave_up, args.stat)
                 results["configs"].append(config)
