@@ -400,12 +400,21 @@ def median(values):
     return statistics.median(values) if values else None
 
 
+def least(values):
+    return min([v for v in values if v is not None], default=None)
+
+
+def estimator(stat):
+    """The function that summarises several runs' figures: median, or least for --stat min."""
+    return median if stat != "min" else least
+
+
 def summarise(runs, stat="median"):
     """Medians (or minima) over the successful runs; ray counts from the first (they do not vary)."""
     ok = [r for r in runs if r.get("figures")]
     if not ok:
         return None
-    pick = median if stat == "median" else (lambda vs: min([v for v in vs if v is not None], default=None))
+    pick = estimator(stat)
     first = ok[0]["figures"]
     return {
         "runs": len(ok),
@@ -513,7 +522,7 @@ def tables(results):
 
     ceilings = [c for c in results.get("ceilings", []) if any(t is not None for p in c["pairs"] for t in p)]
     if ceilings:
-        pick = median if results.get("stat") != "min" else (lambda vs: min([v for v in vs if v is not None], default=None))
+        pick = estimator(results.get("stat"))
         out.append("The machine's ceiling for two threads, measured in the same rounds: two `whitted --threads 1` "
                    "renders at once against one alone (%s; ceiling = 2 x alone / each at once, 2 where two busy "
                    "CPUs run as fast as one):" % ("minima" if results.get("stat") == "min" else "medians"))
@@ -521,16 +530,16 @@ def tables(results):
         out.append("| scene | AA | one alone: trace (s) | each of two at once: trace (s) | ceiling | 2-thread "
                    "speed-up whitted / POV | speed-up / ceiling whitted / POV |")
         out.append("|---|---|---:|---:|---:|---:|---:|")
+        def trace_s(scene, mode, threads, prog):
+            c = by_key.get((scene, mode, threads))
+            return c and c[prog]["summary"] and c[prog]["summary"]["trace_s"]
+
         for c in ceilings:
-            one, two = by_key.get((c["scene"], c["mode"], 1)), by_key.get((c["scene"], c["mode"], 2))
-            alone = one and one["whitted"]["summary"] and one["whitted"]["summary"]["trace_s"]
+            alone = trace_s(c["scene"], c["mode"], 1, "whitted")
             both = pick([t for p in c["pairs"] for t in p])
             top = ratio(2 * alone, both) if alone else None
-            def speed_up(prog):
-                s1 = one and one[prog]["summary"]
-                s2 = two and two[prog]["summary"]
-                return ratio(s1 and s1["trace_s"], s2 and s2["trace_s"])
-            w, p = speed_up("whitted"), speed_up("povray")
+            w, p = (ratio(trace_s(c["scene"], c["mode"], 1, prog), trace_s(c["scene"], c["mode"], 2, prog))
+                    for prog in ("whitted", "povray"))
             out.append("| %s | %s | %s | %s | %s | %s | %s |" % (
                 c["scene"], c["mode"], f(alone, 3), f(both, 3), f(top), pair(w, p),
                 pair(ratio(w, top), ratio(p, top))))

@@ -3,7 +3,7 @@
 
 use super::{parse, Failure};
 use clap::{Args, ValueEnum};
-use whitted::sample::{Sampling, MAX_LEVEL};
+use whitted::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD, MAX_LEVEL};
 
 /// The `--aa` modes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -16,11 +16,6 @@ pub enum AaArg {
     /// at most --max-level times; the pixel is the area-weighted mean of its leaf squares.
     Adaptive,
 }
-
-/// `--threshold` without the flag (product.md).
-pub const DEFAULT_THRESHOLD: f64 = 0.1;
-/// `--max-level` without the flag (product.md).
-pub const DEFAULT_MAX_LEVEL: u32 = 2;
 
 /// The anti-aliasing options. Each is optional so that a command knows which were given: a
 /// threshold or level given to a mode other than adaptive is reported as ignored, and

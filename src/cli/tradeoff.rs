@@ -20,7 +20,7 @@ use whitted::figure::plane::Planar;
 use whitted::figure::source::Tracing;
 use whitted::figure::tradeoff as tradeoff_plot;
 use whitted::figure::{FigureKind, Options};
-use whitted::sample::Sampling;
+use whitted::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD};
 use whitted::scene::{AnyScene, Scene};
 use whitted::tradeoff::{self, Measured, Tradeoff, REFERENCE_DEPTH, REFERENCE_SAMPLING};
 
@@ -224,7 +224,7 @@ fn plots<V: Planar>(
             ray: None,
             tracing: Tracing {
                 depth: None,
-                sampling: Sampling::Adaptive { threshold: 0.1, max_level: 2 },
+                sampling: Sampling::Adaptive { threshold: DEFAULT_THRESHOLD, max_level: DEFAULT_MAX_LEVEL },
                 accel: AccelOptions::of(AccelKind::Bvh),
             },
             opts,

@@ -12,7 +12,7 @@ use crate::geom::Vector;
 use crate::record::event::{Event, RayKind};
 use crate::record::{EventLog, RayNode};
 use crate::render::{render, RenderConfig};
-use crate::sample::{trace_pixel, PixelTrace, Sampling};
+use crate::sample::{trace_pixel, PixelTrace, Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD};
 use crate::scene::camera::Projection;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
@@ -145,8 +145,10 @@ impl Tracing {
         accel: AccelOptions { kind: AccelKind::None, volume: VolumeKind::Aabb, grid: None },
         sampling: Sampling::Center,
     };
-    /// The adaptive subdivision of the lecture's figure: threshold 0.1, at most 2 levels.
-    pub const ADAPTIVE: Sampling = Sampling::Adaptive { threshold: 0.1, max_level: 2 };
+    /// The adaptive subdivision of the lecture's figure: the defaults of `--threshold` (0.1) and
+    /// `--max-level` (2).
+    pub const ADAPTIVE: Sampling =
+        Sampling::Adaptive { threshold: DEFAULT_THRESHOLD, max_level: DEFAULT_MAX_LEVEL };
 }
 
 /// Records the traces that figure `kind` reads, for `aim` in `scene` (named `scene_name`).

@@ -23,6 +23,10 @@ use std::fmt;
 
 /// The largest `--max-level`: samples grow as 4^K (numerics.md H1), so K is capped at 8.
 pub const MAX_LEVEL: u32 = 8;
+/// `--threshold`'s default (product.md).
+pub const DEFAULT_THRESHOLD: f64 = 0.1;
+/// `--max-level`'s default (product.md).
+pub const DEFAULT_MAX_LEVEL: u32 = 2;
 
 /// How a pixel becomes rays (product.md `--aa`).
 #[derive(Clone, Copy, Debug, PartialEq)]
