@@ -275,6 +275,19 @@ impl Reader {
         map.get(key).and_then(|v| self.color(v, &join(path, key), range)).unwrap_or(default)
     }
 
+    /// A light's colour (`background`, `ambient`, `intensity`): an RGB triple only. product.md lets
+    /// one number stand for a grey in the material colours (`ka`, `kd`, `kd2`, `ka2`) alone.
+    fn optional_rgb(&mut self, map: &Map<String, Value>, path: &str, key: &str, default: Rgb) -> Rgb {
+        match map.get(key) {
+            Some(v) if v.is_number() => {
+                let got = v.as_f64().map_or_else(|| type_name(v).to_owned(), num);
+                self.err(join(path, key), format!("must be 3 numbers (RGB), got {got}"));
+                default
+            }
+            _ => self.optional_color(map, path, key, default, (0.0, f64::INFINITY)),
+        }
+    }
+
     fn integer(&mut self, v: &Value, path: &str, min: u64, max: u64) -> Option<u64> {
         let Some(n) = v.as_u64() else {
             let got = match v.as_f64() {
@@ -485,8 +498,8 @@ fn build<V: LoadDim>(
     read_file: ReadFile<'_>,
 ) -> Result<Scene<V>, Vec<SceneError>> {
     let camera = read_camera::<V>(&mut r, &top["camera"]);
-    let background = r.optional_color(top, "", "background", Rgb::BLACK, (0.0, f64::INFINITY));
-    let ambient = r.optional_color(top, "", "ambient", Rgb::grey(1.0), (0.0, f64::INFINITY));
+    let background = r.optional_rgb(top, "", "background", Rgb::BLACK);
+    let ambient = r.optional_rgb(top, "", "ambient", Rgb::grey(1.0));
     let max_depth = match top.get("max_depth") {
         Some(v) => r.integer(v, "max_depth", 0, MAX_DEPTH).unwrap_or(0),
         None => 5,
@@ -609,7 +622,7 @@ fn read_lights<V: LoadDim>(r: &mut Reader, v: Option<&Value>) -> Vec<Light<V>> {
             r.string(n, &join(&path, "name"));
         }
         let position = r.required_vector::<V>(map, &path, "position");
-        let intensity = r.optional_color(map, &path, "intensity", Rgb::grey(1.0), (0.0, f64::INFINITY));
+        let intensity = r.optional_rgb(map, &path, "intensity", Rgb::grey(1.0));
         let attenuation = match map.get("attenuation") {
             None => [1.0, 0.0, 0.0],
             Some(a) => {
@@ -876,6 +889,26 @@ mod tests {
         );
         assert!(e.contains(&"materials.glass.ior: must be > 0, got 0".into()), "{e:?}");
         assert!(e.contains(&"materials.glass.kt: must be in [0, 1], got 2".into()), "{e:?}");
+    }
+
+    #[test]
+    fn a_grey_number_is_a_material_colour_only() {
+        // product.md: `ka`, `kd`, `kd2`, `ka2` take one number (grey) or RGB; the light colours
+        // (`background`, `ambient`, `intensity`) are RGB triples.
+        let text = format!(
+            r#"{{{CAM}, "background": 0.2, "ambient": [0.1, 0.1, 0.1],
+                "lights": [{{"position": [0, 5, 0], "intensity": 1}}],
+                "objects": [{{"type": "plane", "point": [0,0,0], "normal": [0,1,0],
+                  "material": {{"ka": 0.1, "kd": 0.5, "checker": {{"kd2": 0.2, "ka2": 0}}}}}}]}}"#
+        );
+        let e = errors(&text);
+        assert_eq!(
+            e,
+            vec![
+                "background: must be 3 numbers (RGB), got 0.2".to_owned(),
+                "lights[0].intensity: must be 3 numbers (RGB), got 1".to_owned(),
+            ]
+        );
     }
 
     #[test]
