@@ -1,0 +1,230 @@
+#!/usr/bin/env python3
+"""Random scenes rendered by whitted and by reference.py, compared byte for byte.
+
+compare.py holds whitted to the independent reference on scenes written by hand; this script does
+the same on scenes nobody chose: each is drawn from a seeded random generator (3D and 2D; spheres,
+boxes, triangles, planes, segments and polygons, convex or not; mirrors, glass with any ior,
+checkers, attenuated coloured lights, both projections, tilted cameras), rendered at a small size
+with `--aa center`, `corners` and `adaptive` (and at centre with one of whitted's other structures),
+and compared: the 8-bit pixels and the number of primary rays, which §8 makes exact.
+
+A scene that disagrees is written to the output folder (default /tmp/whitted-fuzz) to be traced.
+
+Usage (from the repository root, after `cargo build --release`):
+    python3 bench/reference/fuzz.py                   # 40 scenes, seed 1
+    python3 bench/reference/fuzz.py --scenes 200 --seed 7
+"""
+import argparse
+import json
+import math
+import os
+import random
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import compare  # noqa: E402  (the two renderers' command lines and the pixel comparison)
+
+SIZE = "24x18"
+MODES = [
+    ("center", ["--aa", "center"]),
+    ("corners", ["--aa", "corners"]),
+    ("adaptive 0.1, K = 2", ["--aa", "adaptive", "--threshold", "0.1", "--max-level", "2"]),
+]
+
+
+def num(rng, lo, hi):
+    """A number in [lo, hi) with 4 decimals, so that the scene file holds exactly what was drawn."""
+    return round(rng.uniform(lo, hi), 4)
+
+
+def vec(rng, lo, hi, n):
+    return [num(rng, lo, hi) for _ in range(n)]
+
+
+def color(rng, lo=0.0, hi=1.0):
+    """A material colour: a grey (one number, as product.md allows for ka, kd, kd2, ka2) or RGB."""
+    return num(rng, lo, hi) if rng.random() < 0.3 else vec(rng, lo, hi, 3)
+
+
+def material(rng, plane=False):
+    m = {"ka": color(rng, 0, 0.2), "kd": color(rng, 0, 0.9)}
+    kind = rng.random()
+    if kind < 0.3:  # a mirror
+        m.update(ks=num(rng, 0.3, 0.9), n=rng.choice([8, 32, 64, 100, num(rng, 2, 200)]))
+    elif kind < 0.55 and not plane:  # glass, some of it dense enough for total internal reflection
+        m.update(ks=num(rng, 0.05, 0.3), n=rng.choice([50, 128, num(rng, 5, 150)]),
+                 kt=num(rng, 0.5, 0.95), ior=rng.choice([1.33, 1.5, num(rng, 1.05, 2.6)]))
+    elif kind < 0.7:  # a faint mirror with a broad highlight (any ks > 0 spawns R)
+        m.update(ks=num(rng, 0.02, 0.2), n=num(rng, 1, 64))
+    if plane and rng.random() < 0.6:
+        m["checker"] = {"size": num(rng, 0.2, 1.2), "kd2": color(rng, 0, 0.9)}
+        if rng.random() < 0.5:
+            m["checker"]["ka2"] = color(rng, 0, 0.2)
+    return m
+
+
+def light(rng, dims):
+    position = [num(rng, -6, 6), num(rng, 2, 8)] + ([num(rng, -6, 6)] if dims == 3 else [])
+    out = {"position": position, "intensity": vec(rng, 0.3, 1.0, 3)}
+    if rng.random() < 0.3:
+        out["attenuation"] = [num(rng, 0.3, 1), num(rng, 0, 0.2), num(rng, 0, 0.05)]
+    return out
+
+
+def polygon(rng):
+    """A simple polygon (convex or not): vertices by angle around a centre, radii at random, in
+    either winding."""
+    c = vec(rng, -1.2, 1.2, 2)
+    k = rng.randint(3, 6)
+    # k angles at least 2π/(5k) apart (a sliver of a wedge could round into a crossing).
+    angles = [2 * math.pi * (i + rng.uniform(0.1, 0.9)) / k for i in range(k)]
+    pts = [[round(c[0] + r * math.cos(a), 4), round(c[1] + r * math.sin(a), 4)]
+           for a, r in ((a, rng.uniform(0.3, 0.9)) for a in angles)]
+    return pts if rng.random() < 0.5 else pts[::-1]
+
+
+def object_3d(rng):
+    kind = rng.choice(["sphere", "sphere", "box", "triangle"])
+    if kind == "sphere":
+        return {"type": "sphere", "center": vec(rng, -1.5, 1.5, 3), "radius": num(rng, 0.25, 1.0)}
+    if kind == "box":
+        lo = vec(rng, -1.6, 1.0, 3)
+        return {"type": "box", "min": lo, "max": [round(x + rng.uniform(0.3, 1.2), 4) for x in lo]}
+    c = vec(rng, -1.2, 1.2, 3)
+    return {"type": "triangle", "vertices": [[round(x + rng.uniform(-1, 1), 4) for x in c] for _ in range(3)]}
+
+
+def object_2d(rng):
+    kind = rng.choice(["sphere", "box", "triangle", "segment", "polygon"])
+    if kind == "sphere":
+        return {"type": "sphere", "center": vec(rng, -1.5, 1.5, 2), "radius": num(rng, 0.25, 0.9)}
+    if kind == "box":
+        lo = vec(rng, -1.6, 1.0, 2)
+        return {"type": "box", "min": lo, "max": [round(x + rng.uniform(0.3, 1.2), 4) for x in lo]}
+    if kind == "segment":
+        return {"type": "segment", "a": vec(rng, -1.5, 1.5, 2), "b": vec(rng, -1.5, 1.5, 2)}
+    if kind == "triangle":
+        c = vec(rng, -1.2, 1.2, 2)
+        return {"type": "triangle", "vertices": [[round(x + rng.uniform(-0.9, 0.9), 4) for x in c]
+                                                 for _ in range(3)]}
+    return {"type": "polygon", "vertices": polygon(rng)}
+
+
+def camera(rng, dims):
+    distance = rng.uniform(4, 7)
+    if dims == 3:
+        a, e = rng.uniform(0, 2 * math.pi), rng.uniform(0.15, 0.9)
+        eye = [distance * math.cos(e) * math.sin(a), distance * math.sin(e), distance * math.cos(e) * math.cos(a)]
+    else:
+        a = rng.uniform(0.2, math.pi - 0.2)
+        eye = [distance * math.cos(a), distance * math.sin(a)]
+    cam = {"eye": [round(x, 4) for x in eye], "center": vec(rng, -0.3, 0.3, dims)}
+    ortho = rng.random() < 0.3
+    if ortho:
+        cam["projection"] = "orthographic"
+    cam["p"] = num(rng, 0.8, 2.0)
+    half = num(rng, 2.0, 3.0) if ortho else cam["p"] * num(rng, 0.35, 0.7)
+    cam["window"] = {"l": -half, "r": half}
+    if dims == 3:
+        cam["window"].update(b=round(-half * 0.75, 4), t=round(half * 0.75, 4))
+        if rng.random() < 0.3:
+            cam["up"] = [num(rng, -0.4, 0.4), 1, num(rng, -0.4, 0.4)]
+        cam["resolution"] = [24, 18]
+    else:
+        cam["resolution"] = [24]
+    return cam
+
+
+def scene(rng):
+    dims = 3 if rng.random() < 0.7 else 2
+    make = object_3d if dims == 3 else object_2d
+    objects = [make(rng) for _ in range(rng.randint(2, 6))]
+    if rng.random() < 0.7:
+        normal = [num(rng, -0.2, 0.2), 1] + ([num(rng, -0.2, 0.2)] if dims == 3 else [])
+        objects.append({"type": "plane", "point": [0, num(rng, -2, -1.2)] + ([0] if dims == 3 else []),
+                        "normal": normal})
+    for o in objects:
+        o["material"] = material(rng, plane=o["type"] == "plane")
+    return {
+        "camera": camera(rng, dims),
+        "background": vec(rng, 0, 0.6, 3),
+        "ambient": vec(rng, 0.2, 1.0, 3),
+        "max_depth": rng.randint(1, 5),
+        "lights": [light(rng, dims) for _ in range(rng.randint(1, 2))],
+        "objects": objects,
+    }
+
+
+def accepts(cmd):
+    """Whether a program takes the scene: exit 0, or 2 for a refused scene (anything else fails)."""
+    code = subprocess.run(cmd, capture_output=True).returncode
+    if code not in (0, 2):
+        raise RuntimeError(f"{' '.join(cmd)}: exit {code}")
+    return code == 0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--binary", default=os.path.join(compare.REPO, "target", "release", "whitted"))
+    ap.add_argument("--scenes", type=int, default=40)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--out", default="/tmp/whitted-fuzz", help="where disagreeing scenes are written")
+    args = ap.parse_args()
+    compare.SIZE = SIZE
+    read_png = compare.load_png_reader()
+    rng = random.Random(args.seed)
+    started, renders, refused, bad = time.time(), 0, 0, []
+    with tempfile.TemporaryDirectory() as work:
+        for n in range(args.scenes):
+            text = scene(rng)
+            path = os.path.join(work, f"scene-{n}.json")
+            with open(path, "w") as fh:
+                json.dump(text, fh)
+            structure = rng.choice(["none", "bounds", "grid", "octree"])
+            runs = [(label, m, m) for label, m in MODES]
+            runs.append((f"center, --accel {structure}", ["--aa", "center", "--accel", structure], ["--aa", "center"]))
+            # Both programs must refuse the same scenes (a polygon whose rounded vertices cross,
+            # say), and render the others alike.
+            ours_ok, ref_ok = accepts([args.binary, "check", path]), accepts(
+                [sys.executable, os.path.join(compare.HERE, "reference.py"), path, "-o",
+                 os.path.join(work, "check.json"), "--size", "1x1"])
+            if not (ours_ok or ref_ok):
+                refused += 1
+                continue
+            refs = {}
+            for label, ours_args, ref_args in runs:
+                if ours_ok != ref_ok:
+                    worst, off, primary = "—", "—", ("refused" if not ours_ok else "—",
+                                                     "refused" if not ref_ok else "—")
+                else:
+                    png = os.path.join(work, "w.png")
+                    ours = compare.whitted(args.binary, path, ours_args, png)
+                    key = tuple(ref_args)
+                    if key not in refs:
+                        refs[key] = compare.reference(path, ref_args, os.path.join(work, f"r{len(refs)}.json"))
+                    worst, off = compare.compare(read_png, png, refs[key])
+                    primary = (ours["rays"]["primary"], refs[key]["primary_rays"])
+                    renders += 1
+                if off or primary[0] != primary[1]:
+                    os.makedirs(args.out, exist_ok=True)
+                    kept = os.path.join(args.out, f"seed{args.seed}-scene{n}.json")
+                    shutil.copy(path, kept)
+                    bad.append(f"| {kept} | {label} | {worst} | {off} | {primary[0]} | {primary[1]} |")
+                    if ours_ok != ref_ok:
+                        break
+    print(f"{args.scenes} random scenes (seed {args.seed}; {refused} refused by both), {renders} renders "
+          f"at {SIZE}, {time.time() - started:.0f} s: {len(bad)} disagree.")
+    if bad:
+        print("\n| scene | sampling | largest difference (/255) | pixels off by > 1 | primary rays whitted "
+              "| primary rays reference |")
+        print("|---|---|---:|---:|---:|---:|")
+        print("\n".join(bad))
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
