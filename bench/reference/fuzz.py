@@ -45,6 +45,23 @@ def vec(rng, lo, hi, n):
     return [num(rng, lo, hi) for _ in range(n)]
 
 
+# --snap: the objects' coordinates and sizes on a grid of 1/4, so that boxes stand on planes, faces
+# meet, and objects touch: the ties of §6 and the coincident surfaces, where a random scene never is.
+SNAP = False
+
+
+def coord(rng, lo, hi):
+    return round(rng.uniform(lo, hi) * 4) / 4 if SNAP else num(rng, lo, hi)
+
+
+def point(rng, lo, hi, n):
+    return [coord(rng, lo, hi) for _ in range(n)]
+
+
+def size(rng, lo, hi):
+    return max(0.25, coord(rng, lo, hi)) if SNAP else num(rng, lo, hi)
+
+
 def color(rng, lo=0.0, hi=1.0):
     """A material colour: a grey (one number, as product.md allows for ka, kd, kd2, ka2) or RGB."""
     return num(rng, lo, hi) if rng.random() < 0.3 else vec(rng, lo, hi, 3)
@@ -78,7 +95,7 @@ def light(rng, dims):
 def polygon(rng):
     """A simple polygon (convex or not): vertices by angle around a centre, radii at random, in
     either winding."""
-    c = vec(rng, -1.2, 1.2, 2)
+    c = point(rng, -1.2, 1.2, 2)
     k = rng.randint(3, 6)
     # k angles at least 2π/(5k) apart (a sliver of a wedge could round into a crossing).
     angles = [2 * math.pi * (i + rng.uniform(0.1, 0.9)) / k for i in range(k)]
@@ -90,27 +107,26 @@ def polygon(rng):
 def object_3d(rng):
     kind = rng.choice(["sphere", "sphere", "box", "triangle"])
     if kind == "sphere":
-        return {"type": "sphere", "center": vec(rng, -1.5, 1.5, 3), "radius": num(rng, 0.25, 1.0)}
+        return {"type": "sphere", "center": point(rng, -1.5, 1.5, 3), "radius": size(rng, 0.25, 1.0)}
     if kind == "box":
-        lo = vec(rng, -1.6, 1.0, 3)
-        return {"type": "box", "min": lo, "max": [round(x + rng.uniform(0.3, 1.2), 4) for x in lo]}
-    c = vec(rng, -1.2, 1.2, 3)
-    return {"type": "triangle", "vertices": [[round(x + rng.uniform(-1, 1), 4) for x in c] for _ in range(3)]}
+        lo = point(rng, -1.6, 1.0, 3)
+        return {"type": "box", "min": lo, "max": [x + size(rng, 0.3, 1.2) for x in lo]}
+    c = point(rng, -1.2, 1.2, 3)
+    return {"type": "triangle", "vertices": [[x + coord(rng, -1, 1) for x in c] for _ in range(3)]}
 
 
 def object_2d(rng):
     kind = rng.choice(["sphere", "box", "triangle", "segment", "polygon"])
     if kind == "sphere":
-        return {"type": "sphere", "center": vec(rng, -1.5, 1.5, 2), "radius": num(rng, 0.25, 0.9)}
+        return {"type": "sphere", "center": point(rng, -1.5, 1.5, 2), "radius": size(rng, 0.25, 0.9)}
     if kind == "box":
-        lo = vec(rng, -1.6, 1.0, 2)
-        return {"type": "box", "min": lo, "max": [round(x + rng.uniform(0.3, 1.2), 4) for x in lo]}
+        lo = point(rng, -1.6, 1.0, 2)
+        return {"type": "box", "min": lo, "max": [x + size(rng, 0.3, 1.2) for x in lo]}
     if kind == "segment":
-        return {"type": "segment", "a": vec(rng, -1.5, 1.5, 2), "b": vec(rng, -1.5, 1.5, 2)}
+        return {"type": "segment", "a": point(rng, -1.5, 1.5, 2), "b": point(rng, -1.5, 1.5, 2)}
     if kind == "triangle":
-        c = vec(rng, -1.2, 1.2, 2)
-        return {"type": "triangle", "vertices": [[round(x + rng.uniform(-0.9, 0.9), 4) for x in c]
-                                                 for _ in range(3)]}
+        c = point(rng, -1.2, 1.2, 2)
+        return {"type": "triangle", "vertices": [[x + coord(rng, -0.9, 0.9) for x in c] for _ in range(3)]}
     return {"type": "polygon", "vertices": polygon(rng)}
 
 
@@ -144,8 +160,9 @@ def scene(rng):
     make = object_3d if dims == 3 else object_2d
     objects = [make(rng) for _ in range(rng.randint(2, 6))]
     if rng.random() < 0.7:
-        normal = [num(rng, -0.2, 0.2), 1] + ([num(rng, -0.2, 0.2)] if dims == 3 else [])
-        objects.append({"type": "plane", "point": [0, num(rng, -2, -1.2)] + ([0] if dims == 3 else []),
+        tilt = (lambda: 0) if SNAP else (lambda: num(rng, -0.2, 0.2))
+        normal = [tilt(), 1] + ([tilt()] if dims == 3 else [])
+        objects.append({"type": "plane", "point": [0, coord(rng, -2, -1.2)] + ([0] if dims == 3 else []),
                         "normal": normal})
     for o in objects:
         o["material"] = material(rng, plane=o["type"] == "plane")
@@ -173,7 +190,11 @@ def main():
     ap.add_argument("--scenes", type=int, default=40)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out", default="/tmp/whitted-fuzz", help="where disagreeing scenes are written")
+    ap.add_argument("--snap", action="store_true",
+                    help="objects on a grid of 1/4 (level planes), so that they touch and tie")
     args = ap.parse_args()
+    global SNAP
+    SNAP = args.snap
     compare.SIZE = SIZE
     read_png = compare.load_png_reader()
     rng = random.Random(args.seed)
