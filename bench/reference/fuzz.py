@@ -19,7 +19,6 @@ import json
 import math
 import os
 import random
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -155,7 +154,30 @@ def camera(rng, dims):
     return cam
 
 
-def scene(rng):
+def mesh_obj(rng):
+    """A small mesh as OBJ text: a bumpy grid patch (shared edges and vertices between its
+    triangles) or a jittered octahedron (a closed surface, for glass)."""
+    if rng.random() < 0.5:
+        n, c, half = rng.randint(2, 5), vec(rng, -1, 1, 3), num(rng, 0.5, 1.5)
+        lines = [f"v {c[0] - half + 2 * half * i / n:.4f} {c[1] + rng.uniform(-0.4, 0.4):.4f} "
+                 f"{c[2] - half + 2 * half * j / n:.4f}" for j in range(n + 1) for i in range(n + 1)]
+        for j in range(n):
+            for i in range(n):
+                a = j * (n + 1) + i + 1
+                lines += [f"f {a} {a + n + 1} {a + n + 2}", f"f {a} {a + n + 2} {a + 1}"]
+        return "\n".join(lines) + "\n"
+    c, r = vec(rng, -1, 1, 3), num(rng, 0.4, 1.0)
+    axes = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+    lines = [f"v {c[0] + r * x + rng.uniform(-0.1, 0.1):.4f} {c[1] + r * y + rng.uniform(-0.1, 0.1):.4f} "
+             f"{c[2] + r * z + rng.uniform(-0.1, 0.1):.4f}" for x, y, z in axes]
+    # Counter-clockwise seen from outside: the outward normals of algorithm.md §3.
+    for a, b, d in [(1, 3, 5), (3, 2, 5), (2, 4, 5), (4, 1, 5), (3, 1, 6), (2, 3, 6), (4, 2, 6), (1, 4, 6)]:
+        lines.append(f"f {a} {b} {d}")
+    return "\n".join(lines) + "\n"
+
+
+def scene(rng, hard=False):
+    """A random scene, and for --hard its mesh's OBJ text (or None)."""
     dims = 3 if rng.random() < 0.7 else 2
     make = object_3d if dims == 3 else object_2d
     objects = [make(rng) for _ in range(rng.randint(2, 6))]
@@ -164,9 +186,13 @@ def scene(rng):
         normal = [tilt(), 1] + ([tilt()] if dims == 3 else [])
         objects.append({"type": "plane", "point": [0, coord(rng, -2, -1.2)] + ([0] if dims == 3 else []),
                         "normal": normal})
+    obj = None
+    if hard and dims == 3 and rng.random() < 0.6:
+        obj = mesh_obj(rng)
+        objects.append({"type": "mesh", "obj": "mesh.obj"})
     for o in objects:
         o["material"] = material(rng, plane=o["type"] == "plane")
-    return {
+    out = {
         "camera": camera(rng, dims),
         "background": vec(rng, 0, 0.6, 3),
         "ambient": vec(rng, 0.2, 1.0, 3),
@@ -174,6 +200,17 @@ def scene(rng):
         "lights": [light(rng, dims) for _ in range(rng.randint(1, 2))],
         "objects": objects,
     }
+    if hard and rng.random() < 0.3:
+        # The eye inside a glass sphere: every primary ray starts inside an object.
+        out["objects"].append({"type": "sphere", "center": out["camera"]["eye"], "radius": num(rng, 0.3, 0.8),
+                               "material": {"ka": 0, "kd": 0.05, "ks": 0.1, "kt": 0.9,
+                                            "ior": num(rng, 1.1, 1.8)}})
+    if hard and rng.random() < 0.3:
+        # A light inside a sphere (glass or not): its shadow rays all start or end inside.
+        spheres = [o for o in objects if o["type"] == "sphere"]
+        if spheres:
+            out["lights"][0]["position"] = list(rng.choice(spheres)["center"])
+    return out, obj
 
 
 def accepts(cmd):
@@ -192,6 +229,8 @@ def main():
     ap.add_argument("--out", default="/tmp/whitted-fuzz", help="where disagreeing scenes are written")
     ap.add_argument("--snap", action="store_true",
                     help="objects on a grid of 1/4 (level planes), so that they touch and tie")
+    ap.add_argument("--hard", action="store_true",
+                    help="also meshes (grid patches, octahedra), the eye inside glass, lights inside spheres")
     args = ap.parse_args()
     global SNAP
     SNAP = args.snap
@@ -201,10 +240,13 @@ def main():
     started, renders, refused, bad = time.time(), 0, 0, []
     with tempfile.TemporaryDirectory() as work:
         for n in range(args.scenes):
-            text = scene(rng)
+            text, obj = scene(rng, args.hard)
             path = os.path.join(work, f"scene-{n}.json")
             with open(path, "w") as fh:
                 json.dump(text, fh)
+            if obj is not None:
+                with open(os.path.join(work, "mesh.obj"), "w") as fh:
+                    fh.write(obj)
             structure = rng.choice(["none", "bounds", "grid", "octree"])
             runs = [(label, m, m) for label, m in MODES]
             runs.append((f"center, --accel {structure}", ["--aa", "center", "--accel", structure], ["--aa", "center"]))
@@ -233,7 +275,14 @@ def main():
                 if off or primary[0] != primary[1]:
                     os.makedirs(args.out, exist_ok=True)
                     kept = os.path.join(args.out, f"seed{args.seed}-scene{n}.json")
-                    shutil.copy(path, kept)
+                    if obj is not None:  # the mesh beside it, under the scene's own name
+                        with open(kept[:-5] + ".obj", "w") as fh:
+                            fh.write(obj)
+                        for o in text["objects"]:
+                            if o["type"] == "mesh":
+                                o["obj"] = os.path.basename(kept[:-5] + ".obj")
+                    with open(kept, "w") as fh:
+                        json.dump(text, fh)
                     bad.append(f"| {kept} | {label} | {worst} | {off} | {primary[0]} | {primary[1]} |")
                     if ours_ok != ref_ok:
                         break
