@@ -62,15 +62,15 @@ def load_png_reader():
     return module.read_png
 
 
-def whitted(binary, scene, args, png):
-    out = subprocess.run([binary, "render", scene, "-o", png, "--size", SIZE, "--json"] + args,
+def whitted(binary, scene, args, png, size=SIZE):
+    out = subprocess.run([binary, "render", scene, "-o", png, "--size", size, "--json"] + args,
                          capture_output=True, text=True, check=True).stdout
     return json.loads(out.strip().splitlines()[-1])
 
 
-def reference(scene, args, path):
+def reference(scene, args, path, size=SIZE):
     subprocess.run([sys.executable, os.path.join(HERE, "reference.py"), scene, "-o", path,
-                    "--size", SIZE] + args, capture_output=True, text=True, check=True)
+                    "--size", size] + args, capture_output=True, text=True, check=True)
     with open(path) as fh:
         return json.load(fh)
 

@@ -234,7 +234,6 @@ def main():
     args = ap.parse_args()
     global SNAP
     SNAP = args.snap
-    compare.SIZE = SIZE
     read_png = compare.load_png_reader()
     rng = random.Random(args.seed)
     started, renders, refused, bad = time.time(), 0, 0, []
@@ -265,10 +264,10 @@ def main():
                                                      "refused" if not ref_ok else "—")
                 else:
                     png = os.path.join(work, "w.png")
-                    ours = compare.whitted(args.binary, path, ours_args, png)
+                    ours = compare.whitted(args.binary, path, ours_args, png, SIZE)
                     key = tuple(ref_args)
                     if key not in refs:
-                        refs[key] = compare.reference(path, ref_args, os.path.join(work, f"r{len(refs)}.json"))
+                        refs[key] = compare.reference(path, ref_args, os.path.join(work, f"r{len(refs)}.json"), SIZE)
                     worst, off = compare.compare(read_png, png, refs[key])
                     primary = (ours["rays"]["primary"], refs[key]["primary_rays"])
                     renders += 1

@@ -15,12 +15,21 @@ pub struct Plane<V> {
 }
 
 impl<V: Vector> Plane<V> {
+    /// The two terms of `t = ((P − O)·N)/(D·N)`, where the ray's line meets the plane:
+    /// `((P − O)·N, D·N)`. A 2D polygon's edges take their t from it too, through the line of the
+    /// edge, so an edge lying on a line object meets a ray at exactly the line's t (§6 then
+    /// settles the tie).
+    #[inline(always)]
+    #[must_use]
+    pub fn crossing_terms(&self, ray: &Ray<V>) -> (f64, f64) {
+        ((self.point - ray.origin).dot(self.normal), ray.dir.dot(self.normal))
+    }
     /// The root `t = (P − O)·N / (D·N)`, when finite; a ray parallel to the plane (in it or
     /// not, `D·N = ±0`) has none.
     #[inline]
     fn root(&self, ray: &Ray<V>) -> Option<f64> {
-        let denom = ray.dir.dot(self.normal);
-        let t = (self.point - ray.origin).dot(self.normal) / denom;
+        let (num, denom) = self.crossing_terms(ray);
+        let t = num / denom;
         // Written so that NaN and ±∞ fail (numerics C1, C2).
         t.is_finite().then_some(t)
     }
@@ -39,8 +48,11 @@ impl<V: Vector> Plane<V> {
     /// The t of [`Plane::hit`] alone (a shadow ray needs no point).
     #[inline]
     pub fn hit_t(&self, ray: &Ray<V>) -> Option<f64> {
-        // t = num/denom > 0 needs num and denom of one strict sign; otherwise (behind, parallel,
-        // on the plane, NaN) there is no hit and no division.
+        // The terms of `crossing_terms`, written out: through the call the compiler lays the
+        // render's search out worse (+0.3 % instructions on Whitted's scene, callgrind). The
+        // polygon test `an_edge_on_a_line_meets_a_ray_at_the_lines_t_bit_for_bit` holds the two
+        // to one t. t = num/denom > 0 needs num and denom of one strict sign; otherwise (behind,
+        // parallel, on the plane, NaN) there is no hit and no division.
         let (num, denom) = ((self.point - ray.origin).dot(self.normal), ray.dir.dot(self.normal));
         if !((num > 0.0 && denom > 0.0) || (num < 0.0 && denom < 0.0)) {
             return None;

@@ -7,6 +7,7 @@
 //! `((a − O)·N)/(D·N)` as a 2D line computes it, so an edge lying on a line object meets a ray at
 //! exactly the line's t and §6's index rule settles the tie.
 
+use super::plane::Plane;
 use super::{Facet, SurfaceHit};
 use crate::geom::ray::Ray;
 use crate::geom::{diff_of_products, Vector};
@@ -131,13 +132,11 @@ impl Polygon {
             #[allow(clippy::float_cmp)]
             let edge_on = f_a == f_b;
             if crosses && !edge_on {
-                // t by the edge's line, as a 2D line computes it, `((a − O)·N)/(D·N)`: an edge
-                // lying on a line object (a prism standing on the floor) then meets a ray at
-                // exactly the line's t, and §6's index rule decides the tie, not the last bit of
-                // two formulas. The side values decided that the edge is crossed; t stays within
-                // the edge's extent along D (a near-grazing ray could round past it).
-                let normal = self.normals[k];
-                let t = (a - ray.origin).dot(normal) / d.dot(normal);
+                // t by the edge's line, as a line object computes it (see the module doc); the
+                // side values decided that the edge is crossed, and t stays within the edge's
+                // extent along D (a near-grazing ray could round past it).
+                let (num, denom) = Plane { point: a, normal: self.normals[k] }.crossing_terms(ray);
+                let t = num / denom;
                 let (t_a, t_b) = (along(a), along(b));
                 let t = t.max(t_a.min(t_b)).min(t_a.max(t_b));
                 if t.is_finite() {
