@@ -54,7 +54,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         );
     }
     d.legend_entry(input.t(Label::SampleTraced), Style::NONE, Sample::Dot(style::BLACK));
-    d.legend_entry(input.t(Label::SampleReused), reused_ring(), Sample::Dot(style::WHITE));
+    // A pixel no square split (threshold ∞, or K = 0) reads nothing again: no ring to explain.
+    if pixel.samples.iter().any(|s| s.reused) {
+        d.legend_entry(input.t(Label::SampleReused), reused_ring(), Sample::Dot(style::WHITE));
+    }
     d.legend_entry(input.t(Label::LeafColour), style::outline(style::BLACK), Sample::Dot(style::LIGHT_GREY));
     let (bottom, top) = if flat { (-0.2 * f64::from(deepest + 1) - 0.1, 0.12) } else { (-0.05, 1.08) };
     let column = parts::fit_with_column(d, &[DVec2::new(-0.08, bottom), DVec2::new(1.08, top)], 0.02, 0.45);
@@ -99,9 +102,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     for sample in &pixel.samples {
         let at = local(&sample.lattice);
-        // Up and to the right of its point, as the lecture's figure writes them.
+        // Up and to the right of its point, as the lecture's figure writes them, clear of the
+        // ring (radius 17) of a sample read again.
         let up_right = Align { h: HAlign::Left, v: VAlign::Bottom };
-        let opts = TextOpts::NOTE.size(TextSize::Small).align(up_right).offset(8.0, 6.0);
+        let (dx, dy) = if sample.reused { (14.0, 12.0) } else { (8.0, 6.0) };
+        let opts = TextOpts::NOTE.size(TextSize::Small).align(up_right).offset(dx, dy);
         d.text("sample-name", at, &sample.label, opts);
     }
 

@@ -126,7 +126,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             role.style(),
         );
     }
-    let normal_len = 0.12 * view.height();
+    // Long enough to read beside an incoming ray that runs close to it.
+    let normal_len = 0.2 * view.height();
     if let Some(dir) = plane.dir(n_f).try_normalize() {
         d.segment("normal", i, i + dir * normal_len, style::normal());
         label(d, i + dir * normal_len, "N");
