@@ -9,8 +9,9 @@
 //!
 //! The canvas is laid out once, by [`Drawing::frame`], for both back ends: a title band at the
 //! top, a caption band at the bottom, the plot area between them, and the legend box in a clear
-//! corner of the plot area or in a column to its right ([`LegendPlace`]). Set the title, caption
-//! and legend (and [`LegendPlace::Outside`] if the legend will not fit inside), then the view,
+//! corner of the plot area, in a column to its right or in a band under it ([`LegendPlace`]). Set
+//! the title, caption and legend (and [`LegendPlace::Outside`] or [`LegendPlace::Below`] if the
+//! legend will not fit inside), then the view,
 //! then add items and labels: a label placed with [`TextOpts::avoid_overlap`] is placed against
 //! the transform in force when it is added.
 
@@ -587,6 +588,10 @@ pub enum LegendPlace {
     Inside(Corner),
     /// In a column to the right of the plot area, which is narrowed to make room.
     Outside,
+    /// In a band under the plot area (above the caption), at its right end; the plot area is
+    /// shortened to make room. A wide picture (two panels side by side) keeps more of its size
+    /// this way than beside a column.
+    Below,
 }
 
 /// A figure: the display list, the world rectangle it shows, its canvas size, and its legend,
@@ -916,11 +921,24 @@ impl Drawing {
     /// caption bands and, for [`LegendPlace::Outside`], the legend column. [`View::fit`] and
     /// [`Drawing::fit_view`] fit to this area.
     fn plot_area(&self) -> PxRect {
-        let column = match (self.legend_place, self.legend_size()) {
-            (LegendPlace::Outside, Some(size)) => size.x,
-            _ => 0.0,
-        };
-        self.plot_area_beside(column)
+        match (self.legend_place, self.legend_size()) {
+            (LegendPlace::Outside, Some(size)) => self.plot_area_beside(size.x),
+            (LegendPlace::Below, Some(size)) => self.plot_area_above(size.y),
+            _ => self.plot_area_beside(0.0),
+        }
+    }
+
+    /// The plot area with a legend band `band` pixels tall under it, and a margin between them.
+    fn plot_area_above(&self, band: f64) -> PxRect {
+        let mut plot = self.plot_area_beside(0.0);
+        plot.max.y = (plot.max.y - band - style::MARGIN * self.px_scale()).max(plot.min.y + 1.0);
+        plot
+    }
+
+    /// The world → pixel scale of the picture: how large the figure draws its view.
+    #[must_use]
+    pub fn picture_scale(&self) -> f64 {
+        self.placed_legend().0.scale
     }
 
     /// The plot area with a legend column `column` pixels wide (0 for none) on the right.
@@ -1247,7 +1265,14 @@ impl Drawing {
             let min = DVec2::new(plot.max.x + margin, plot.min.y);
             (self.transform_in(&plot), plot, Some(PxRect { min, max: min + size }))
         };
+        let below = || {
+            let plot = self.plot_area_above(size.y);
+            let margin = style::MARGIN * self.px_scale();
+            let min = DVec2::new(plot.max.x - size.x, plot.max.y + margin);
+            (self.transform_in(&plot), plot, Some(PxRect { min, max: min + size }))
+        };
         match self.legend_place {
+            LegendPlace::Below => below(),
             LegendPlace::Inside(corner) => {
                 let plot = self.plot_area_beside(0.0);
                 (self.transform_in(&plot), plot, Some(in_corner(&plot, corner)))
@@ -1558,6 +1583,42 @@ mod tests {
         let legend = frame.legend.unwrap();
         assert!((frame.plot.width() - full.width()).abs() < 1e-9);
         assert!(legend.rect.max.y > frame.plot.max.y - 20.0 && legend.rect.min.x < 100.0);
+    }
+
+    #[test]
+    fn a_legend_below_shortens_the_plot_and_keeps_a_wide_picture_larger_than_a_column() {
+        // A picture three times as wide as tall, which the slide's plot area fits by its width.
+        let wide = |place: LegendPlace| {
+            let mut d = Drawing::slide();
+            d.set_view(View::new(0.0, 30.0, 0.0, 10.0).unwrap());
+            d.legend_entry("a legend entry with a long label", style::RayRole::Primary.style(), Sample::Line);
+            d.legend_place = place;
+            d
+        };
+        let (column, band) = (wide(LegendPlace::Outside), wide(LegendPlace::Below));
+        let (full, frame) = (Drawing::slide().frame().plot, band.frame());
+        let legend = frame.legend.unwrap();
+        // The band: the plot keeps its width, loses the legend's height and a margin, and the
+        // legend sits under it at its right end, above the caption band and inside the canvas.
+        assert!((frame.plot.width() - full.width()).abs() < 1e-9);
+        assert!(frame.plot.max.y < full.max.y - legend.rect.height());
+        assert!(legend.rect.min.y > frame.plot.max.y);
+        assert!((legend.rect.max.x - frame.plot.max.x).abs() < 1e-9);
+        assert!(legend.rect.max.y <= full.max.y + 1e-9);
+        // The picture is drawn larger under a band than beside a column.
+        assert!(
+            band.picture_scale() > column.picture_scale(),
+            "{} {}",
+            band.picture_scale(),
+            column.picture_scale()
+        );
+        // A tall picture is the other way round.
+        let tall = |place: LegendPlace| {
+            let mut d = wide(place);
+            d.set_view(View::new(0.0, 10.0, 0.0, 10.0).unwrap());
+            d
+        };
+        assert!(tall(LegendPlace::Outside).picture_scale() >= tall(LegendPlace::Below).picture_scale());
     }
 
     #[test]

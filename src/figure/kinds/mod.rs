@@ -56,9 +56,10 @@ impl<V: Planar> Input<'_, V> {
     }
 }
 
-/// Draws `kind` into `d`. A legend that finds no free corner goes beside the picture, which
-/// then has a narrower plot area: the kind is drawn a second time with the legend placed beside
-/// from the start, so that its view is fitted to that narrower area (and not merely shrunk).
+/// Draws `kind` into `d`. A legend that finds no free corner goes beside the picture or under
+/// it, which then has a narrower or a shorter plot area: the kind is drawn again with the legend
+/// placed either way from the start, so that its view is fitted to that area (and not merely
+/// shrunk), and the larger picture is kept.
 ///
 /// # Errors
 /// Traces that lack what the kind draws, or a kind whose events this build does not record.
@@ -68,10 +69,15 @@ pub fn draw<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: Drawing) -> Re
     let frame = first.frame();
     let beside = frame.legend.is_some_and(|l| l.rect.min.x >= frame.plot.max.x);
     if first.legend_place == LegendPlace::Auto && beside {
-        let mut second = d;
-        second.legend_place = LegendPlace::Outside;
-        draw_once(kind, input, &mut second)?;
-        return Ok(second);
+        // Beside the picture in a column, or under it in a band: whichever draws it larger (a
+        // band only when clearly so, 2 %, so that a near tie keeps the column).
+        let mut column = d.clone();
+        column.legend_place = LegendPlace::Outside;
+        draw_once(kind, input, &mut column)?;
+        let mut band = d;
+        band.legend_place = LegendPlace::Below;
+        draw_once(kind, input, &mut band)?;
+        return Ok(if band.picture_scale() > 1.02 * column.picture_scale() { band } else { column });
     }
     Ok(first)
 }
