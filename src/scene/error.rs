@@ -31,13 +31,15 @@ impl fmt::Display for SceneError {
 
 impl std::error::Error for SceneError {}
 
-/// The closest of `known` to `word` by edit distance, if it is close enough to be a typo.
+/// The closest of `known` to `word` by edit distance, if it is close enough to be a typo: at most
+/// 2 edits (a third of a long name), and fewer than the name has letters, so that no name is
+/// offered for a word it shares nothing with (`b` is not a typo of `l`).
 #[must_use]
 pub fn suggest<'a>(word: &str, known: &[&'a str]) -> Option<&'a str> {
     known
         .iter()
         .map(|k| (edit_distance(word, k), *k))
-        .filter(|(d, k)| *d <= 2.max(k.len() / 3))
+        .filter(|(d, k)| *d <= 2.max(k.len() / 3) && *d < k.chars().count())
         .min_by_key(|(d, _)| *d)
         .map(|(_, k)| k)
 }
@@ -68,5 +70,8 @@ mod tests {
     fn suggests_the_nearest_field() {
         assert_eq!(suggest("radus", &["center", "radius", "material"]), Some("radius"));
         assert_eq!(suggest("zzzzzz", &["center", "radius"]), None);
+        // A 3D window's `b` given to a 2D scene's window (l, r): no one-letter name to offer.
+        assert_eq!(suggest("b", &["l", "r"]), None);
+        assert_eq!(suggest("ambeint", &["ambient", "background"]), Some("ambient"));
     }
 }

@@ -232,11 +232,13 @@ impl Reader {
         }
     }
 
-    /// A colour: one number (grey) or an RGB triple; each channel checked by `range`.
-    fn color(&mut self, v: &Value, path: &str, range: (f64, f64)) -> Option<Rgb> {
+    /// A colour: an RGB triple, or where `grey` allows it one number for a grey; each channel
+    /// checked by `range`.
+    fn color(&mut self, v: &Value, path: &str, range: (f64, f64), grey: bool) -> Option<Rgb> {
+        let form = if grey { "one number or 3 numbers (RGB)" } else { "3 numbers (RGB)" };
         let rgb = if let Some(items) = v.as_array() {
             if items.len() != 3 {
-                self.err(path, format!("must be one number or 3 numbers (RGB), got {}", items.len()));
+                self.err(path, format!("must be {form}, got {}", items.len()));
                 return None;
             }
             let mut c = [0.0; 3];
@@ -244,10 +246,11 @@ impl Reader {
                 c[i] = self.number(item, &format!("{path}[{i}]"))?;
             }
             c
-        } else if v.is_number() {
+        } else if grey && v.is_number() {
             [self.number(v, path)?; 3]
         } else {
-            self.err(path, format!("must be one number or 3 numbers (RGB), got {}", type_name(v)));
+            let got = v.as_f64().map_or_else(|| type_name(v).to_owned(), num);
+            self.err(path, format!("must be {form}, got {got}"));
             return None;
         };
         for x in rgb {
@@ -264,6 +267,7 @@ impl Reader {
         Some(Rgb(rgb))
     }
 
+    /// A material colour (`ka`, `kd`, `kd2`, `ka2`): one number for a grey, or an RGB triple.
     fn optional_color(
         &mut self,
         map: &Map<String, Value>,
@@ -272,20 +276,15 @@ impl Reader {
         default: Rgb,
         range: (f64, f64),
     ) -> Rgb {
-        map.get(key).and_then(|v| self.color(v, &join(path, key), range)).unwrap_or(default)
+        map.get(key).and_then(|v| self.color(v, &join(path, key), range, true)).unwrap_or(default)
     }
 
     /// A light's colour (`background`, `ambient`, `intensity`): an RGB triple only. product.md lets
-    /// one number stand for a grey in the material colours (`ka`, `kd`, `kd2`, `ka2`) alone.
+    /// one number stand for a grey in the material colours alone.
     fn optional_rgb(&mut self, map: &Map<String, Value>, path: &str, key: &str, default: Rgb) -> Rgb {
-        match map.get(key) {
-            Some(v) if v.is_number() => {
-                let got = v.as_f64().map_or_else(|| type_name(v).to_owned(), num);
-                self.err(join(path, key), format!("must be 3 numbers (RGB), got {got}"));
-                default
-            }
-            _ => self.optional_color(map, path, key, default, (0.0, f64::INFINITY)),
-        }
+        map.get(key)
+            .and_then(|v| self.color(v, &join(path, key), (0.0, f64::INFINITY), false))
+            .unwrap_or(default)
     }
 
     fn integer(&mut self, v: &Value, path: &str, min: u64, max: u64) -> Option<u64> {
@@ -674,7 +673,7 @@ fn read_material(r: &mut Reader, v: &Value, path: &str) -> Option<Material> {
             let cm = r.fields(c, &p, CHECKER)?;
             let size = r.optional(cm, &p, "size", 1.0, positive);
             let kd2 = match cm.get("kd2") {
-                Some(x) => r.color(x, &join(&p, "kd2"), (0.0, 1.0)),
+                Some(x) => r.color(x, &join(&p, "kd2"), (0.0, 1.0), true),
                 None => {
                     r.err(join(&p, "kd2"), "missing (required)");
                     None
@@ -907,6 +906,19 @@ mod tests {
             vec![
                 "background: must be 3 numbers (RGB), got 0.2".to_owned(),
                 "lights[0].intensity: must be 3 numbers (RGB), got 1".to_owned(),
+            ]
+        );
+        // A list of the wrong length is told the form its field takes.
+        let text = format!(
+            r#"{{{CAM}, "ambient": [0.1, 0.1],
+                "objects": [{{"type": "plane", "point": [0,0,0], "normal": [0,1,0],
+                  "material": {{"kd": [0.5, 0.5]}}}}]}}"#
+        );
+        assert_eq!(
+            errors(&text),
+            vec![
+                "ambient: must be 3 numbers (RGB), got 2".to_owned(),
+                "objects[0].material.kd: must be one number or 3 numbers (RGB), got 2".to_owned(),
             ]
         );
     }
