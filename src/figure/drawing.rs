@@ -918,7 +918,8 @@ impl Drawing {
     }
 
     /// The plot area before the legend is placed: the canvas less its margin, the title and
-    /// caption bands and, for [`LegendPlace::Outside`], the legend column. [`View::fit`] and
+    /// caption bands and, for [`LegendPlace::Outside`], the legend column (for
+    /// [`LegendPlace::Below`], the legend band). [`View::fit`] and
     /// [`Drawing::fit_view`] fit to this area.
     fn plot_area(&self) -> PxRect {
         match (self.legend_place, self.legend_size()) {

@@ -96,14 +96,14 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for sample in &pixel.samples {
         let at = local(&sample.lattice);
         if sample.reused {
-            d.marker("sample:reused", at, 17.0, style::WHITE.with_alpha(0.0), reused_ring());
+            d.marker("sample:reused", at, RING_RADIUS, style::WHITE.with_alpha(0.0), reused_ring());
         }
         d.marker("sample", at, 8.0, style::BLACK, Style::NONE);
     }
     for sample in &pixel.samples {
         let at = local(&sample.lattice);
-        // Up and to the right of its point, as the lecture's figure writes them, clear of the
-        // ring (radius 17) of a sample read again.
+        // Up and to the right of its point, as the lecture's figure writes them; a ringed one's
+        // corner outside its ring (|(14, 12)| = 18.4 > RING_RADIUS).
         let up_right = Align { h: HAlign::Left, v: VAlign::Bottom };
         let (dx, dy) = if sample.reused { (14.0, 12.0) } else { (8.0, 6.0) };
         let opts = TextOpts::NOTE.size(TextSize::Small).align(up_right).offset(dx, dy);
@@ -113,6 +113,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     text_column(d, column + DVec2::new(0.04, -0.02), &numbers(input, pixel), TextSize::Body, 50.0);
     Ok(())
 }
+
+/// The radius of the ring around a sample that another square read again (reference pixels).
+const RING_RADIUS: f64 = 17.0;
 
 /// The ring of a sample that another square read again.
 fn reused_ring() -> Style {
