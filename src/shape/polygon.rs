@@ -237,6 +237,47 @@ mod tests {
     }
 
     #[test]
+    fn a_segment_on_a_boxs_side_meets_a_ray_at_the_boxs_t_bit_for_bit() {
+        // Found by fuzz.py --snap (seed 6, scene 131): the segment y = 0.25 runs along the bottom
+        // side of the box [0, 0.5] × [0.25, 1.25]. The box's slab gives t = (0.25 − O_y)/D_y and
+        // the segment its line's ((P − O)·N)/(D·N) with N = (0, −1): the same quotient exactly,
+        // so the tie is exact and §6's object index decides, not rounding (an edge function
+        // interpolated between the ends gives a t 3 ulps short on that ray).
+        use crate::shape::aabox::AaBox;
+        let side = Polygon::segment(DVec2::new(-0.5, 0.25), DVec2::new(1.25, 0.25)).unwrap();
+        let block = AaBox { min: DVec2::new(0.0, 0.25), max: DVec2::new(0.5, 1.25) };
+        let found = Ray::new(
+            DVec2::new(7.105_427_357_601_002e-14, 0.259_734_539_181_147_03),
+            DVec2::new(0.990_490_836_197_767_5, -0.137_578_717_134_037_05),
+        );
+        // That ray: both at the slab's quotient (0.25 − O_y)/D_y.
+        let t = (0.25 - found.origin.y) / found.dir.y;
+        assert_eq!((side.hit(&found).map(|h| h.t), block.hit(&found).map(|h| h.t)), (Some(t), Some(t)));
+        let mut rays = vec![found];
+        for k in 0..200 {
+            let f = f64::from(k) / 200.0;
+            // From inside the box down onto its bottom side, and from below up onto it.
+            rays.push(Ray::new(
+                DVec2::new(0.05 + 0.4 * f, 0.26 + f),
+                DVec2::new(0.3 - 0.6 * f, -1.0).normalize(),
+            ));
+            rays.push(Ray::new(
+                DVec2::new(0.45 - 0.4 * f, -0.5 - f),
+                DVec2::new(0.6 * f - 0.3, 1.0).normalize(),
+            ));
+        }
+        let mut met = 0;
+        for (k, ray) in rays.iter().enumerate() {
+            let (Some(edge), Some(face)) = (side.hit(ray), block.hit(ray)) else { continue };
+            if face.point.y == 0.25 {
+                assert_eq!(edge.t, face.t, "ray {k}");
+                met += 1;
+            }
+        }
+        assert!(met > 300, "{met} rays met the bottom side");
+    }
+
+    #[test]
     fn through_a_shared_vertex_is_hit() {
         let p = Polygon::closed(vec![DVec2::ZERO, DVec2::new(2.0, 0.0), DVec2::new(1.0, 1.0)]).unwrap();
         let d = DVec2::new(1.0, 1.0).normalize();
