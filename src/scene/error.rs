@@ -39,7 +39,10 @@ pub fn suggest<'a>(word: &str, known: &[&'a str]) -> Option<&'a str> {
     known
         .iter()
         .map(|k| (edit_distance(word, k), *k))
-        .filter(|(d, k)| *d <= 2.max(k.len() / 3) && *d < k.chars().count())
+        .filter(|(d, k)| {
+            let letters = k.chars().count();
+            *d <= 2.max(letters / 3) && *d < letters
+        })
         .min_by_key(|(d, _)| *d)
         .map(|(_, k)| k)
 }
