@@ -1,6 +1,6 @@
 //! `projections` (lecture "Calculul razelor primare (2), (3)", algorithm.md §2): the primary rays of
 //! the same pixels traced with an orthographic camera (left: parallel rays from the window points
-//! S, D = [0, 0, −1] in camera space) and a perspective one (right: rays from the observer O
+//! S, D = [0, 0, −1] in camera space, [0, −1] in 2D's (u, w)) and a perspective one (right: rays from the observer O
 //! through S, D = S − O), for the same window at distance p. Each panel is drawn on the plane that
 //! holds its row of rays: u to the right and the row's viewing direction up (in 2D, the camera's
 //! u and −w). Far hits on unbounded planes are left beyond the panel's edge, so the window stays
@@ -195,10 +195,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         // D beside the leftmost ray, in the open space left of the bundle (not on the rays).
         if let Some(p) = primaries(traced, &panel).first() {
             let to = end(p, offset);
-            let text = if traced.projection == Projection::Orthographic {
-                "D = [0, 0, −1]"
-            } else {
-                "D = S − O"
+            // In camera coordinates: (u, v, w) in 3D, (u, w) in 2D, which has no v (§2).
+            let text = match (traced.projection, V::DIM) {
+                (Projection::Orthographic, 2) => "D = [0, −1]",
+                (Projection::Orthographic, _) => "D = [0, 0, −1]",
+                (Projection::Perspective, _) => "D = S − O",
             };
             let opts = TextOpts::LABEL.align(Align::LEFT_OF).offset(-12.0, 0.0).avoid_overlap();
             d.text("label", p.from + (to - p.from) * 0.45, text, opts);
