@@ -31,7 +31,8 @@ struct Material {
     checker: Option<(DVec3, DVec3)>,
 }
 
-/// A sphere with its material index and its scale for the spawn offset (‖C‖∞ + r).
+/// A sphere with its material index and its scale for the spawn offset (§11: ‖C‖∞ + r; a
+/// plane's is ‖P‖∞).
 struct Sphere {
     center: DVec3,
     radius: f64,
@@ -182,7 +183,7 @@ impl Scene {
         let raw = o + d * t;
         let (point, normal, material, scale) = if object == 0 {
             let n = self.plane_normal;
-            (raw - n * (raw - self.plane_point).dot(n), n, 0, 0.0)
+            (raw - n * (raw - self.plane_point).dot(n), n, 0, max_abs(self.plane_point))
         } else {
             let s = &self.spheres[object - 1];
             let n = unit(raw - s.center);
