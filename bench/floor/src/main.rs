@@ -43,6 +43,8 @@ struct Sphere {
 struct Scene {
     plane_point: DVec3,
     plane_normal: DVec3,
+    /// The plane's scale for the spawn offset (§11: ‖P‖∞).
+    plane_scale: f64,
     /// The plane is object 0, the spheres 1 and 2; materials: floor, mirror, glass.
     spheres: [Sphere; 2],
     materials: [Material; 3],
@@ -183,7 +185,7 @@ impl Scene {
         let raw = o + d * t;
         let (point, normal, material, scale) = if object == 0 {
             let n = self.plane_normal;
-            (raw - n * (raw - self.plane_point).dot(n), n, 0, max_abs(self.plane_point))
+            (raw - n * (raw - self.plane_point).dot(n), n, 0, self.plane_scale)
         } else {
             let s = &self.spheres[object - 1];
             let n = unit(raw - s.center);
@@ -226,7 +228,9 @@ impl Scene {
             color += self.trace(spawn(point, n_f, r, delta), r, level + 1, rays) * m.ks;
         }
         if m.kt > 0.0 {
-            let eta = if entering { 1.0 / m.ior } else { m.ior / 1.0 };
+            // Swap n1, n2 for a leaving ray (§3).
+            let (n1, n2) = if entering { (1.0, m.ior) } else { (m.ior, 1.0) };
+            let eta = n1 / n2;
             let c = (-d.dot(n_f)).clamp(-1.0, 1.0);
             let k = (1.0 - eta * eta) + (eta * c) * (eta * c);
             if k >= 0.0 {
@@ -260,9 +264,11 @@ fn main() {
         material,
         scale: max_abs(center) + radius,
     };
+    let plane_point = DVec3::new(0.0, -1.25, 0.0);
     let scene = Scene {
-        plane_point: DVec3::new(0.0, -1.25, 0.0),
+        plane_point,
         plane_normal: DVec3::Y,
+        plane_scale: max_abs(plane_point),
         spheres: [sphere(DVec3::new(-0.9, -0.25, -1.6), 1.0, 1), sphere(DVec3::new(0.45, 0.2, 0.9), 0.75, 2)],
         materials: [floor, mirror, glass],
         light: DVec3::new(4.0, 6.0, 6.0),
