@@ -182,6 +182,7 @@ impl<V: Dim> Grid<V> {
     }
 
     /// The Amanatides–Woo walk, handing each visited cell's untested primitives to the visitor.
+    #[inline(never)]
     pub fn walk<R: Recorder<V>, W: Visitor<V>>(
         &self,
         scene: &Scene<V>,

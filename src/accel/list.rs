@@ -8,6 +8,7 @@ use crate::shape::Dim;
 use crate::trace::stats::Stats;
 
 /// Hands every primitive of every object, in index order, to the visitor.
+#[inline(never)]
 pub fn walk<V: Dim, R: Recorder<V>, W: Visitor<V>>(
     scene: &Scene<V>,
     visitor: &mut W,

@@ -154,6 +154,7 @@ impl<V: Dim> Octree<V> {
     }
 
     /// Ordered traversal, handing each reached leaf's untested primitives to the visitor.
+    #[inline(never)]
     pub fn walk<R: Recorder<V>, W: Visitor<V>>(
         &self,
         ray: &Ray<V>,

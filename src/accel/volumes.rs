@@ -33,6 +33,7 @@ impl<V: Dim> Volumes<V> {
     }
 
     /// Each volume (a `bound_test` event with its intervals), then its primitive if it is hit.
+    #[inline(never)]
     pub fn walk<R: Recorder<V>, W: Visitor<V>>(
         &self,
         scene: &Scene<V>,
