@@ -5,7 +5,8 @@
     python3 bench/ab.py /tmp/whitted-before target/release/whitted [--aa adaptive] [--rounds 40]
 
 Each round runs every binary once, in the order given, as fresh processes, one thread, and reads
-the trace-phase `seconds` of `render --json`. It prints each binary's median and minimum and the
+the trace-phase `seconds` of `render --json` (`--aa adaptive` with run.py's settings,
+`--threshold 0.3 --max-level 2`). It prints each binary's median and minimum and the
 median over rounds of (first binary's seconds / this binary's seconds): above 1 is faster than the
 first. Rounds of back-to-back runs are what make a few per cent visible on a machine whose speed
 drifts by ±10 % within seconds; one run against another shows nothing. It also checks that every

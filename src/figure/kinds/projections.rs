@@ -1,10 +1,10 @@
 //! `projections` (lecture "Calculul razelor primare (2), (3)", algorithm.md §2): the primary rays of
 //! the same pixels traced with an orthographic camera (left: parallel rays from the window points
 //! S, D = [0, 0, −1] in camera space, [0, −1] in 2D's (u, w)) and a perspective one (right: rays
-//! from the observer O through S, D = S − O), for the same window at distance p. Each panel is drawn on the plane that
-//! holds its row of rays: u to the right and the row's viewing direction up (in 2D, the camera's
-//! u and −w). Far hits on unbounded planes are left beyond the panel's edge, so the window stays
-//! large enough to read.
+//! from the observer O through S, D = S − O), for the same window at distance p. Each panel is
+//! drawn on the plane that holds its row of rays: u to the right and the row's viewing direction
+//! up (in 2D, the camera's u and −w). Far hits on unbounded planes are left beyond the panel's
+//! edge, so the window stays large enough to read.
 
 use glam::DVec2;
 
