@@ -14,7 +14,7 @@
 use crate::accel::Accel;
 use crate::image::Image;
 use crate::record::NoRecorder;
-use crate::sample::corners::Lattice;
+use crate::sample::corners::{Axes, Lattice};
 use crate::sample::shared::{render_row, EdgeRow, EdgeRows, Edges, Scratch};
 use crate::sample::Sampling;
 use crate::scene::material::Rgb;
@@ -200,13 +200,14 @@ fn lattice_rows<V: Dim>(
     if lattice.dims() == 1 {
         // A 2D scene: one line of intervals; its corners are its pixels' ends.
         let mut tracer = tracer(scene, accel, config.max_depth);
-        let edge = EdgeRow::trace(&mut tracer, lattice, 0, false);
-        let edges = Edges { bottom: &edge, top: &edge };
+        let axes = Axes::new(lattice, &scene.camera);
+        let edge = EdgeRow::trace(&mut tracer, (lattice, &axes), 0, false);
+        let edges = Edges { bottom: &edge, top: &edge, axes: &axes };
         let mut scratch = Scratch::new(lattice);
         lattice_row(&mut tracer, &mut scratch, lattice, rule, config, 0, edges, (pixels, counts));
         return tracer.stats;
     }
-    let rows = Rows { scene, accel, config, rule, lattice, edges: EdgeRows::new(lattice) };
+    let rows = Rows { scene, accel, config, rule, lattice, edges: EdgeRows::new(lattice, &scene.camera) };
     match counts {
         Some(counts) => {
             rows.run(pixels.par_chunks_mut(nx).zip(counts.par_chunks_mut(nx)).map(|(p, c)| (p, Some(c))))
@@ -241,7 +242,7 @@ impl<V: Dim> Rows<'_, V> {
                 |(tracer, scratch), (j, row)| {
                     let top = edges.acquire(tracer, j + 1);
                     let bottom = edges.acquire(tracer, j);
-                    let pair = Edges { bottom: &bottom, top: &top };
+                    let pair = Edges { bottom: &bottom, top: &top, axes: edges.axes() };
                     lattice_row(tracer, scratch, lattice, self.rule, self.config, j, pair, row);
                     edges.release(j);
                     edges.release(j + 1);

@@ -75,6 +75,16 @@ pub fn splits(spread: f64, level: u32, threshold: f64, max_level: u32) -> bool {
     level < max_level && spread >= threshold
 }
 
+/// A pixel that §8.2 does not split at level 0 (its corners agree within the threshold, or
+/// K = 0): the mean of its `N` corners, given in [`SampleSource::corners`]' order; `None` if it
+/// splits. The decision and the sum [`subdivide`] makes for such a pixel, on references, so that
+/// a render decides most pixels where its edge rows hold their corners, without copying them.
+#[inline(always)]
+#[must_use]
+pub fn unsplit<const N: usize>(corners: [&Rgb; N], threshold: f64, max_level: u32) -> Option<Rgb> {
+    (!splits(Rgb::spread(corners), 0, threshold, max_level)).then(|| corner_mean(corners))
+}
+
 /// The level at which local point `(a, b)` first appears: the pixel's corners are level 0, the
 /// new corners of the k-th subdivision level k. With `2^K` steps a side, that is
 /// `K − min(trailing zeros of a, of b, K)`.
@@ -147,16 +157,12 @@ const fn reads<const N: usize>() -> [[Read; N]; N] {
 }
 
 impl<const N: usize> Rule<N> {
-    /// The pixel: reads its corners, then subdivides. A pixel that is not split (most of an
-    /// image) is the mean of its corners at once when no sink records its square: the same
-    /// decision and the same mean as [`Rule::square`], without its call.
+    /// The pixel: reads its corners, then subdivides (a render decides the pixels that do not
+    /// split before, with [`unsplit`]).
     #[inline(always)]
     fn pixel<S: SquareSink>(self, source: &mut impl SampleSource, sink: &mut S) -> Rgb {
         let side = 1 << self.max_level;
         let corners = source.corners::<N>(side);
-        if !S::RECORDS && !splits(Rgb::spread(&corners), 0, self.threshold, self.max_level) {
-            return corner_mean(&corners);
-        }
         self.square(source, sink, (0, 0), side, 0, corners)
     }
 

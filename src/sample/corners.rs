@@ -57,16 +57,52 @@ impl Lattice {
     }
 }
 
+/// The window coordinates of every lattice column and row: `u(x)` for `x = 0 … Nx·2^K` and
+/// `v(y)` for `y = 0 … Ny·2^K` (2D: `v = 0`), each [`Lattice::uv`] bit for bit, computed once per
+/// render so that a sample reads two numbers instead of dividing four times (`x/2^K`, `/Nx`,
+/// `y/2^K`, `/Ny`). Memory: `(Nx + Ny)·2^K + 2` numbers, a quarter of one shared edge row.
+#[derive(Debug)]
+pub struct Axes {
+    u: Vec<f64>,
+    v: Vec<f64>,
+}
+
+impl Axes {
+    /// The coordinates of `lattice`'s columns and rows on `camera`'s window.
+    #[must_use]
+    pub fn new<V: Vector>(lattice: Lattice, camera: &Camera<V>) -> Self {
+        let rows = lattice.ny as u64 * u64::from(lattice.scale) + 1;
+        let u = (0..lattice.row_len() as u64).map(|x| lattice.uv(camera, x, 0).0).collect();
+        let v = (0..rows).map(|y| lattice.uv(camera, 0, y).1).collect();
+        Self { u, v }
+    }
+    /// The window point `(u, v)` of lattice point `(x, y)`.
+    #[must_use]
+    #[inline]
+    pub fn uv(&self, x: u64, y: u64) -> (f64, f64) {
+        // x ≤ Nx·2^K and y ≤ Ny·2^K index the tables, whose lengths are usize.
+        #[allow(clippy::cast_possible_truncation)]
+        (self.u[x as usize], self.v[y as usize])
+    }
+}
+
 /// §8.1: the colour of a pixel (or of a leaf square, §8.2) is the mean of its corners,
 /// `(C1 + C2 + C3 + C4)/4` (2D: `(C1 + C2)/2`), summed in the order given.
 #[must_use]
-pub fn corner_mean(corners: &[Rgb]) -> Rgb {
-    let mut sum = corners[0];
-    for c in &corners[1..] {
+#[inline]
+pub fn corner_mean<'a, I>(corners: I) -> Rgb
+where
+    I: IntoIterator<Item = &'a Rgb>,
+    I::IntoIter: ExactSizeIterator,
+{
+    let mut corners = corners.into_iter();
+    let n = corners.len();
+    let mut sum = corners.next().copied().unwrap_or_default();
+    for c in corners {
         sum += *c;
     }
     // 1/2 and 1/4 are exact: this is the division by the number of corners.
-    sum * (1.0 / corners.len() as f64)
+    sum * (1.0 / n as f64)
 }
 
 #[cfg(test)]
@@ -97,6 +133,23 @@ mod tests {
                 let (u, v) = lattice.uv(&cam, x, y);
                 assert_eq!(u, cam.u_at(i as f64));
                 assert_eq!(v, cam.v_at(j as f64));
+            }
+        }
+    }
+
+    #[test]
+    fn the_axes_hold_the_lattice_coordinates_bit_for_bit() {
+        let cam = camera();
+        for k in [0, 2, 5] {
+            let lattice = Lattice::new(&cam, k);
+            let axes = Axes::new(lattice, &cam);
+            let (last_x, last_y) = lattice.global(lattice.nx, lattice.ny, 0, 0);
+            assert_eq!(axes.u.len() as u64, last_x + 1);
+            assert_eq!(axes.v.len() as u64, last_y + 1);
+            for x in 0..=last_x {
+                for y in 0..=last_y {
+                    assert_eq!(axes.uv(x, y), lattice.uv(&cam, x, y));
+                }
             }
         }
     }

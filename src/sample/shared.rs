@@ -20,9 +20,10 @@
 //! those waiting for their second pixel row (see `render`), and per thread one pixel's
 //! `(2^K + 1)²` memo.
 
-use super::adaptive::{subdivide, NoSquares, SampleSource};
-use super::corners::{corner_mean, Lattice};
+use super::adaptive::{subdivide, unsplit, NoSquares, SampleSource};
+use super::corners::{Axes, Lattice};
 use crate::record::NoRecorder;
+use crate::scene::camera::Camera;
 use crate::scene::material::Rgb;
 use crate::shape::Dim;
 use crate::trace::Tracer;
@@ -64,13 +65,14 @@ impl EdgeRow {
     /// points are shared by two pixel rows.
     pub fn trace<V: Dim>(
         tracer: &mut Tracer<'_, V, NoRecorder>,
-        lattice: Lattice,
+        (lattice, axes): (Lattice, &Axes),
         j: usize,
         shared: bool,
     ) -> Self {
         let s = u64::from(lattice.scale);
-        let corners =
-            (0..=lattice.nx).map(|i| trace_point(tracer, lattice, i as u64 * s, j as u64 * s)).collect();
+        let corners = (0..=lattice.nx)
+            .map(|i| trace_point(tracer, (lattice, axes), i as u64 * s, j as u64 * s))
+            .collect();
         let finer = (shared && lattice.max_level > 0).then(|| Line::new(lattice.row_len()));
         Self { corners, finer }
     }
@@ -92,6 +94,7 @@ impl EdgeRow {
 #[derive(Debug)]
 pub struct EdgeRows {
     lattice: Lattice,
+    axes: Axes,
     rows: Vec<SharedRow>,
 }
 
@@ -104,9 +107,9 @@ struct SharedRow {
 }
 
 impl EdgeRows {
-    /// The edge rows of a 3D image on `lattice`, none made yet.
+    /// The edge rows of a 3D image on `lattice` of `camera`'s window, none made yet.
     #[must_use]
-    pub fn new(lattice: Lattice) -> Self {
+    pub fn new<V: Dim>(lattice: Lattice, camera: &Camera<V>) -> Self {
         let ny = lattice.ny;
         let rows = (0..=ny)
             .map(|j| SharedRow {
@@ -114,13 +117,20 @@ impl EdgeRows {
                 readers: AtomicU8::new(if j == 0 || j == ny { 1 } else { 2 }),
             })
             .collect();
-        Self { lattice, rows }
+        Self { lattice, axes: Axes::new(lattice, camera), rows }
+    }
+    /// The window coordinates of the lattice's columns and rows.
+    #[must_use]
+    pub fn axes(&self) -> &Axes {
+        &self.axes
     }
     /// Edge row `j`, made now by `tracer` if no pixel row has asked for it before. A pixel row
     /// that asks while another thread is making it waits for it.
     pub fn acquire<V: Dim>(&self, tracer: &mut Tracer<'_, V, NoRecorder>, j: usize) -> Arc<EdgeRow> {
         let mut slot = self.rows[j].row.lock().unwrap_or_else(PoisonError::into_inner);
-        Arc::clone(slot.get_or_insert_with(|| Arc::new(EdgeRow::trace(tracer, self.lattice, j, true))))
+        Arc::clone(
+            slot.get_or_insert_with(|| Arc::new(EdgeRow::trace(tracer, (self.lattice, &self.axes), j, true))),
+        )
     }
     /// A pixel row is done with edge row `j`: the last one drops it.
     pub fn release(&self, j: usize) {
@@ -131,10 +141,14 @@ impl EdgeRows {
 }
 
 /// Traces the primary ray through global lattice point `(x, y)`.
-fn trace_point<V: Dim>(tracer: &mut Tracer<'_, V, NoRecorder>, lattice: Lattice, x: u64, y: u64) -> Rgb {
-    let camera = &tracer.scene.camera;
-    let (u, v) = lattice.uv(camera, x, y);
-    let ray = camera.primary_ray(u, v);
+fn trace_point<V: Dim>(
+    tracer: &mut Tracer<'_, V, NoRecorder>,
+    (lattice, axes): (Lattice, &Axes),
+    x: u64,
+    y: u64,
+) -> Rgb {
+    let (u, v) = axes.uv(x, y);
+    let ray = tracer.scene.camera.primary_ray(u, v);
     tracer.trace_primary(&ray, &[u, v][..lattice.dims()])
 }
 
@@ -203,13 +217,16 @@ impl Scratch {
     }
 }
 
-/// The edge rows below and above one pixel row (a 2D scene's line: its one row, twice).
+/// What a pixel row reads besides its own samples: the edge rows below and above it (a 2D
+/// scene's line: its one row, twice), and where the lattice's points lie on the window.
 #[derive(Clone, Copy, Debug)]
 pub struct Edges<'l> {
     /// `y = j·2^K`.
     pub bottom: &'l EdgeRow,
     /// `y = (j + 1)·2^K`.
     pub top: &'l EdgeRow,
+    /// The window coordinates of the lattice's columns and rows.
+    pub axes: &'l Axes,
 }
 
 /// Renders pixel row `j` with the subdivision rule `(threshold, K)` between its traced edge rows:
@@ -231,16 +248,19 @@ pub fn render_row<V: Dim>(
     let dims = lattice.dims();
     scratch.left.fill(None);
     scratch.left_any = false;
+    let (b, t) = (&edges.bottom.corners, &edges.top.corners);
     for (i, pixel) in pixels.iter_mut().enumerate() {
-        let count = if max_level == 0 {
-            // K = 0: the pixel is one leaf, the mean of its corners (the subdivision would read
-            // the same corners in the same order and split nothing).
-            let (b, t) = (&edges.bottom.corners, &edges.top.corners);
-            *pixel = if dims == 1 {
-                corner_mean(&[b[i], b[i + 1]])
-            } else {
-                corner_mean(&[b[i], b[i + 1], t[i], t[i + 1]])
-            };
+        // Most pixels are not split (every pixel with K = 0): their corners decide them where
+        // the edge rows hold them, unread by the subdivision (which would read the same corners
+        // in the same order and split nothing).
+        let quiet = if dims == 1 {
+            unsplit([&b[i], &b[i + 1]], threshold, max_level)
+        } else {
+            unsplit([&b[i], &b[i + 1], &t[i], &t[i + 1]], threshold, max_level)
+        };
+        let count = if let Some(color) = quiet {
+            *pixel = color;
+            scratch.carry_right_edge(dims, false);
             1 << dims
         } else {
             scratch.next_pixel();
@@ -310,8 +330,8 @@ impl<V: Dim> SampleSource for RowSource<'_, '_, '_, V> {
                 // x ≤ Nx·2^K: the index of a point of the line.
                 #[allow(clippy::cast_possible_truncation)]
                 let index = x as usize;
-                let tracer = &mut *self.tracer;
-                line.get_or_trace(index, || trace_point(tracer, lattice, x, y))
+                let (tracer, axes) = (&mut *self.tracer, self.edges.axes);
+                line.get_or_trace(index, || trace_point(tracer, (lattice, axes), x, y))
             }
             // The left edge, already read by the pixel to the left.
             None if a == 0 && self.scratch.left[b as usize].is_some() => {
@@ -320,7 +340,7 @@ impl<V: Dim> SampleSource for RowSource<'_, '_, '_, V> {
             // Inside the pixel (or an edge point no neighbour read).
             _ => {
                 let (x, y) = lattice.global(self.i, self.j, a, b);
-                trace_point(self.tracer, lattice, x, y)
+                trace_point(self.tracer, (lattice, self.edges.axes), x, y)
             }
         };
         self.scratch.memo[k] = Memo { stamp: self.scratch.current, color };
@@ -345,7 +365,7 @@ mod tests {
         let accel = Accel::build(&scene, AccelKind::None);
         let mut tracer = Tracer::new(&scene, &accel, NoRecorder);
         let lattice = Lattice::new(&scene.camera, 2);
-        let rows = EdgeRows::new(lattice);
+        let rows = EdgeRows::new(lattice, &scene.camera);
         let held = |j: usize| rows.rows[j].row.lock().unwrap().is_some();
         // Edge row 1 bounds pixel rows 0 and 1: made by the first to ask, its corners traced once.
         let first = rows.acquire(&mut tracer, 1);

@@ -21,17 +21,19 @@ impl Rgb {
     pub fn modulate(self, other: Rgb) -> Rgb {
         Rgb([self.0[0] * other.0[0], self.0[1] * other.0[1], self.0[2] * other.0[2]])
     }
-    /// The largest over channels of the spread `max − min` of several colours (§8.2's criterion).
+    /// The largest over channels of the spread `max − min` of several colours (§8.2's criterion),
+    /// in one pass over the colours.
     #[must_use]
-    pub fn spread(colors: &[Rgb]) -> f64 {
-        (0..3)
-            .map(|c| {
-                let (lo, hi) = colors
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x.0[c]), hi.max(x.0[c])));
-                hi - lo
-            })
-            .fold(0.0, f64::max)
+    #[inline]
+    pub fn spread<'a>(colors: impl IntoIterator<Item = &'a Rgb>) -> f64 {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for x in colors {
+            for c in 0..3 {
+                lo[c] = lo[c].min(x.0[c]);
+                hi[c] = hi[c].max(x.0[c]);
+            }
+        }
+        (0..3).map(|c| hi[c] - lo[c]).fold(0.0, f64::max)
     }
 }
 
