@@ -7,8 +7,8 @@
 //!   colours;
 //! - the other points of the lattice row `y = j·2^K` (the pixel row's bottom edge) or
 //!   `(j + 1)·2^K` (its top edge): shared with the pixel row below or above, which another thread
-//!   may render at the same time. They sit in a [`Line`] of `OnceLock`s: the first thread to need
-//!   a point traces it, any other waits for that colour;
+//!   may render at the same time. They sit in a [`Line`] of [`Point`]s: the first thread to need a
+//!   point traces it, any other waits for that colour;
 //! - the points of the vertical edge `x = i·2^K` between two pixels of the row: carried from
 //!   pixel `i − 1` to pixel `i` (the `left` column of [`Scratch`]);
 //! - the points inside the pixel: private.
@@ -27,25 +27,80 @@ use crate::scene::camera::Camera;
 use crate::scene::material::Rgb;
 use crate::shape::Dim;
 use crate::trace::Tracer;
-use std::sync::atomic::{AtomicU8, Ordering};
-use std::sync::{Arc, Mutex, OnceLock, PoisonError};
+use std::sync::atomic::{AtomicU64, AtomicU8, Ordering};
+use std::sync::{Arc, Mutex, PoisonError};
 
 /// The points of one lattice row, `Nx·2^K + 1` of them, each traced at most once by whichever
 /// thread asks first (the corners are not kept here: see [`EdgeRow`]).
 #[derive(Debug)]
 pub struct Line {
-    cells: Vec<OnceLock<Rgb>>,
+    points: Vec<Point>,
 }
 
 impl Line {
     /// An empty line of `len` points.
     #[must_use]
     pub fn new(len: usize) -> Self {
-        Self { cells: (0..len).map(|_| OnceLock::new()).collect() }
+        Self { points: (0..len).map(|_| Point::default()).collect() }
     }
     /// The colour of point `x`, traced by `trace` if no thread has traced it yet.
     fn get_or_trace(&self, x: usize, trace: impl FnOnce() -> Rgb) -> Rgb {
-        *self.cells[x].get_or_init(trace)
+        self.points[x].get_or_trace(trace)
+    }
+}
+
+/// One shared point of a [`Line`]: empty, being traced by one thread, or holding its colour.
+/// What a `OnceLock<Rgb>` would do, with a one-load read and no destructor (a line of them is
+/// freed at once). Two threads want the same point only where two jobs of pixel rows meet, both
+/// at that point at once: the second yields its CPU until the first has the colour.
+#[derive(Debug, Default)]
+struct Point {
+    state: AtomicU8,
+    /// The colour's channels, as `f64::to_bits`.
+    bits: [AtomicU64; 3],
+}
+
+/// [`Point::state`]s.
+const EMPTY: u8 = 0;
+const TRACING: u8 = 1;
+const READY: u8 = 2;
+
+/// Puts a point back to [`EMPTY`] if its trace unwinds, so that a waiting thread traces it itself
+/// (and meets the same panic) instead of waiting for ever.
+struct Unwinding<'p>(&'p AtomicU8);
+
+impl Drop for Unwinding<'_> {
+    fn drop(&mut self) {
+        self.0.store(EMPTY, Ordering::Release);
+    }
+}
+
+impl Point {
+    /// The colour, traced now by `trace` if no thread has traced it yet, else read (after the
+    /// tracing thread's `Release`, so its channels are all there).
+    #[inline]
+    fn get_or_trace(&self, trace: impl FnOnce() -> Rgb) -> Rgb {
+        loop {
+            match self.state.load(Ordering::Acquire) {
+                READY => return Rgb(self.bits.each_ref().map(|b| f64::from_bits(b.load(Ordering::Relaxed)))),
+                EMPTY
+                    if self
+                        .state
+                        .compare_exchange(EMPTY, TRACING, Ordering::Acquire, Ordering::Acquire)
+                        .is_ok() =>
+                {
+                    let unwinding = Unwinding(&self.state);
+                    let color = trace();
+                    for (bits, channel) in self.bits.iter().zip(color.0) {
+                        bits.store(channel.to_bits(), Ordering::Relaxed);
+                    }
+                    std::mem::forget(unwinding);
+                    self.state.store(READY, Ordering::Release);
+                    return color;
+                }
+                _ => std::thread::yield_now(),
+            }
+        }
     }
 }
 
@@ -80,8 +135,7 @@ impl EdgeRow {
     #[must_use]
     pub fn bytes(lattice: Lattice) -> usize {
         let corners = (lattice.nx + 1) * std::mem::size_of::<Rgb>();
-        let finer =
-            if lattice.max_level > 0 { lattice.row_len() * std::mem::size_of::<OnceLock<Rgb>>() } else { 0 };
+        let finer = if lattice.max_level > 0 { lattice.row_len() * std::mem::size_of::<Point>() } else { 0 };
         corners + finer
     }
 }
@@ -355,6 +409,40 @@ mod tests {
     use crate::accel::{Accel, AccelKind};
     use crate::scene::load::load_str;
     use crate::scene::AnyScene;
+
+    #[test]
+    fn a_shared_point_is_traced_once_whichever_threads_ask() {
+        use std::sync::atomic::AtomicU32;
+        let line = Line::new(1000);
+        let traced: Vec<AtomicU32> = (0..1000).map(|_| AtomicU32::new(0)).collect();
+        let read = |x: usize| {
+            line.get_or_trace(x, || {
+                traced[x].fetch_add(1, Ordering::Relaxed);
+                std::thread::yield_now();
+                Rgb([x as f64, -0.0, f64::MIN_POSITIVE])
+            })
+        };
+        // Two threads read every point, one from each end, so they meet in the middle.
+        let (ups, downs) = std::thread::scope(|s| {
+            let up = s.spawn(|| (0..1000).map(read).collect::<Vec<_>>());
+            let down = s.spawn(|| (0..1000).rev().map(read).collect::<Vec<_>>());
+            (up.join().unwrap(), down.join().unwrap())
+        });
+        assert!(traced.iter().all(|n| n.load(Ordering::Relaxed) == 1));
+        for (x, c) in ups.iter().enumerate() {
+            assert_eq!(c.0.map(f64::to_bits), downs[999 - x].0.map(f64::to_bits));
+            assert_eq!(c.0.map(f64::to_bits), Rgb([x as f64, -0.0, f64::MIN_POSITIVE]).0.map(f64::to_bits));
+        }
+    }
+
+    #[test]
+    fn a_point_whose_trace_panicked_is_traced_again() {
+        let line = Line::new(1);
+        let failed = std::panic::catch_unwind(|| line.get_or_trace(0, || panic!("a trace that fails")));
+        assert!(failed.is_err());
+        assert_eq!(line.get_or_trace(0, || Rgb::grey(0.5)), Rgb::grey(0.5));
+        assert_eq!(line.get_or_trace(0, || Rgb::grey(1.0)), Rgb::grey(0.5), "traced once it succeeded");
+    }
 
     #[test]
     fn an_edge_row_is_made_once_and_dropped_after_its_last_reader() {
