@@ -264,6 +264,22 @@ mod tests {
     }
 
     #[test]
+    fn unsplit_is_the_level_0_decision_and_mean() {
+        let g = Rgb([0.25, 0.5, 0.75]);
+        let h = Rgb([0.5, 0.5, 0.75]);
+        // Spread 0.25: split at a threshold of 0.25 (≥), not at 0.5, never with K = 0.
+        assert_eq!(unsplit([&g, &g, &g, &h], 0.25, 2), None);
+        let mean = Some(Rgb([0.3125, 0.5, 0.75]));
+        assert_eq!(unsplit([&g, &g, &g, &h], 0.5, 2), mean);
+        assert_eq!(unsplit([&g, &g, &g, &h], 0.0, 0), mean);
+        assert_eq!(unsplit([&g, &h], 0.5, 3), Some(Rgb([0.375, 0.5, 0.75])));
+        // What subdivide gives for a pixel its corners do not split: a uniform one.
+        let mut white = Edge { edge: 2.0, scale: 4.0, traced: HashMap::new() };
+        let w = Rgb::grey(1.0);
+        assert_eq!(unsplit([&w; 4], 0.1, 2), Some(subdivide(&mut white, &mut NoSquares, 2, 0.1, 2)));
+    }
+
+    #[test]
     fn an_edge_at_a_third_gives_the_area_of_its_leaves() {
         // K = 2, 4 steps a side, edge at a = 4/3 · … : white for a/4 < 1/3, i.e. a ∈ {0, 1}.
         let mut src = Edge { edge: 1.0 / 3.0, scale: 4.0, traced: HashMap::new() };

@@ -60,7 +60,8 @@ impl Lattice {
 /// The window coordinates of every lattice column and row: `u(x)` for `x = 0 … Nx·2^K` and
 /// `v(y)` for `y = 0 … Ny·2^K` (2D: `v = 0`), each [`Lattice::uv`] bit for bit, computed once per
 /// render so that a sample reads two numbers instead of dividing four times (`x/2^K`, `/Nx`,
-/// `y/2^K`, `/Ny`). Memory: `(Nx + Ny)·2^K + 2` numbers, a quarter of one shared edge row.
+/// `y/2^K`, `/Ny`). Memory: 8 bytes a lattice column and row, where every shared edge row takes
+/// 32 bytes a lattice column.
 #[derive(Debug)]
 pub struct Axes {
     u: Vec<f64>,
@@ -87,7 +88,7 @@ impl Axes {
 }
 
 /// §8.1: the colour of a pixel (or of a leaf square, §8.2) is the mean of its corners,
-/// `(C1 + C2 + C3 + C4)/4` (2D: `(C1 + C2)/2`), summed in the order given.
+/// `(C1 + C2 + C3 + C4)/4` (2D: `(C1 + C2)/2`), summed in the order given (no corners: black).
 #[must_use]
 #[inline]
 pub fn corner_mean<'a, I>(corners: I) -> Rgb
@@ -102,7 +103,7 @@ where
         sum += *c;
     }
     // 1/2 and 1/4 are exact: this is the division by the number of corners.
-    sum * (1.0 / n as f64)
+    sum * (1.0 / n.max(1) as f64)
 }
 
 #[cfg(test)]
