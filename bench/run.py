@@ -460,6 +460,23 @@ def status_of(side):
     return "skipped" if side.get("skipped") else "—"
 
 
+def paired_rounds(config):
+    """(trace seconds, rays) of whitted and of POV-Ray in each round where both ran: run k of each
+    (runs are kept in round order, and a program that fails is not run again)."""
+    def figures(prog):
+        return [r.get("figures") for r in config[prog]["runs"]]
+    return [((w["trace_s"], w["rays"]), (p["trace_s"], p["rays"]))
+            for w, p in zip(figures("whitted"), figures("povray")) if w and p and w["trace_s"] and p["trace_s"]]
+
+
+def spread(values):
+    """'median (least–most)' of a list of ratios, or '—'."""
+    values = [v for v in values if v is not None]
+    if not values:
+        return "—"
+    return "%s (%s–%s)" % (f(median(values)), f(min(values)), f(max(values)))
+
+
 def tables(results):
     rows = results["configs"]
     by_key = {(c["scene"], c["mode"], c["threads"]): c for c in rows}
@@ -518,6 +535,21 @@ def tables(results):
         out.append("| %s | %s | %d | %s | %s | %s | %s | %s |" % (
             c["scene"], c["mode"], c["threads"], f(wt, 3), f(pt, 3), f(ratio(pt, wt)),
             f(ratio(mrays(w), mrays(p))), speed))
+    out.append("")
+
+    out.append("The same runs paired by round: whitted's run k against POV-Ray's run k, which follows it "
+               "within seconds, so that the machine's drift over the minutes of a table cancels in each "
+               "ratio; the median over rounds of those ratios, and their range:")
+    out.append("")
+    out.append("| scene | AA | threads | rounds | time ratio POV/whitted (range) "
+               "| throughput ratio whitted/POV (range) |")
+    out.append("|---|---|---:|---:|---:|---:|")
+    for c in rows:
+        rounds = paired_rounds(c)
+        times = [ratio(pt, wt) for (wt, _), (pt, _) in rounds]
+        speeds = [ratio(wr / wt, pr / pt) for (wt, wr), (pt, pr) in rounds]
+        out.append("| %s | %s | %d | %d | %s | %s |" % (
+            c["scene"], c["mode"], c["threads"], len(rounds), spread(times), spread(speeds)))
     out.append("")
 
     ceilings = [c for c in results.get("ceilings", []) if any(t is not None for p in c["pairs"] for t in p)]
