@@ -321,7 +321,8 @@ pub fn render_row<V: Dim>(
             let mut source = RowSource { tracer, lattice, i, j, edges, scratch, used: 0 };
             *pixel = subdivide(&mut source, &mut NoSquares, dims, threshold, max_level);
             let count = source.used;
-            scratch.carry_right_edge(dims, count > 1 << dims);
+            // A pixel split at level 0 has read points inside it.
+            scratch.carry_right_edge(dims, true);
             count
         };
         if let Some(used) = used.as_deref_mut() {
