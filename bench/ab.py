@@ -4,7 +4,7 @@
     cp target/release/whitted /tmp/whitted-before     # build, keep, change, build again
     python3 bench/ab.py /tmp/whitted-before target/release/whitted [--aa adaptive] [--rounds 40]
 
-Each round runs every binary once, in the order given, as fresh processes, one thread, and reads
+Each round runs every binary once, in the order given, as fresh processes, one thread (or `--threads N`), and reads
 the trace-phase `seconds` of `render --json` (`--aa adaptive` with run.py's settings,
 `--threshold 0.3 --max-level 2`). It prints each binary's median and minimum and the
 median over rounds of (first binary's seconds / this binary's seconds): above 1 is faster than the
@@ -31,6 +31,7 @@ def main():
     ap.add_argument("--size", default="640x480")
     ap.add_argument("--rounds", type=int, default=40)
     ap.add_argument("--accel", help="pass --accel to every binary")
+    ap.add_argument("--threads", type=int, default=1, help="--threads of every run (default 1)")
     args = ap.parse_args()
     if len(args.binaries) < 2:
         sys.exit("bench/ab.py: give at least two binaries")
@@ -41,7 +42,7 @@ def main():
         for r in range(args.rounds):
             for k, binary in enumerate(args.binaries):
                 png = os.path.join(tmp, f"{k}.png")
-                cmd = [binary, "render", args.scene, "--size", args.size, "--threads", "1",
+                cmd = [binary, "render", args.scene, "--size", args.size, "--threads", str(args.threads),
                        "--aa", args.aa, "--json", "-o", png]
                 if args.aa == "adaptive":
                     cmd += ["--threshold", "0.3", "--max-level", "2"]

@@ -74,7 +74,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         }
     };
     if flat {
-        d.rect("pixel", DVec2::ZERO, DVec2::new(1.0, 0.02), style::object(), None);
+        d.rect("pixel", DVec2::ZERO, DVec2::new(1.0, BAR), style::object(), None);
     }
     for s in &pixel.squares {
         let (lo, hi) = rect_of(s);
@@ -102,17 +102,31 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     for sample in &pixel.samples {
         let at = local(&sample.lattice);
-        // Up and to the right of its point, as the lecture's figure writes them; a ringed one's
-        // corner outside its ring (|(14, 12)| = 18.4 > RING_RADIUS).
-        let up_right = Align { h: HAlign::Left, v: VAlign::Bottom };
-        let (dx, dy) = if sample.reused { (14.0, 12.0) } else { (8.0, 6.0) };
-        let opts = TextOpts::NOTE.size(TextSize::Small).align(up_right).offset(dx, dy);
-        d.text("sample-name", at, &sample.label, opts);
+        let small = TextOpts::NOTE.size(TextSize::Small);
+        if flat {
+            // Centred above the pixel's bar (whose bottom edge holds the points), clear of it.
+            let above = Align { h: HAlign::Center, v: VAlign::Bottom };
+            d.text(
+                "sample-name",
+                at + DVec2::new(0.0, BAR),
+                &sample.label,
+                small.align(above).offset(0.0, 6.0),
+            );
+        } else {
+            // Up and to the right of its point, as the lecture's figure writes them; a ringed
+            // one's corner outside its ring (|(14, 12)| = 18.4 > RING_RADIUS).
+            let up_right = Align { h: HAlign::Left, v: VAlign::Bottom };
+            let (dx, dy) = if sample.reused { (14.0, 12.0) } else { (8.0, 6.0) };
+            d.text("sample-name", at, &sample.label, small.align(up_right).offset(dx, dy));
+        }
     }
 
     text_column(d, column + DVec2::new(0.04, -0.02), &numbers(input, pixel), TextSize::Body, 50.0);
     Ok(())
 }
+
+/// The height of a 2D pixel's bar, in pixel widths: its bottom edge holds the samples.
+const BAR: f64 = 0.02;
 
 /// The radius of the ring around a sample that another square read again (reference pixels).
 const RING_RADIUS: f64 = 17.0;
