@@ -149,6 +149,45 @@ fn display_list_snapshots() {
 }
 
 #[test]
+fn the_depth_limit_line_crosses_no_node_and_no_word_of_the_ray_tree() {
+    // glass: words under the nodes, a stopped node with a shadow child below the line;
+    // corridor: a deep tree, words beside the nodes, the last node stopped.
+    for name in ["glass.json", "corridor.json"] {
+        let d = figure(FigureKind::RayTree, name, Lang::En, (1920, 1080));
+        let tf = d.transform();
+        let line = d.tagged("depth-limit").next().unwrap_or_else(|| panic!("{name}: no depth-limit line"));
+        let Shape::Line { points } = &line.shape else { panic!("{name}: the limit is a line") };
+        let y = tf.to_px(points[0]).y;
+        let (mut nodes, mut words) = (0, 0);
+        for item in &d.items {
+            match (&item.shape, item.tag.as_str()) {
+                (Shape::Dot { center, radius, .. }, "node" | "node:shadow" | "stopped") => {
+                    let (c, r) = (tf.to_px(*center).y, tf.ref_px(*radius));
+                    assert!(
+                        (c - y).abs() > r,
+                        "{name}: a {} at y = {c:.1} ± {r:.1} px meets the line at {y:.1}",
+                        item.tag
+                    );
+                    nodes += 1;
+                }
+                (Shape::Text(text), "name" | "object") => {
+                    let placed = Drawing::place_text(text, &tf);
+                    let (top, bottom) = (placed.bbox.min.y, placed.bbox.max.y);
+                    assert!(
+                        y < top || y > bottom,
+                        "{name}: {:?} spans {top:.1}–{bottom:.1} px, the line is at {y:.1}",
+                        text.text
+                    );
+                    words += 1;
+                }
+                _ => {}
+            }
+        }
+        assert!(nodes > 3 && words > 3, "{name}: {nodes} nodes, {words} words");
+    }
+}
+
+#[test]
 fn refraction_draws_the_total_internal_reflection_of_a_given_ray() {
     let AnyScene::Flat(scene) = load_str(&fixture("tir_slab_2d.json")).unwrap() else { panic!("2D") };
     // numerics.md E3: inside the slab at 30° to the wall, θᵢ = 60° > θ_c ≈ 41.8°.

@@ -178,12 +178,24 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let right = points.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max) + 0.6;
     let bottom = points.iter().map(|p| p.y).fold(0.0, f64::min) - 0.5 * row_h;
     points.extend([DVec2::new(left, 0.4 * row_h), DVec2::new(right, bottom)]);
-    // Below the last level that may spawn children: level max_depth + 1 is the deepest.
-    let limit_y = -(f64::from(traced.max_depth) + 0.5) * row_h;
-    if !stopped.is_empty() {
-        points.push(DVec2::new(left, limit_y - 0.3 * row_h));
-    }
     d.fit_view(&points, 0.03);
+    // The limit line lies below level max_depth + 1, the deepest that a ray may reach: under the
+    // words of that level's nodes (which are px below them) and over the next level's nodes.
+    // Where it lies depends on the view's scale and the view on where it lies: refit until they
+    // agree (three fits move it by well under a pixel).
+    let mut limit_y = -(f64::from(traced.max_depth) + 0.5) * row_h;
+    if !stopped.is_empty() {
+        for _ in 0..3 {
+            let px = d.px_scale() / d.picture_scale();
+            // A deep tree writes its words beside the nodes: then only a stopped node's ring is below.
+            let below_row = if deep { STOP_RADIUS + 6.0 } else { LIMIT_BELOW_ROW };
+            let under = (below_row * px).min(row_h - LIMIT_ABOVE_ROW * px);
+            limit_y = -f64::from(traced.max_depth) * row_h - under;
+            let mut with_limit = points.clone();
+            with_limit.push(DVec2::new(left, limit_y - LIMIT_TEXT * px));
+            d.fit_view(&with_limit, 0.03);
+        }
+    }
 
     for level in 1..=deepest {
         let y = -f64::from(level - 1) * row_h;
@@ -220,7 +232,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 let ring = Style::solid(role.color(), style::RAY_WIDTH);
                 d.marker("node", *p, 28.0, fill, ring);
                 if stopped.contains(k) {
-                    d.marker("stopped", *p, 40.0, style::WHITE.with_alpha(0.0), stop_style());
+                    d.marker("stopped", *p, STOP_RADIUS, style::WHITE.with_alpha(0.0), stop_style());
                 }
             }
             Vertex::Shadow { blocked, .. } => {
@@ -245,6 +257,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         };
         match v {
             Vertex::Ray(k) => {
+                // A stopped node's name stands outside its ring.
+                let beside =
+                    if stopped.contains(k) { beside.offset(-(STOP_RADIUS + 6.0), 0.0) } else { beside };
                 d.text("name", *p, &names.ray[*k], beside);
                 let what = match log.nodes[*k].end.as_ref().and_then(|e| e.hit) {
                     Some(h) => escape(&scene.object_label(h.object.index)),
@@ -270,6 +285,18 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     Ok(())
 }
+
+/// Reference pixels from a row's centre line down to the depth-limit line: clear of the words
+/// under the row's nodes (a shadow node's `s = …`, 54 px down, is the lower, 30 px tall).
+const LIMIT_BELOW_ROW: f64 = 92.0;
+/// The fewest reference pixels from the depth-limit line down to the next row's centre line: a
+/// shadow node's radius, 14, and a gap.
+const LIMIT_ABOVE_ROW: f64 = 24.0;
+/// The reference pixels that the limit's words take under its line.
+const LIMIT_TEXT: f64 = 52.0;
+
+/// The radius, in reference pixels, of the ring around a node stopped by the depth limit.
+const STOP_RADIUS: f64 = 40.0;
 
 /// The mark of a node stopped by the depth limit: a dashed vermillion ring.
 fn stop_style() -> Style {
