@@ -469,6 +469,11 @@ def paired_rounds(config):
             for w, p in zip(figures("whitted"), figures("povray")) if w and p and w["trace_s"] and p["trace_s"]]
 
 
+def round_traces(config, prog):
+    """The trace seconds of `prog`'s runs of a configuration, in round order (None for a failed run)."""
+    return [(r.get("figures") or {}).get("trace_s") for r in config[prog]["runs"]]
+
+
 def spread(values):
     """'median (least–most)' of a list of ratios, or '—'."""
     values = [v for v in values if v is not None]
@@ -542,14 +547,21 @@ def tables(results):
                "ratio; the median over rounds of those ratios, and their range:")
     out.append("")
     out.append("| scene | AA | threads | rounds | time ratio POV/whitted (range) "
-               "| throughput ratio whitted/POV (range) |")
-    out.append("|---|---|---:|---:|---:|---:|")
+               "| throughput ratio whitted/POV (range) | 2-thread speed-up, run k of 1 thread / run k of 2: "
+               "whitted (range) | POV-Ray (range) |")
+    out.append("|---|---|---:|---:|---:|---:|---:|---:|")
     for c in rows:
         rounds = paired_rounds(c)
         times = [ratio(pt, wt) for (wt, _), (pt, _) in rounds]
         speeds = [ratio(wr / wt, pr / pt) for (wt, wr), (pt, pr) in rounds]
-        out.append("| %s | %s | %d | %d | %s | %s |" % (
-            c["scene"], c["mode"], c["threads"], len(rounds), spread(times), spread(speeds)))
+        one = by_key.get((c["scene"], c["mode"], 1))
+        scaling = ["—", "—"]
+        if c["threads"] == 2 and one:
+            for n, prog in enumerate(("whitted", "povray")):
+                pairs = zip(round_traces(one, prog), round_traces(c, prog))
+                scaling[n] = spread([ratio(a, b) for a, b in pairs if a and b])
+        out.append("| %s | %s | %d | %d | %s | %s | %s | %s |" % (
+            c["scene"], c["mode"], c["threads"], len(rounds), spread(times), spread(speeds), *scaling))
     out.append("")
 
     ceilings = [c for c in results.get("ceilings", []) if any(t is not None for p in c["pairs"] for t in p)]

@@ -143,6 +143,10 @@ fn center_rows<V: Dim>(
     let rows: Vec<Stats> = pixels
         .par_chunks_mut(cam.nx)
         .enumerate()
+        // Every row its own rayon job, so that a thread that runs out of rows takes the next one
+        // (rayon's default leaves, 60 to 120 rows of 480 on two threads, could leave one thread
+        // idle for the last sixth of a render).
+        .with_max_len(1)
         .map_init(
             || tracer(scene, accel, config.max_depth),
             |tracer, (j, row)| {
@@ -172,10 +176,10 @@ fn tracer<'s, V: Dim>(scene: &'s Scene<V>, accel: &'s Accel<V>, max_depth: u32) 
 /// can be. A 640x480 image at K = 2 (97 KB an edge row) runs in jobs of at least 6 rows.
 pub const EDGE_MEMORY: usize = 8 << 20;
 
-/// The fewest pixel rows a rayon job of a lattice render takes: enough that `Ny / job` edge rows
-/// fit `budget` bytes, but at most `Ny / (2·threads)`, so that every thread has work. Jobs run
-/// their rows bottom to top, and rayon splits them further (never below this) when a thread is
-/// idle, so the last job to finish is short.
+/// The pixel rows of a rayon job of a lattice render (rayon halves a range while both halves are
+/// at least this long, so a job takes `job` to `2·job − 1` rows): enough that `Ny / job` edge rows fit `budget`
+/// bytes, but at most `Ny / (2·threads)`, so that every thread has work. Jobs run their rows
+/// bottom to top; a thread that runs out takes the next job, so the last to finish is short.
 fn job_rows(lattice: Lattice, budget: usize, threads: usize) -> usize {
     let wanted = (lattice.ny * EdgeRow::bytes(lattice)).div_ceil(budget.max(1));
     let most = (lattice.ny / (2 * threads.max(1))).max(1);
@@ -237,6 +241,7 @@ impl<V: Dim> Rows<'_, V> {
         let stats: Vec<Stats> = rows
             .enumerate()
             .with_min_len(job)
+            .with_max_len(job)
             .map_init(
                 || (tracer(self.scene, self.accel, self.config.max_depth), Scratch::new(lattice)),
                 |(tracer, scratch), (j, row)| {
