@@ -230,7 +230,9 @@ fn two_panels<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>,
         note.align(Align::LEFT_OF).offset(-60.0, 0.0),
     );
     d.text("label", centre, &format!("({}, {})", m.i, m.j), TextOpts::LABEL.avoid_overlap());
-    let uv_text = format!("(u, v) = ({}, {})", num(m.uv[0]), num(m.uv.get(1).copied().unwrap_or(0.0)));
+    // The numbers only, as the pixel's (i, j): the formulas under the image name them u and v,
+    // and a shorter label keeps off the window's v axis.
+    let uv_text = format!("({}, {})", num(m.uv[0]), num(m.uv.get(1).copied().unwrap_or(0.0)));
     d.text("label", uv, &uv_text, TextOpts::LABEL.avoid_overlap());
 
     let lines = [formula_u(cam, m), formula_v(cam, m)];
