@@ -16,6 +16,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use whitted::accel::{AccelKind, AccelOptions};
 use whitted::doc::{float, stats};
+use whitted::figure::labels::Label;
 use whitted::figure::plane::Planar;
 use whitted::figure::source::Tracing;
 use whitted::figure::tradeoff as tradeoff_plot;
@@ -69,11 +70,14 @@ pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
 fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> Result<(), Failure> {
     let settings = tradeoff::settings(scene.max_depth);
     let (total, base) = (settings.len() + 1, settings[0]);
+    let lang = args.lang.lang();
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = ProgressBar::new(total as u64);
-        if let Ok(style) =
-            ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} settings: {msg}")
-        {
+        let template = format!(
+            "{{elapsed_precise}} [{{bar:30}}] {{pos}}/{{len}} {}: {{msg}}",
+            Label::ProgressSettings.text(lang)
+        );
+        if let Ok(style) = ProgressStyle::with_template(&template) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar
@@ -82,7 +86,7 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
         if let Some(bar) = &bar {
             let reference = setting.sampling == REFERENCE_SAMPLING && setting.depth == REFERENCE_DEPTH;
             bar.set_message(if reference {
-                "reference".to_owned()
+                Label::ProgressReference.text(lang).to_owned()
             } else {
                 tradeoff::setting_name(setting, &base)
             });

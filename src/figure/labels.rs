@@ -177,6 +177,10 @@ pub enum Label {
     ReferenceImage,
     /// After the number of renders of each setting.
     RendersEach,
+    /// `tradeoff`'s progress line: after the count of settings rendered.
+    ProgressSettings,
+    /// `tradeoff`'s progress line: the reference image being rendered.
+    ProgressReference,
     /// The adaptive threshold.
     Threshold,
     /// K = 0: the corners, no subdivision.
@@ -372,6 +376,8 @@ impl Label {
                 "referința: adaptivă, prag 0, K = 3, adâncime 16",
             ),
             Self::RendersEach => ("renders per setting (median time)", "randări pe variantă (timpul median)"),
+            Self::ProgressSettings => ("settings", "variante"),
+            Self::ProgressReference => ("the reference", "referința"),
             Self::Threshold => ("threshold", "pragul"),
             Self::MeetsVolume => ("meets the volume", "intersectează volumul"),
             Self::MissesVolume => ("misses the volume", "ratează volumul"),
@@ -516,6 +522,8 @@ mod tests {
         Label::AxisRmse,
         Label::ReferenceImage,
         Label::RendersEach,
+        Label::ProgressSettings,
+        Label::ProgressReference,
         Label::PrimaryRay,
         Label::ReflectedRay,
         Label::TransmittedRay,
