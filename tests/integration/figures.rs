@@ -149,11 +149,23 @@ fn display_list_snapshots() {
 }
 
 #[test]
-fn the_depth_limit_line_crosses_no_node_and_no_word_of_the_ray_tree() {
+fn the_ray_tree_keeps_its_words_clear_of_the_depth_limit_and_of_edges_straight_down() {
     // glass: words under the nodes, a stopped node with a shadow child below the line;
-    // corridor: a deep tree, words beside the nodes, the last node stopped.
-    for name in ["glass.json", "corridor.json"] {
-        let d = figure(FigureKind::RayTree, name, Lang::En, (1920, 1080));
+    // corridor: a deep tree, words beside the nodes, the last node stopped; the lesson's two
+    // mirrors (pixel 4): a shadow leaf and its s on the last row above the line, another below.
+    let mirrors = || {
+        let path = format!("{}/lessons/scenes/mirrors_2d.json", env!("CARGO_MANIFEST_DIR"));
+        let AnyScene::Flat(scene) = load_str(&std::fs::read_to_string(path).unwrap()).unwrap() else {
+            panic!("a 2D scene")
+        };
+        figure_in(&scene, "mirrors_2d", FigureKind::RayTree, &Aim::Pixel(4, 0), Lang::En, (1920, 1080))
+    };
+    for name in ["glass.json", "corridor.json", "mirrors_2d"] {
+        let d = if name == "mirrors_2d" {
+            mirrors()
+        } else {
+            figure(FigureKind::RayTree, name, Lang::En, (1920, 1080))
+        };
         let tf = d.transform();
         let line = d.tagged("depth-limit").next().unwrap_or_else(|| panic!("{name}: no depth-limit line"));
         let Shape::Line { points } = &line.shape else { panic!("{name}: the limit is a line") };
@@ -184,6 +196,33 @@ fn the_depth_limit_line_crosses_no_node_and_no_word_of_the_ray_tree() {
             }
         }
         assert!(nodes > 3 && words > 3, "{name}: {nodes} nodes, {words} words");
+        // An edge straight down runs below the word under its node, never through it.
+        let boxes: Vec<_> = d
+            .tagged("object")
+            .filter_map(|i| match &i.shape {
+                Shape::Text(t) => Some(Drawing::place_text(t, &tf).bbox),
+                _ => None,
+            })
+            .collect();
+        let mut vertical = 0;
+        for item in &d.items {
+            let Shape::Line { points } = &item.shape else { continue };
+            let (a, b) = (tf.to_px(points[0]), tf.to_px(points[points.len() - 1]));
+            if item.tag == "depth-limit" || (a.x - b.x).abs() > 1e-6 {
+                continue;
+            }
+            vertical += 1;
+            for bx in &boxes {
+                let across =
+                    bx.min.x < a.x && a.x < bx.max.x && a.y.max(b.y) > bx.min.y && a.y.min(b.y) < bx.max.y;
+                assert!(
+                    !across,
+                    "{name}: a vertical {} edge at x = {:.1}, y {:.1}–{:.1}, crosses a word {bx:?}",
+                    item.tag, a.x, a.y, b.y
+                );
+            }
+        }
+        assert!(vertical > 0, "{name}: no edge straight down");
     }
 }
 

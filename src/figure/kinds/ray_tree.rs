@@ -184,12 +184,25 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     // Where it lies depends on the view's scale and the view on where it lies: refit until they
     // agree (three fits move it by well under a pixel).
     let mut limit_y = -(f64::from(traced.max_depth) + 0.5) * row_h;
+    let last_row = -f64::from(traced.max_depth) * row_h;
+    let on_row = |p: &DVec2, y: f64| (p.y - y).abs() < 0.25 * row_h;
+    let shadow_on_last_row =
+        graph.iter().any(|(v, p, _)| matches!(v, Vertex::Shadow { .. }) && on_row(p, last_row));
+    let row_below = graph.iter().any(|(_, p, _)| on_row(p, last_row - row_h));
     if !stopped.is_empty() {
         for _ in 0..3 {
             let px = d.px_scale() / d.picture_scale();
-            // A deep tree writes its words beside the nodes: then only a stopped node's ring is below.
-            let below_row = if deep { STOP_RADIUS + 6.0 } else { LIMIT_BELOW_ROW };
-            let under = (below_row * px).min(row_h - LIMIT_ABOVE_ROW * px);
+            // A deep tree writes its words beside the nodes: then only a stopped node's ring is
+            // below. Else the lowest word is a shadow leaf's `s = …`, or a ray node's object.
+            let below_row = if deep {
+                STOP_RADIUS + 6.0
+            } else if shadow_on_last_row {
+                UNDER_SHADOW_WORD
+            } else {
+                UNDER_WORD
+            };
+            let room = if row_below { row_h - LIMIT_ABOVE_ROW * px } else { f64::INFINITY };
+            let under = (below_row * px).min(room);
             limit_y = -f64::from(traced.max_depth) * row_h - under;
             let mut with_limit = points.clone();
             with_limit.push(DVec2::new(left, limit_y - LIMIT_TEXT * px));
@@ -213,7 +226,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let text = format!("{}: max\\_depth = {}", input.t(Label::DepthLimit), traced.max_depth);
         d.text("label", DVec2::new(left, limit_y), &text, opts);
     }
-    // Edges first, then the nodes over them, then the words.
+    // Edges first, then the nodes over them, then the words. An edge straight down from a node
+    // with its word under it starts below the word, not through it.
+    let px = d.px_scale() / d.picture_scale();
     for (v, p, parent) in &graph {
         let Some(from) = parent else { continue };
         let role = match v {
@@ -221,7 +236,14 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             Vertex::Shadow { blocked: true, .. } => RayRole::BlockedShadow,
             Vertex::Shadow { .. } => RayRole::Shadow,
         };
-        d.segment(role.tag(), *from, *p, role.style());
+        let under_word = from.y - UNDER_WORD * px;
+        #[allow(clippy::float_cmp)] // a child straight below has its parent's very x
+        let start = if !deep && p.x == from.x && under_word > p.y + 24.0 * px {
+            DVec2::new(from.x, under_word)
+        } else {
+            *from
+        };
+        d.segment(role.tag(), start, *p, role.style());
     }
     for (v, p, _) in &graph {
         match v {
@@ -286,14 +308,18 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     Ok(())
 }
 
-/// Reference pixels from a row's centre line down to the depth-limit line: clear of the words
-/// under the row's nodes (a shadow node's `s = …`, 54 px down, is the lower, 30 px tall).
-const LIMIT_BELOW_ROW: f64 = 92.0;
-/// The fewest reference pixels from the depth-limit line down to the next row's centre line: a
-/// shadow node's radius, 14, and a gap.
-const LIMIT_ABOVE_ROW: f64 = 24.0;
+/// Reference pixels from a shadow leaf's centre down to below its `s = …` (54 to the word's box,
+/// which is 41 tall, and a gap).
+const UNDER_SHADOW_WORD: f64 = 100.0;
+/// The fewest reference pixels from the depth-limit line down to the next row's centre line: half
+/// the box of a shadow leaf's name, 59 tall, and a gap.
+const LIMIT_ABOVE_ROW: f64 = 32.0;
 /// The reference pixels that the limit's words take under its line.
 const LIMIT_TEXT: f64 = 52.0;
+
+/// Reference pixels from a node's centre down to below the word under it (34 to its box, which is
+/// 41 tall, and a gap): where an edge straight down starts.
+const UNDER_WORD: f64 = 80.0;
 
 /// The radius, in reference pixels, of the ring around a node stopped by the depth limit.
 const STOP_RADIUS: f64 = 40.0;
