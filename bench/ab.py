@@ -4,10 +4,10 @@
     cp target/release/whitted /tmp/whitted-before     # build, keep, change, build again
     python3 bench/ab.py /tmp/whitted-before target/release/whitted [--aa adaptive] [--rounds 40]
 
-Each round runs every binary once, in the order given, as fresh processes, one thread (or `--threads N`), and reads
-the trace-phase `seconds` of `render --json` (`--aa adaptive` with run.py's settings,
-`--threshold 0.3 --max-level 2`). It prints each binary's median and minimum and the
-median over rounds of (first binary's seconds / this binary's seconds): above 1 is faster than the
+Each round runs every binary once, in the order given, as fresh processes, one thread (or
+`--threads N`), and reads the trace-phase `seconds` of `render --json` (`--aa adaptive` with
+run.py's settings, `--threshold 0.3 --max-level 2`). It prints each binary's median and minimum
+and the median over rounds of (first binary's seconds / this binary's seconds): above 1 is faster than the
 first. Rounds of back-to-back runs are what make a few per cent visible on a machine whose speed
 drifts by ±10 % within seconds; one run against another shows nothing. It also checks that every
 binary writes the same PNG bytes and traces the same rays (a layout change must not change them).

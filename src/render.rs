@@ -177,9 +177,10 @@ fn tracer<'s, V: Dim>(scene: &'s Scene<V>, accel: &'s Accel<V>, max_depth: u32) 
 pub const EDGE_MEMORY: usize = 8 << 20;
 
 /// The pixel rows of a rayon job of a lattice render (rayon halves a range while both halves are
-/// at least this long, so a job takes `job` to `2·job − 1` rows): enough that `Ny / job` edge rows fit `budget`
-/// bytes, but at most `Ny / (2·threads)`, so that every thread has work. Jobs run their rows
-/// bottom to top; a thread that runs out takes the next job, so the last to finish is short.
+/// at least this long, so a job takes `job` to `2·job − 1` rows): enough that `Ny / job` edge
+/// rows fit `budget` bytes, but at most `Ny / (2·threads)`, so that every thread has work. Jobs
+/// run their rows bottom to top; a thread that runs out takes the next job, so the last to
+/// finish is short.
 fn job_rows(lattice: Lattice, budget: usize, threads: usize) -> usize {
     let wanted = (lattice.ny * EdgeRow::bytes(lattice)).div_ceil(budget.max(1));
     let most = (lattice.ny / (2 * threads.max(1))).max(1);

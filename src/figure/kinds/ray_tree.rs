@@ -185,25 +185,16 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     // agree (three fits move it by well under a pixel).
     let mut limit_y = -(f64::from(traced.max_depth) + 0.5) * row_h;
     let last_row = -f64::from(traced.max_depth) * row_h;
-    let on_row = |p: &DVec2, y: f64| (p.y - y).abs() < 0.25 * row_h;
-    let shadow_on_last_row =
-        graph.iter().any(|(v, p, _)| matches!(v, Vertex::Shadow { .. }) && on_row(p, last_row));
-    let row_below = graph.iter().any(|(_, p, _)| on_row(p, last_row - row_h));
+    let row_below = graph.iter().any(|(_, p, _)| (p.y - (last_row - row_h)).abs() < 0.25 * row_h);
     if !stopped.is_empty() {
         for _ in 0..3 {
             let px = d.px_scale() / d.picture_scale();
             // A deep tree writes its words beside the nodes: then only a stopped node's ring is
-            // below. Else the lowest word is a shadow leaf's `s = …`, or a ray node's object.
-            let below_row = if deep {
-                STOP_RADIUS + 6.0
-            } else if shadow_on_last_row {
-                UNDER_SHADOW_WORD
-            } else {
-                UNDER_WORD
-            };
+            // below. Else the lowest word is a ray node's object (a shadow leaf's `s = …` sits
+            // higher, under a smaller node).
+            let below_row = if deep { STOP_RADIUS + STOP_CLEAR } else { UNDER_WORD };
             let room = if row_below { row_h - LIMIT_ABOVE_ROW * px } else { f64::INFINITY };
-            let under = (below_row * px).min(room);
-            limit_y = -f64::from(traced.max_depth) * row_h - under;
+            limit_y = last_row - (below_row * px).min(room);
             let mut with_limit = points.clone();
             with_limit.push(DVec2::new(left, limit_y - LIMIT_TEXT * px));
             d.fit_view(&with_limit, 0.03);
@@ -238,7 +229,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         };
         let under_word = from.y - UNDER_WORD * px;
         #[allow(clippy::float_cmp)] // a child straight below has its parent's very x
-        let start = if !deep && p.x == from.x && under_word > p.y + 24.0 * px {
+        let start = if !deep && p.x == from.x && under_word > p.y + (RAY_NODE + 6.0) * px {
             DVec2::new(from.x, under_word)
         } else {
             *from
@@ -252,7 +243,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 let role = parts::role(node.start.kind);
                 let fill = node.end.as_ref().map_or(style::WHITE, |e| swatch(e.color));
                 let ring = Style::solid(role.color(), style::RAY_WIDTH);
-                d.marker("node", *p, 28.0, fill, ring);
+                d.marker("node", *p, RAY_NODE, fill, ring);
                 if stopped.contains(k) {
                     d.marker("stopped", *p, STOP_RADIUS, style::WHITE.with_alpha(0.0), stop_style());
                 }
@@ -262,7 +253,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 d.marker(
                     "node:shadow",
                     *p,
-                    14.0,
+                    SHADOW_NODE,
                     style::WHITE,
                     Style::solid(role.color(), style::RAY_WIDTH * 0.8),
                 );
@@ -275,13 +266,16 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let below = if deep {
             TextOpts::NOTE.align(Align::RIGHT_OF).offset(38.0, 0.0).size(TextSize::Small)
         } else {
-            TextOpts::NOTE.align(Align::BELOW).offset(0.0, -34.0).size(TextSize::Small)
+            TextOpts::NOTE.align(Align::BELOW).offset(0.0, -WORD_BELOW).size(TextSize::Small)
         };
         match v {
             Vertex::Ray(k) => {
                 // A stopped node's name stands outside its ring.
-                let beside =
-                    if stopped.contains(k) { beside.offset(-(STOP_RADIUS + 6.0), 0.0) } else { beside };
+                let beside = if stopped.contains(k) {
+                    beside.offset(-(STOP_RADIUS + STOP_CLEAR), 0.0)
+                } else {
+                    beside
+                };
                 d.text("name", *p, &names.ray[*k], beside);
                 let what = match log.nodes[*k].end.as_ref().and_then(|e| e.hit) {
                     Some(h) => escape(&scene.object_label(h.object.index)),
@@ -300,7 +294,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                     "object",
                     *p,
                     &s_text,
-                    if below.align == Align::BELOW { below.offset(0.0, -20.0) } else { below },
+                    if below.align == Align::BELOW { below.offset(0.0, -SHADOW_WORD_BELOW) } else { below },
                 );
             }
         }
@@ -308,21 +302,29 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     Ok(())
 }
 
-/// Reference pixels from a shadow leaf's centre down to below its `s = …` (54 to the word's box,
-/// which is 41 tall, and a gap).
-const UNDER_SHADOW_WORD: f64 = 100.0;
+/// The radii, in reference pixels, of a ray's node and of a shadow leaf.
+const RAY_NODE: f64 = 28.0;
+const SHADOW_NODE: f64 = 14.0;
+/// Reference pixels from a ray node's centre down to the top of the word under it (its object),
+/// and from a shadow leaf's centre to its `s = …`.
+const WORD_BELOW: f64 = 34.0;
+const SHADOW_WORD_BELOW: f64 = 20.0;
+/// The height of the box of a word under a node (small text), in reference pixels.
+const WORD_BOX: f64 = 41.0;
 /// The fewest reference pixels from the depth-limit line down to the next row's centre line: half
 /// the box of a shadow leaf's name, 59 tall, and a gap.
 const LIMIT_ABOVE_ROW: f64 = 32.0;
 /// The reference pixels that the limit's words take under its line.
 const LIMIT_TEXT: f64 = 52.0;
 
-/// Reference pixels from a node's centre down to below the word under it (34 to its box, which is
-/// 41 tall, and a gap): where an edge straight down starts.
-const UNDER_WORD: f64 = 80.0;
+/// Reference pixels from a ray node's centre down to below the word under it, with a gap: where
+/// an edge straight down starts, and the least depth of the limit line under the last row.
+const UNDER_WORD: f64 = WORD_BELOW + WORD_BOX + 5.0;
 
-/// The radius, in reference pixels, of the ring around a node stopped by the depth limit.
+/// The radius, in reference pixels, of the ring around a node stopped by the depth limit, and the
+/// gap kept outside it (by the node's name, by the limit line).
 const STOP_RADIUS: f64 = 40.0;
+const STOP_CLEAR: f64 = 6.0;
 
 /// The mark of a node stopped by the depth limit: a dashed vermillion ring.
 fn stop_style() -> Style {
