@@ -335,3 +335,115 @@ fn a_mesh_is_read_from_the_request_objs() {
         "{answer}"
     );
 }
+
+/// The `data-events` of every item of an SVG, as index lists.
+fn svg_events(svg: &str) -> Vec<Vec<u64>> {
+    svg.split("data-events=\"")
+        .skip(1)
+        .map(|rest| {
+            let list = &rest[..rest.find('"').unwrap()];
+            list.split_whitespace().map(|n| n.parse().unwrap()).collect()
+        })
+        .collect()
+}
+
+#[test]
+fn figure_items_name_the_events_they_draw() {
+    // Per kind: its options, and the events of the trace document it must draw (all of those
+    // kinds; `search` = only those of the primary ray's search, before its hit or miss).
+    let cases: [(&str, Value, &[&str], bool); 4] = [
+        ("rays", json!({}), &["primary_ray", "reflect", "refract", "shadow_ray", "hit", "miss"], false),
+        ("ray-tree", json!({}), &["primary_ray", "reflect", "refract"], false),
+        ("bvh", json!({}), &["node_visit"], true),
+        ("grid-dda", json!({"accel": "grid"}), &["voxel_step"], true),
+    ];
+    let mut checked = 0;
+    for path in scenes() {
+        let scene = text(&path);
+        let (dim, w, h) = size(&scene);
+        for p in pixels(dim, w, h).into_iter().take(3) {
+            for (kind, options, drawn, search) in &cases {
+                let target = json!({"pixel": p});
+                let (_, doc) =
+                    call(&json!({"op": "trace", "scene": scene, "target": target, "options": options}));
+                let doc: Value = serde_json::from_str(&doc).unwrap();
+                let events = doc["events"].as_array().unwrap();
+                let (code, answer) = call(
+                    &json!({"op": "figure", "kind": kind, "scene": scene, "target": target, "options": options}),
+                );
+                if code == 2 {
+                    continue; // the kind has nothing to draw here (no bounded object, say)
+                }
+                assert_eq!(code, 0, "{answer}");
+                let svg = serde_json::from_str::<Value>(&answer).unwrap()["svg"].as_str().unwrap().to_owned();
+                let items = svg_events(&svg);
+                assert_eq!(items.len(), svg.matches("<g data-tag=").count());
+                let named: std::collections::BTreeSet<u64> = items.into_iter().flatten().collect();
+                assert!(named.iter().all(|k| *k < events.len() as u64), "{kind} {p:?}: {named:?}");
+                let mut expected = Vec::new();
+                for (k, e) in events.iter().enumerate() {
+                    let what = e["kind"].as_str().unwrap();
+                    if *search {
+                        if e["ray"] != 0 {
+                            continue;
+                        }
+                        if matches!(what, "hit" | "miss") {
+                            break;
+                        }
+                    }
+                    if drawn.contains(&what) {
+                        expected.push(k as u64);
+                    }
+                }
+                let missing: Vec<&u64> = expected.iter().filter(|k| !named.contains(k)).collect();
+                assert!(
+                    missing.is_empty(),
+                    "{} {kind} {p:?}: events {missing:?} are drawn by no item",
+                    path.display()
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 40, "{checked}");
+}
+
+#[test]
+fn figure_items_of_the_other_kinds_name_their_events() {
+    // One telling pixel each (picked by the figure), the events named in range and non-empty.
+    let path = root().join("scenes/whitted.json");
+    let scene = text(&path);
+    for (kind, options) in [
+        ("uv-map", json!({})),
+        ("refraction", json!({})),
+        ("local-model", json!({})),
+        ("shadows", json!({})),
+        ("slab-test", json!({})),
+        ("kay-kajiya", json!({})),
+        ("octree", json!({})),
+        ("adaptive", json!({})),
+    ] {
+        let (code, answer) = call(&json!({"op": "figure", "kind": kind, "scene": scene, "options": options}));
+        assert_eq!(code, 0, "{kind}: {answer}");
+        let answer: Value = serde_json::from_str(&answer).unwrap();
+        let pixel = answer["pixel"].clone();
+        let mut trace_options = options.clone();
+        match kind {
+            "slab-test" | "kay-kajiya" => {
+                trace_options =
+                    json!({"accel": "bounds", "bounds": if kind == "slab-test" { "aabb" } else { "kdop" }});
+            }
+            "octree" => trace_options = json!({"accel": "octree"}),
+            "adaptive" => trace_options = json!({"aa": "adaptive"}),
+            _ => {}
+        }
+        let (_, doc) = call(
+            &json!({"op": "trace", "scene": scene, "target": {"pixel": pixel}, "options": trace_options}),
+        );
+        let doc: Value = serde_json::from_str(&doc).unwrap();
+        let count = doc["events"].as_array().unwrap().len() as u64;
+        let named: Vec<u64> = svg_events(answer["svg"].as_str().unwrap()).into_iter().flatten().collect();
+        assert!(!named.is_empty(), "{kind}: no item names an event");
+        assert!(named.iter().all(|k| *k < count), "{kind}: {named:?} beyond {count}");
+    }
+}
