@@ -447,3 +447,23 @@ fn figure_items_of_the_other_kinds_name_their_events() {
         assert!(named.iter().all(|k| *k < count), "{kind}: {named:?} beyond {count}");
     }
 }
+
+#[test]
+fn a_render_too_large_for_the_page_is_refused() {
+    let scene = text(&root().join("scenes/whitted.json"));
+    let answer = whitted_web::call(
+        json!({"op": "render", "scene": scene, "options": {"size": [65536, 65536]}}).to_string().as_bytes(),
+    );
+    assert_eq!(answer.code, 2);
+    assert!(
+        answer.json.contains("render: the page renders at most 8388608 pixels (4096x2048), got 65536x65536"),
+        "{}",
+        answer.json
+    );
+    assert!(answer.bytes.is_empty());
+    let big = scene.replace("[640, 480]", "[65536, 65536]");
+    assert_ne!(big, scene);
+    let (code, answer) = call(&json!({"op": "figure", "kind": "heat-map", "scene": big}));
+    assert_eq!(code, 2, "{answer}");
+    assert!(answer.contains("heat-map: the page renders at most"), "{answer}");
+}

@@ -25,13 +25,21 @@ fn length(buffer: &[u8]) -> u32 {
     u32::try_from(buffer.len()).unwrap_or(u32::MAX)
 }
 
+/// The largest request the inbox takes (64 MiB: a scene with its meshes' OBJ texts).
+pub const MAX_REQUEST: u32 = 64 << 20;
+
 /// Reserves `len` bytes (zeroed) for the request and returns their address; the page writes the
-/// UTF-8 request JSON there.
+/// UTF-8 request JSON there. Above [`MAX_REQUEST`] it reserves nothing and returns 0 (then the
+/// call answers that the request is empty), rather than failing to allocate, which would abort.
 #[allow(unsafe_code)]
 #[no_mangle]
 pub extern "C" fn whitted_inbox(len: u32) -> u32 {
     INBOX.with_borrow_mut(|inbox| {
         inbox.clear();
+        if len > MAX_REQUEST {
+            inbox.shrink_to_fit();
+            return 0;
+        }
         inbox.resize(len as usize, 0);
         address(inbox)
     })
@@ -98,5 +106,7 @@ mod tests {
         assert_eq!(whitted_call(), 2);
         let answer = OUTBOX.with_borrow(|b| String::from_utf8(b.clone()).unwrap());
         assert!(answer.starts_with(r#"{"errors":["request: "#), "{answer}");
+        assert_eq!(whitted_inbox(MAX_REQUEST + 1), 0);
+        assert_eq!(whitted_call(), 2);
     }
 }

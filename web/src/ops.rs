@@ -44,6 +44,31 @@ impl Answer {
     }
 }
 
+/// The most pixels a render in the page may have: a wasm32 module addresses at most 4 GiB, and a
+/// render holds 24 bytes a pixel (linear RGB) and 4 more for the RGBA answer; 2^23 pixels (a
+/// 4096×2048 image) take about 235 MB. The command line has no such limit.
+pub const MAX_PAGE_PIXELS: usize = 1 << 23;
+
+/// Refuses an image of `nx` × `ny` pixels beyond [`MAX_PAGE_PIXELS`] (`what` names it).
+fn fits(what: &str, nx: usize, ny: usize) -> Result<(), Failure> {
+    if nx.saturating_mul(ny) > MAX_PAGE_PIXELS {
+        return Err(Failure::input(format!(
+            "{what}: the page renders at most {MAX_PAGE_PIXELS} pixels (4096x2048), got {nx}x{ny}; give a smaller --size"
+        )));
+    }
+    Ok(())
+}
+
+/// The image a scene renders to: its camera's pixels, or a 2D strip's rows.
+fn image_size<V: Dim>(scene: &Scene<V>, strip_rows: Option<usize>) -> (usize, usize) {
+    let cam = &scene.camera;
+    if V::DIM == 2 {
+        (cam.nx, strip_rows.unwrap_or_else(|| whitted::render::strip_height(cam.nx)))
+    } else {
+        (cam.nx, cam.ny)
+    }
+}
+
 /// The fields a request may have.
 const FIELDS: [&str; 8] = ["op", "scene", "objs", "name", "options", "target", "lang", "kind"];
 
@@ -154,12 +179,10 @@ fn info_op(f: &Fields<'_>) -> Result<Answer, Failure> {
 
 fn info<V: Dim>(scene: &mut Scene<V>, options: &Options) -> Value {
     let rows = resize(scene, options.size);
-    let cam = &scene.camera;
-    let height =
-        if V::DIM == 2 { rows.unwrap_or_else(|| whitted::render::strip_height(cam.nx)) } else { cam.ny };
+    let (width, height) = image_size(scene, rows);
     json!({
         "dimension": V::DIM,
-        "width": cam.nx,
+        "width": width,
         "height": height,
         "objects": (0..scene.objects.len()).map(|i| scene.object_label(i)).collect::<Vec<_>>(),
         "max_depth": options.depth.unwrap_or(scene.max_depth),
@@ -183,10 +206,14 @@ fn render_op(f: &Fields<'_>) -> Result<Answer, Failure> {
     let outcome = match scene {
         AnyScene::Flat(mut s) => {
             let rows = resize(&mut s, options.size);
+            let (w, h) = image_size(&s, rows);
+            fits("render", w, h)?;
             job::run(&s, &run(rows))
         }
         AnyScene::Space(mut s) => {
             let rows = resize(&mut s, options.size);
+            let (w, h) = image_size(&s, rows);
+            fits("render", w, h)?;
             job::run(&s, &run(rows))
         }
     };
@@ -283,6 +310,13 @@ fn figure_op(f: &Fields<'_>) -> Result<Answer, Failure> {
     let options = ask::options(f.get("options"))?;
     let target = ask::target(f.get("target"))?;
     let scene = scene(f)?;
+    if kind == FigureKind::HeatMap {
+        let (w, h) = match &scene {
+            AnyScene::Flat(s) => image_size(s, None),
+            AnyScene::Space(s) => image_size(s, None),
+        };
+        fits("heat-map", w, h)?;
+    }
     let chosen = options.sampling.choose(default_aa(kind))?;
     let (width, height) = canvas(options.size);
     let request = Request {

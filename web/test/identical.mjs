@@ -5,7 +5,7 @@
 //   web/build.sh && cargo build --release && node web/test/identical.mjs [path/to/whitted]
 //
 // Prints one line per scene and a summary; exits 1 on the first difference (saying where).
-import { execFileSync } from "node:child_process";
+import { execFileSync, spawnSync } from "node:child_process";
 import { mkdtempSync, readFileSync, readdirSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
@@ -59,16 +59,14 @@ for (const name of scenes) {
     for (const kind of kinds) {
       const fig = call({ op: "figure", kind, scene, name, target, lang: "en" });
       const out = join(tmp, "x.svg");
-      let nativeSvg;
-      try {
-        run(["figure", kind, name, "--pixel", arg, "-o", out]);
-        nativeSvg = readFileSync(out, "utf8");
-      } catch {
-        nativeSvg = null; // the native figure refused this pixel: the wasm must refuse it too
-      }
-      if (nativeSvg === null) {
-        if (fig.code !== 2) fail(`${name} figure ${kind} --pixel ${arg}: native refused, wasm did not`, fig.json, "");
+      const native = spawnSync(binary, ["figure", kind, name, "--pixel", arg, "-o", out], { cwd: root, encoding: "utf8" });
+      if (native.status !== 0) {
+        // The native figure refused this pixel: the wasm must refuse it with the same words.
+        const words = native.stderr.trimEnd().replace(/^error: /, "");
+        const ours = fig.code === 2 ? JSON.parse(fig.json).errors.join("\n") : fig.json;
+        if (ours !== words) fail(`${name} figure ${kind} --pixel ${arg}: refused differently`, ours, words);
       } else {
+        const nativeSvg = readFileSync(out, "utf8");
         const svg = fig.code === 0 ? JSON.parse(fig.json).svg : fig.json;
         if (svg !== nativeSvg) fail(`${name} figure ${kind} --pixel ${arg}`, svg, nativeSvg);
       }
