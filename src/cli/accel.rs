@@ -6,7 +6,7 @@ use whitted::accel::{AccelKind, AccelOptions};
 use whitted::bounds::VolumeKind;
 
 /// Which structure finds hits.
-#[derive(Clone, Copy, Debug, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum AccelArg {
     /// Brute force: every object (§7, O(n) per ray).
     None,
@@ -36,13 +36,13 @@ pub enum BoundsArg {
 pub struct AccelArgs {
     /// The acceleration structure.
     #[arg(long, value_enum, default_value = "bvh")]
-    accel: AccelArg,
-    /// The per-object bounding volume of --accel bounds.
-    #[arg(long, value_enum, default_value = "aabb")]
-    bounds: BoundsArg,
+    pub accel: AccelArg,
+    /// The per-object bounding volume of --accel bounds [default: aabb].
+    #[arg(long, value_enum)]
+    bounds: Option<BoundsArg>,
     /// The grid's cells per axis, NX,NY,NZ (NX,NY in 2D), for --accel grid (default: about 4
     /// cells per object).
-    #[arg(long, value_parser = cells)]
+    #[arg(long, value_parser = cells, allow_hyphen_values = true)]
     grid: Option<Cells>,
 }
 
@@ -56,10 +56,27 @@ impl AccelArgs {
     /// # Errors
     /// A message when `--grid` has the wrong number of axes.
     pub fn options(&self, dim: usize) -> Result<AccelOptions, String> {
+        self.options_for(dim, self.accel)
+    }
+
+    /// [`Self::options`] for a command that traces with `used` whatever `--accel` says (a figure of
+    /// a structure): `--bounds` and `--grid` are said ignored unless `used` reads them.
+    ///
+    /// # Errors
+    /// A message when `--grid` has the wrong number of axes.
+    pub fn options_for(&self, dim: usize, used: AccelArg) -> Result<AccelOptions, String> {
         if let Some(Cells(g)) = &self.grid {
             if g.len() != dim {
                 return Err(format!("--grid: a {dim}D scene needs {dim} cell counts, got {}", g.len()));
             }
+        }
+        // As `--threshold` without adaptive sampling: an option the structure does not read is said.
+        let name = used.to_possible_value().map(|v| v.get_name().to_owned()).unwrap_or_default();
+        if self.bounds.is_some() && used != AccelArg::Bounds {
+            eprintln!("whitted: --bounds applies to --accel bounds only; ignored with --accel {name}");
+        }
+        if self.grid.is_some() && used != AccelArg::Grid {
+            eprintln!("whitted: --grid applies to --accel grid only; ignored with --accel {name}");
         }
         let kind = match self.accel {
             AccelArg::None => AccelKind::None,
@@ -68,7 +85,7 @@ impl AccelArgs {
             AccelArg::Grid => AccelKind::Grid,
             AccelArg::Octree => AccelKind::Octree,
         };
-        let volume = match self.bounds {
+        let volume = match self.bounds.unwrap_or(BoundsArg::Aabb) {
             BoundsArg::Sphere => VolumeKind::Sphere,
             BoundsArg::Aabb => VolumeKind::Aabb,
             BoundsArg::Kdop => VolumeKind::Kdop,

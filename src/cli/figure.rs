@@ -2,7 +2,8 @@
 //! (`figure::draw`) and write a PNG or an SVG, chosen by the file extension; `--list` names every
 //! kind with one line.
 
-use super::accel::AccelArgs;
+use super::accel::{AccelArg, AccelArgs};
+use super::parse::PixelArg;
 use super::sampling::{AaArg, SamplingArgs};
 use super::trace::{target, LangArg};
 use super::{load_scene, parse, print_out, write_file, Failure};
@@ -11,7 +12,7 @@ use std::path::{Path, PathBuf};
 use whitted::figure::drawing::Drawing;
 use whitted::figure::plane::Planar;
 use whitted::figure::source::{self, Aim, Tracing};
-use whitted::figure::{self as fig, skia, svg, FigureKind, Options};
+use whitted::figure::{self as fig, skia, svg, FigureKind, Options, MAX_CANVAS_PIXELS};
 use whitted::scene::{AnyScene, Scene};
 
 /// Options of `whitted figure`.
@@ -25,10 +26,10 @@ pub struct FigureArgs {
     scene: Option<PathBuf>,
     /// The pixel: I,J (column from the left, row from the BOTTOM); in 2D, I. Without it (and
     /// without --ray) the figure picks a telling pixel and says which in its caption.
-    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray")]
-    pixel: Option<(usize, Option<usize>)>,
+    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray", allow_hyphen_values = true)]
+    pixel: Option<PixelArg>,
     /// A ray given by hand: OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D); traced as a primary ray.
-    #[arg(long, value_parser = parse::ray)]
+    #[arg(long, value_parser = parse::ray, allow_hyphen_values = true)]
     ray: Option<(Vec<f64>, Vec<f64>)>,
     /// The file to write: .png or .svg (default: KIND.png in the current folder).
     #[arg(short = 'o', long = "output")]
@@ -37,10 +38,10 @@ pub struct FigureArgs {
     #[arg(long, value_enum, default_value = "en")]
     lang: LangArg,
     /// Canvas size WxH in pixels (default 1920x1080; W alone keeps 16:9).
-    #[arg(long, value_parser = parse::size)]
+    #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
     /// Override the scene's max_depth (0 = ray casting).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    #[arg(long, value_parser = parse::depth, allow_hyphen_values = true)]
     depth: Option<u32>,
     /// Sampling, for `adaptive` and `heat-map` (default: adaptive, threshold 0.1, K = 2); the
     /// other kinds trace the pixel's centre.
@@ -64,11 +65,17 @@ fn kind(text: &str) -> Result<FigureKind, String> {
 }
 
 /// The canvas size of `--size` (1920×1080 without it; W alone keeps 16:9).
-pub fn canvas(size: Option<(usize, Option<usize>)>) -> (u32, u32) {
-    let Some((w, h)) = size else { return (1920, 1080) };
+pub fn canvas(size: Option<(usize, Option<usize>)>) -> Result<(u32, u32), Failure> {
+    let Some((w, h)) = size else { return Ok((1920, 1080)) };
     let h = h.unwrap_or(((w * 9 + 8) / 16).max(1));
+    if w as u64 * h as u64 > MAX_CANVAS_PIXELS {
+        return Err(Failure::input(format!(
+            "--size: a {w}x{h} canvas is more than the {MAX_CANVAS_PIXELS} pixels a figure may have; choose a \
+             smaller --size"
+        )));
+    }
     // parse::size caps both at 65536.
-    (u32::try_from(w).unwrap_or(u32::MAX), u32::try_from(h).unwrap_or(u32::MAX))
+    Ok((u32::try_from(w).unwrap_or(u32::MAX), u32::try_from(h).unwrap_or(u32::MAX)))
 }
 
 /// Runs `whitted figure`.
@@ -84,7 +91,7 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
     };
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", kind.name())));
     let format = Format::of(&output)?;
-    let (width, height) = canvas(args.size);
+    let (width, height) = canvas(args.size)?;
     let scene = load_scene(scene_path)?;
     let request = Request {
         kind,
@@ -96,7 +103,10 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
                 FigureKind::Adaptive | FigureKind::HeatMap => args.sampling.sampling_or(AaArg::Adaptive)?,
                 _ => args.sampling.sampling()?,
             },
-            accel: args.accel.options(dim_of(&scene)).map_err(Failure::input)?,
+            accel: args
+                .accel
+                .options_for(dim_of(&scene), structure_of(kind, args.accel.accel))
+                .map_err(Failure::input)?,
         },
         opts: Options { lang: args.lang.lang(), width, height },
     };
@@ -109,13 +119,24 @@ pub struct Request {
     /// The diagram.
     pub kind: FigureKind,
     /// `--pixel`.
-    pub pixel: Option<(usize, Option<usize>)>,
+    pub pixel: Option<PixelArg>,
     /// `--ray`.
     pub ray: Option<(Vec<f64>, Vec<f64>)>,
     /// Depth (and, later, the structure).
     pub tracing: Tracing,
     /// Language and size.
     pub opts: Options,
+}
+
+/// The structure a figure of `kind` traces with: its own for the structure kinds, else `--accel`'s.
+fn structure_of(kind: FigureKind, asked: AccelArg) -> AccelArg {
+    match kind {
+        FigureKind::SlabTest | FigureKind::KayKajiya => AccelArg::Bounds,
+        FigureKind::Bvh => AccelArg::Bvh,
+        FigureKind::GridDda => AccelArg::Grid,
+        FigureKind::Octree => AccelArg::Octree,
+        _ => asked,
+    }
 }
 
 /// The dimension of a loaded scene.

@@ -5,7 +5,7 @@
 
 use super::figure::{canvas, figure, scene_name, Format, Request};
 use super::trace::LangArg;
-use super::{load_scene, parse, print_out, write_file, Failure};
+use super::{load_scene, parse, print_out, read_text, write_file, Failure};
 use clap::Args;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -15,6 +15,7 @@ use whitted::figure::source::Tracing;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::{self, FigureSpec, Lesson, Shown};
 use whitted::sample::Sampling;
+use whitted::scene::load::MAX_SCENE_BYTES;
 use whitted::scene::AnyScene;
 
 /// Options of `whitted lessons`.
@@ -33,7 +34,7 @@ pub struct LessonsArgs {
     #[arg(long, default_value = "lessons")]
     lessons: PathBuf,
     /// Canvas size WxH in pixels (default 1920x1080).
-    #[arg(long, value_parser = parse::size)]
+    #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
 }
 
@@ -55,11 +56,24 @@ fn read_lessons(dir: &Path) -> Result<Vec<Read>, Failure> {
     files.sort();
     let mut problems = Vec::new();
     let mut lessons = Vec::new();
+    // The file that first used each lesson name: a second one would overwrite its figures.
+    let mut named: Vec<(String, PathBuf)> = Vec::new();
     for file in files {
-        let text = std::fs::read_to_string(&file)
+        let text = read_text(&file, MAX_SCENE_BYTES)
             .map_err(|e| Failure::input(format!("{}: cannot read: {e}", file.display())))?;
         match lesson::parse(&text) {
-            Ok(lesson) => lessons.push(Read { lesson, dir: dir.to_path_buf() }),
+            Ok(lesson) => {
+                if let Some((_, first)) = named.iter().find(|(name, _)| *name == lesson.name) {
+                    problems.push(format!(
+                        "{}: name: `{}` is already the name of {}; each lesson needs its own",
+                        file.display(),
+                        lesson.name,
+                        first.display()
+                    ));
+                }
+                named.push((lesson.name.clone(), file.clone()));
+                lessons.push(Read { lesson, dir: dir.to_path_buf() });
+            }
             Err(errors) => problems.extend(errors.into_iter().map(|e| format!("{}: {e}", file.display()))),
         }
     }
@@ -80,7 +94,8 @@ fn lang_dir(lang: Lang) -> &'static str {
 
 /// The command that regenerates one figure's PNG.
 fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
-    let mut cmd = format!("whitted figure {} {}", spec.kind.name(), scene.display());
+    let mut cmd =
+        format!("whitted figure {} {}", spec.kind.name(), shell_quote(&scene.display().to_string()));
     match (spec.pixel, &spec.ray) {
         (Some((i, Some(j))), _) => cmd.push_str(&format!(" --pixel {i},{j}")),
         (Some((i, None)), _) => cmd.push_str(&format!(" --pixel {i}")),
@@ -104,8 +119,19 @@ fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
         let cells: Vec<String> = cells.iter().map(ToString::to_string).collect();
         cmd.push_str(&format!(" --grid {}", cells.join(",")));
     }
-    cmd.push_str(&format!(" --lang {} -o {}", lang_dir(lang), png.display()));
+    cmd.push_str(&format!(" --lang {} -o {}", lang_dir(lang), shell_quote(&png.display().to_string())));
     cmd
+}
+
+/// A word as a POSIX shell reads it back unchanged: as it is when made only of characters no shell
+/// treats specially, else in single quotes, a quote inside written `'\''`.
+fn shell_quote(word: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "/._-+,:=@%".contains(c);
+    if !word.is_empty() && word.chars().all(plain) {
+        word.to_owned()
+    } else {
+        format!("'{}'", word.replace('\'', "'\\''"))
+    }
 }
 
 /// Runs `whitted lessons`.
@@ -137,7 +163,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             scenes.entry(path.clone()).or_insert_with(|| load_scene(&path).map_err(|f| f.message));
         }
     }
-    let (width, height) = canvas(args.size);
+    let (width, height) = canvas(args.size)?;
     // One job per figure and language, drawn in parallel.
     let mut jobs: Vec<(usize, usize, Lang)> = Vec::new();
     for (l, r) in read.iter().enumerate().filter(|(l, _)| drawn[*l]) {
@@ -156,7 +182,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             let (png, svg) = (dir.join(format!("{stem}.png")), dir.join(format!("{stem}.svg")));
             let request = Request {
                 kind: spec.kind,
-                pixel: spec.pixel,
+                pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))),
                 ray: spec.ray.clone(),
                 tracing: Tracing {
                     depth: spec.depth,
@@ -233,5 +259,24 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
         Ok(())
     } else {
         Err(Failure::other(failed.join("\n")))
+    }
+}
+
+/// A lesson's pixel coordinate as the figure request takes it (past `i64::MAX` is outside anyway).
+fn signed(k: usize) -> i64 {
+    i64::try_from(k).unwrap_or(i64::MAX)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shell_quote;
+
+    #[test]
+    fn quotes_only_what_a_shell_would_read_otherwise() {
+        assert_eq!(shell_quote("lessons/scenes/spheres.json"), "lessons/scenes/spheres.json");
+        assert_eq!(shell_quote("my scenes/a.json"), "'my scenes/a.json'");
+        assert_eq!(shell_quote("a$(rm -rf x);b"), "'a$(rm -rf x);b'");
+        assert_eq!(shell_quote("it's"), "'it'\\''s'");
+        assert_eq!(shell_quote(""), "''");
     }
 }

@@ -16,7 +16,7 @@ mod tradeoff;
 use clap::{Parser, Subcommand};
 use std::fmt;
 use std::path::{Path, PathBuf};
-use whitted::scene::load::load_str_with;
+use whitted::scene::load::{load_str_with, MAX_OBJ_BYTES, MAX_SCENE_BYTES};
 use whitted::scene::AnyScene;
 
 /// Recursive (Whitted) ray tracing, taught in the open.
@@ -77,14 +77,39 @@ impl fmt::Display for Failure {
 /// Reads and validates a scene file; every problem becomes one line of the failure. A mesh's
 /// OBJ file is read relative to the scene file's folder.
 pub fn load_scene(path: &Path) -> Result<AnyScene, Failure> {
-    let text = std::fs::read_to_string(path)
+    let text = read_text(path, MAX_SCENE_BYTES)
         .map_err(|e| Failure::input(format!("{}: cannot read the scene: {e}", path.display())))?;
     let folder = path.parent().unwrap_or_else(|| Path::new("."));
-    let read_obj = |name: &str| std::fs::read_to_string(folder.join(name)).map_err(|e| e.to_string());
+    let read_obj = |name: &str| read_text(&folder.join(name), MAX_OBJ_BYTES);
     load_str_with(&text, &read_obj).map_err(|errors| {
         let lines: Vec<String> = errors.iter().map(|e| format!("{}: {e}", path.display())).collect();
         Failure::input(lines.join("\n"))
     })
+}
+
+/// Reads a regular file of at most `limit` bytes as UTF-8 text. A device, a folder or a named
+/// pipe is refused before it is opened (`/dev/zero` never ends, a pipe blocks until written), and
+/// the read stops one byte past the limit, so a file that grows meanwhile cannot exhaust memory.
+///
+/// # Errors
+/// The reason, naming the limit when the file is too large.
+pub fn read_text(path: &Path, limit: u64) -> Result<String, String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err("not a regular file".into());
+    }
+    let too_big = || format!("larger than the limit of {limit} bytes");
+    if meta.len() > limit {
+        return Err(too_big());
+    }
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::new();
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes).map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > limit {
+        return Err(too_big());
+    }
+    String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text ({e})"))
 }
 
 /// Writes bytes to a file.
@@ -144,4 +169,23 @@ fn prefix_lines(message: &str) -> String {
 pub fn default_output(scene: &Path, ext: &str) -> PathBuf {
     let stem = scene.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
     PathBuf::from(format!("{stem}.{ext}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::read_text;
+
+    /// The limit is a parameter, so a small one shows the refusal without a large file.
+    #[test]
+    fn read_text_refuses_past_its_limit_and_non_files() {
+        let dir = std::env::temp_dir().join(format!("whitted-read-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("ten.json");
+        std::fs::write(&file, "0123456789").unwrap();
+        assert_eq!(read_text(&file, 10).as_deref(), Ok("0123456789"));
+        assert_eq!(read_text(&file, 9), Err("larger than the limit of 9 bytes".to_string()));
+        assert_eq!(read_text(&dir, 10), Err("not a regular file".to_string()));
+        assert_eq!(read_text(std::path::Path::new("/dev/zero"), 10), Err("not a regular file".to_string()));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 use whitted::accel::{Accel, AccelOptions};
 use whitted::doc::float;
-use whitted::render::{render, RenderConfig, Rendered, EDGE_MEMORY};
+use whitted::render::{check_fits, render, RenderConfig, Rendered, EDGE_MEMORY};
 use whitted::sample::Sampling;
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
@@ -27,13 +27,13 @@ pub struct RenderArgs {
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
     /// Override the scene's max_depth (0 = ray casting).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    #[arg(long, value_parser = parse::depth, allow_hyphen_values = true)]
     depth: Option<u32>,
     /// Resolution WxH (keeps the window); in 2D, W or WxH (H = the strip's rows).
-    #[arg(long, value_parser = parse::size)]
+    #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, value_parser = parse::threads, allow_hyphen_values = true)]
     threads: Option<u32>,
     /// Print the run's statistics as one JSON object on stdout.
     #[arg(long)]
@@ -83,7 +83,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             let rows = resize(&mut s, args.size);
             pool.install(|| render_scene(&s, args, sampling, &options, rows))
         }
-    };
+    }?;
     let output = args.output.clone().unwrap_or_else(|| default_output(&args.scene, "png"));
     let png = outcome.rendered.image.to_png().map_err(Failure::other)?;
     write_file(&output, &png)?;
@@ -160,11 +160,14 @@ fn render_scene<V: Dim>(
     sampling: Sampling,
     options: &AccelOptions,
     strip_rows: Option<usize>,
-) -> Outcome {
+) -> Result<Outcome, Failure> {
+    let max_depth = args.depth.unwrap_or(scene.max_depth);
+    let planned = RenderConfig { sampling, strip_rows, ..RenderConfig::centers(max_depth) };
+    check_fits(scene, &planned, rayon::current_num_threads())
+        .map_err(|e| Failure::input(format!("render: {e}")))?;
     let build = Instant::now();
     let accel = Accel::build_with(scene, options);
     let build_seconds = build.elapsed().as_secs_f64();
-    let max_depth = args.depth.unwrap_or(scene.max_depth);
     // A progress bar over pixel rows, only for a person watching a terminal.
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = ProgressBar::new(scene.camera.ny as u64);
@@ -194,5 +197,5 @@ fn render_scene<V: Dim>(
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    Outcome { rendered, build_seconds, seconds, accel: accel.kind().name() }
+    Ok(Outcome { rendered, build_seconds, seconds, accel: accel.kind().name() })
 }

@@ -4,6 +4,7 @@
 //! `doc::samples`).
 
 use super::accel::AccelArgs;
+use super::parse::PixelArg;
 use super::sampling::SamplingArgs;
 use super::{load_scene, parse, print_out, Failure};
 use clap::{Args, ValueEnum};
@@ -13,7 +14,7 @@ use whitted::doc::narrate::{narrate, Lang};
 use whitted::doc::samples::{narrate_samples, sampled_document};
 use whitted::doc::{trace_document, TraceTarget};
 use whitted::geom::ray::Ray;
-use whitted::record::EventLog;
+use whitted::record::{overflow_message, EventLog};
 use whitted::sample::{trace_pixel, Sampling};
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
@@ -45,13 +46,14 @@ pub struct TraceWhat {
     /// The scene file (JSON).
     scene: PathBuf,
     /// The pixel: I,J (column from the left, row from the BOTTOM); in 2D, I (or I,0).
-    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray", required_unless_present = "ray")]
-    pixel: Option<(usize, Option<usize>)>,
+    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray", required_unless_present = "ray",
+          allow_hyphen_values = true)]
+    pixel: Option<PixelArg>,
     /// A ray given by hand: OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D); traced as a primary ray.
-    #[arg(long, value_parser = parse::ray)]
+    #[arg(long, value_parser = parse::ray, allow_hyphen_values = true)]
     ray: Option<(Vec<f64>, Vec<f64>)>,
     /// Override the scene's max_depth (0 = ray casting).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    #[arg(long, value_parser = parse::depth, allow_hyphen_values = true)]
     depth: Option<u32>,
     /// The narration's language.
     #[arg(long, value_enum, default_value = "en")]
@@ -61,6 +63,11 @@ pub struct TraceWhat {
     sampling: SamplingArgs,
     #[command(flatten)]
     accel: AccelArgs,
+    /// The most events and ray nodes recorded; a trace that needs more is refused (a ray tree grows
+    /// as 2^depth where objects both reflect and transmit).
+    #[arg(long, value_name = "N", value_parser = parse::max_events, allow_hyphen_values = true,
+          default_value_t = whitted::record::DEFAULT_LIMIT)]
+    max_events: usize,
 }
 
 impl TraceWhat {
@@ -103,7 +110,7 @@ fn traced(what: &TraceWhat, json: bool) -> Result<String, Failure> {
 /// `--ray O:D` (validated against the dimension); shared by `trace`, `figure` and `lessons`.
 pub fn target<V: Dim>(
     scene: &Scene<V>,
-    pixel: Option<(usize, Option<usize>)>,
+    pixel: Option<PixelArg>,
     ray: Option<&(Vec<f64>, Vec<f64>)>,
 ) -> Result<(Ray<V>, TraceTarget), Failure> {
     let cam = &scene.camera;
@@ -116,12 +123,13 @@ pub fn target<V: Dim>(
             (_, None) => return Err(Failure::input("--pixel: a 3D scene needs I,J".to_string())),
             (_, Some(j)) => j,
         };
-        if i >= cam.nx || j >= cam.ny {
+        let inside = |k: i64, n: usize| usize::try_from(k).ok().filter(|k| *k < n);
+        let (Some(i), Some(j)) = (inside(i, cam.nx), inside(j, cam.ny)) else {
             return Err(Failure::input(format!(
-                "--pixel: ({i}, {j}) is outside the image: i must be < {}, j < {}",
+                "--pixel: ({i}, {j}) is outside the image: i must be in [0, {}), j in [0, {})",
                 cam.nx, cam.ny
             )));
-        }
+        };
         let (u, v) = cam.pixel_center(i, j);
         let ray = cam.primary_ray(u, v);
         let (pixel, uv) = if V::DIM == 2 { (vec![i], vec![u]) } else { (vec![i, j], vec![u, v]) };
@@ -148,10 +156,17 @@ fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceWhat, json: bool) -> Result
     let (ray, target) = target(scene, args.pixel, args.ray.as_ref())?;
     let options = args.accel.options(V::DIM).map_err(Failure::input)?;
     let accel = Accel::build_with(scene, &options);
-    let mut tracer = Tracer::new(scene, &accel, EventLog::new());
+    let mut tracer = Tracer::new(scene, &accel, EventLog::with_limit(args.max_events));
     if let Some(d) = args.depth {
         tracer.max_depth = d;
     }
+    let overflow = |log: &EventLog<V>, depth: u32| {
+        if log.overflowed() {
+            let why = overflow_message(log.limit(), depth, scene.worst_tree_rays(depth));
+            return Err(Failure::input(format!("trace: {why} or raise --max-events")));
+        }
+        Ok(())
+    };
     let pretty = |doc: &serde_json::Value| {
         serde_json::to_string_pretty(doc).map(|t| t + "\n").map_err(|e| Failure::other(e.to_string()))
     };
@@ -160,6 +175,7 @@ fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceWhat, json: bool) -> Result
             return Err(Failure::input("--aa corners|adaptive samples a pixel: give --pixel, not --ray"));
         };
         let traced = trace_pixel(&mut tracer, sampling, pixel[0], pixel.get(1).copied().unwrap_or(0));
+        overflow(&tracer.recorder, tracer.max_depth)?;
         return if json {
             pretty(&sampled_document(scene, &tracer.recorder, &tracer.stats, &target, sampling, &traced))
         } else {
@@ -168,6 +184,7 @@ fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceWhat, json: bool) -> Result
     }
     let uv = target.uv.clone().unwrap_or_default();
     let color = tracer.trace_primary(&ray, &uv);
+    overflow(&tracer.recorder, tracer.max_depth)?;
     if json {
         pretty(&trace_document(scene, &tracer.recorder, &tracer.stats, &target, color))
     } else {

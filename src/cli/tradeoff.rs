@@ -21,6 +21,7 @@ use whitted::figure::plane::Planar;
 use whitted::figure::source::Tracing;
 use whitted::figure::tradeoff as tradeoff_plot;
 use whitted::figure::{FigureKind, Options};
+use whitted::render::{check_fits, RenderConfig};
 use whitted::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD};
 use whitted::scene::{AnyScene, Scene};
 use whitted::tradeoff::{self, Measured, Tradeoff, REFERENCE_DEPTH, REFERENCE_SAMPLING};
@@ -38,13 +39,13 @@ pub struct TradeoffArgs {
     #[arg(long)]
     json: bool,
     /// Renders per setting; the time is their median.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, default_value_t = 3, value_parser = parse::runs, allow_hyphen_values = true)]
     runs: u32,
     /// Worker threads (default: one per core).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_parser = parse::threads, allow_hyphen_values = true)]
     threads: Option<u32>,
     /// Render at WxH instead of the scene's resolution (the window stays); W alone for a 2D scene.
-    #[arg(long, value_parser = parse::size)]
+    #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
     /// The language of the plots' labels.
     #[arg(long, value_enum, default_value = "en")]
@@ -68,6 +69,9 @@ pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
 }
 
 fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> Result<(), Failure> {
+    // The reference render is the most demanding one, and its image is kept beside each other.
+    let reference = RenderConfig { sampling: REFERENCE_SAMPLING, ..RenderConfig::centers(REFERENCE_DEPTH) };
+    check_fits(scene, &reference, threads).map_err(|e| Failure::input(format!("tradeoff: {e}")))?;
     let settings = tradeoff::settings(scene.max_depth);
     let (total, base) = (settings.len() + 1, settings[0]);
     let lang = args.lang.lang();
@@ -207,7 +211,7 @@ fn plots<V: Planar>(
     let Some(dir) = &args.out else { return Ok(()) };
     std::fs::create_dir_all(dir)
         .map_err(|e| Failure::other(format!("{}: cannot create the folder: {e}", dir.display())))?;
-    let (width, height) = canvas(None);
+    let (width, height) = canvas(None)?;
     let opts = Options { lang: args.lang.lang(), width, height };
     let name = scene_name(&args.scene);
     // A scene whose every image equals the reference (nothing but background, say) has no

@@ -4,6 +4,7 @@
 mod accel;
 mod cli;
 mod figures;
+mod hardening;
 mod numerics;
 mod properties;
 mod sampling;
