@@ -6,6 +6,7 @@ mod accel;
 mod check;
 mod figure;
 mod lessons;
+mod output;
 mod parse;
 mod render;
 mod sampling;
@@ -87,10 +88,9 @@ pub fn load_scene(path: &Path) -> Result<AnyScene, Failure> {
     })
 }
 
-/// Writes bytes to a file.
-pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    std::fs::write(path, bytes).map_err(|e| Failure::other(format!("{}: cannot write: {e}", path.display())))
-}
+/// Every file the tool writes goes through this one function: whole or untouched (a temporary
+/// file renamed over the destination, `output`).
+pub use output::write_file;
 
 /// The worker threads of `--threads` (default: rayon's, one per core).
 pub fn thread_pool(threads: Option<u32>) -> Result<rayon::ThreadPool, Failure> {

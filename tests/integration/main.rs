@@ -5,6 +5,7 @@ mod accel;
 mod cli;
 mod figures;
 mod numerics;
+mod outputs;
 mod properties;
 mod sampling;
 mod support;
