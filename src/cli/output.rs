@@ -6,7 +6,7 @@
 //! out of one folder.
 
 use super::Failure;
-use std::fs::{self, File, OpenOptions, TryLockError};
+use std::fs::{self, File, OpenOptions, Permissions, TryLockError};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -32,16 +32,22 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
             .map_err(|e| fail(e.to_string()));
     }
     let temp = temp_beside(&dest);
-    let written = write_synced(&temp, bytes).and_then(|()| fs::rename(&temp, &dest));
+    // A file replaced keeps its permissions, as a file written in place would.
+    let keep = fs::metadata(&dest).ok().map(|m| m.permissions());
+    let written = write_synced(&temp, bytes, keep).and_then(|()| fs::rename(&temp, &dest));
     written.map_err(|e| {
         let _ = fs::remove_file(&temp);
         fail(e.to_string())
     })
 }
 
-/// Creates `temp` (never an existing file), writes `bytes` and syncs them to the disk.
-fn write_synced(temp: &Path, bytes: &[u8]) -> io::Result<()> {
+/// Creates `temp` (never an existing file), with the permissions `keep` if given, writes `bytes`
+/// and syncs them to the disk.
+fn write_synced(temp: &Path, bytes: &[u8], keep: Option<Permissions>) -> io::Result<()> {
     let mut file = OpenOptions::new().write(true).create_new(true).open(temp)?;
+    if let Some(permissions) = keep {
+        file.set_permissions(permissions)?;
+    }
     file.write_all(bytes)?;
     file.sync_all()
 }
@@ -132,7 +138,8 @@ fn check_folder(dir: &Path) -> Result<(), Failure> {
         Ok(_) => {}
     }
     let probe = temp_beside(&dir.join("probe"));
-    write_synced(&probe, &[]).map_err(|e| refuse(format!("the output folder cannot be written: {e}")))?;
+    write_synced(&probe, &[], None)
+        .map_err(|e| refuse(format!("the output folder cannot be written: {e}")))?;
     let _ = fs::remove_file(&probe);
     Ok(())
 }

@@ -116,6 +116,20 @@ fn a_destination_that_is_a_folder_is_refused_before_the_work() {
 }
 
 #[test]
+fn a_replaced_file_keeps_its_permissions() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = folder("mode");
+    let dest = dir.join("private.png");
+    std::fs::write(&dest, OLD).unwrap();
+    set_mode(&dest, 0o640);
+    let (code, _, err) = whitted(&["render", &fixture_path("glass.json"), "-o", s(&dest)]);
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::read(&dest).unwrap().starts_with(b"\x89PNG"));
+    assert_eq!(std::fs::metadata(&dest).unwrap().permissions().mode() & 0o777, 0o640);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn a_symlinked_output_is_written_through_the_link() {
     let dir = folder("symlink");
     let real = dir.join("real.png");
