@@ -6,7 +6,7 @@ use super::accel::{AccelArg, AccelArgs};
 use super::parse::PixelArg;
 use super::sampling::{AaArg, SamplingArgs};
 use super::trace::{target, LangArg};
-use super::{load_scene, parse, print_out, write_file, Failure};
+use super::{load_scene, output, parse, print_out, write_file, Failure};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use whitted::figure::drawing::Drawing;
@@ -90,7 +90,7 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         return Err(Failure::input("give KIND and SCENE, or --list"));
     };
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", kind.name())));
-    let format = Format::of(&output)?;
+    let format = Format::of(&output, scene_path)?;
     let (width, height) = canvas(args.size)?;
     let scene = load_scene(scene_path)?;
     let request = Request {
@@ -188,13 +188,10 @@ pub enum Format {
 }
 
 impl Format {
-    /// The format a file name asks for by its extension.
-    pub fn of(path: &Path) -> Result<Self, Failure> {
-        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-            Some("png") => Ok(Self::Png),
-            Some("svg") => Ok(Self::Svg),
-            _ => Err(Failure::input(format!("{}: the output must end in .png or .svg", path.display()))),
-        }
+    /// The format a file name asks for by its extension, the file checked before the work as an
+    /// output of `scene` (`output::check`: not the scene, a folder that can be written).
+    pub fn of(path: &Path, scene: &Path) -> Result<Self, Failure> {
+        Ok([Self::Png, Self::Svg][output::check(path, &["png", "svg"], &[scene])?])
     }
     /// The file's bytes.
     pub fn encode(self, drawing: &Drawing) -> Result<Vec<u8>, Failure> {

@@ -5,7 +5,7 @@
 
 use super::figure::{canvas, figure, scene_name, Format, Request};
 use super::trace::LangArg;
-use super::{load_scene, parse, print_out, read_text, write_file, Failure};
+use super::{load_scene, output, parse, print_out, read_text, write_file, Failure};
 use clap::Args;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -24,7 +24,8 @@ pub struct LessonsArgs {
     /// Draw only the lesson with this name (its "name" field); the pages still list every lesson.
     #[arg(long)]
     only: Option<String>,
-    /// The folder to write into: DIR/en/, DIR/ro/, DIR/index.html, DIR/ro/index.html.
+    /// The folder to write into: DIR/en/, DIR/ro/, DIR/index.html, DIR/ro/index.html. One run
+    /// at a time: another run into the same folder is refused (the lock file .whitted-lessons.lock).
     #[arg(long, default_value = "out")]
     out: PathBuf,
     /// Only this language (default: both).
@@ -37,6 +38,11 @@ pub struct LessonsArgs {
     #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
 }
+
+/// The lock file a run holds in its output folder: a second run into the same folder is refused
+/// (exit 2) rather than made to wait, since it would redraw the same files and its user is better
+/// told at once than kept behind a long run.
+const LOCK_FILE: &str = ".whitted-lessons.lock";
 
 /// A lesson file read, with the folder its scene paths are relative to.
 struct Read {
@@ -150,10 +156,11 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
         Some(l) => vec![l.lang()],
         None => vec![Lang::En, Lang::Ro],
     };
+    // The folder is checked and locked before the work; the lock is held until the run ends.
+    output::create_folder(&args.out)?;
+    let _lock = output::lock_folder(&args.out, LOCK_FILE)?;
     for lang in &langs {
-        let dir = args.out.join(lang_dir(*lang));
-        std::fs::create_dir_all(&dir)
-            .map_err(|e| Failure::other(format!("{}: cannot create: {e}", dir.display())))?;
+        output::create_folder(&args.out.join(lang_dir(*lang)))?;
     }
     // Each scene is read once.
     let mut scenes: HashMap<PathBuf, Result<AnyScene, String>> = HashMap::new();

@@ -6,6 +6,7 @@ mod accel;
 mod check;
 mod figure;
 mod lessons;
+mod output;
 mod parse;
 mod render;
 mod sampling;
@@ -112,10 +113,9 @@ pub fn read_text(path: &Path, limit: u64) -> Result<String, String> {
     String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text ({e})"))
 }
 
-/// Writes bytes to a file.
-pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    std::fs::write(path, bytes).map_err(|e| Failure::other(format!("{}: cannot write: {e}", path.display())))
-}
+/// Every file the tool writes goes through this one function: whole or untouched (a temporary
+/// file renamed over the destination, `output`).
+pub use output::write_file;
 
 /// The worker threads of `--threads` (default: rayon's, one per core).
 pub fn thread_pool(threads: Option<u32>) -> Result<rayon::ThreadPool, Failure> {
@@ -181,7 +181,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("whitted-read-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let file = dir.join("ten.json");
-        std::fs::write(&file, "0123456789").unwrap();
+        super::write_file(&file, b"0123456789").unwrap();
         assert_eq!(read_text(&file, 10).as_deref(), Ok("0123456789"));
         assert_eq!(read_text(&file, 9), Err("larger than the limit of 9 bytes".to_string()));
         assert_eq!(read_text(&dir, 10), Err("not a regular file".to_string()));

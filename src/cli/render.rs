@@ -4,7 +4,7 @@
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::{default_output, load_scene, parse, print_out, thread_pool, write_file, Failure};
+use super::{default_output, load_scene, output, parse, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
@@ -23,7 +23,8 @@ use whitted::shape::Dim;
 pub struct RenderArgs {
     /// The scene file (JSON).
     scene: PathBuf,
-    /// The PNG to write (default: the scene's name with .png, in the current folder).
+    /// The PNG to write (default: the scene's name with .png, in the current folder); it is
+    /// replaced only by a complete image, never left torn.
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
     /// Override the scene's max_depth (0 = ray casting).
@@ -64,6 +65,9 @@ pub fn resize<V: Dim>(scene: &mut Scene<V>, size: Option<(usize, Option<usize>)>
 /// Runs `whitted render`.
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let sampling = args.sampling.sampling()?;
+    // The output is checked before the work: not the scene, a PNG, in a folder that can be written.
+    let output = args.output.clone().unwrap_or_else(|| default_output(&args.scene, "png"));
+    output::check(&output, &["png"], &[&args.scene])?;
     let start = Instant::now();
     let scene = load_scene(&args.scene)?;
     let load_seconds = start.elapsed().as_secs_f64();
@@ -84,7 +88,6 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             pool.install(|| render_scene(&s, args, sampling, &options, rows))
         }
     }?;
-    let output = args.output.clone().unwrap_or_else(|| default_output(&args.scene, "png"));
     let png = outcome.rendered.image.to_png().map_err(Failure::other)?;
     write_file(&output, &png)?;
     let stats = &outcome.rendered.stats;

@@ -7,13 +7,13 @@
 use super::figure::{canvas, figure_in, scene_name, Format, Request};
 use super::render::resize;
 use super::trace::LangArg;
-use super::{load_scene, parse, print_out, thread_pool, write_file, Failure};
+use super::{load_scene, output, parse, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
 use std::fmt::Write;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use whitted::accel::{AccelKind, AccelOptions};
 use whitted::doc::{float, stats};
 use whitted::figure::labels::Label;
@@ -52,8 +52,28 @@ pub struct TradeoffArgs {
     lang: LangArg,
 }
 
+/// The plots of `--out`, each written as PNG and SVG.
+const PLOTS: [&str; 2] = ["tradeoff", "heat-map"];
+/// The plots' formats, by extension.
+const PLOT_FORMATS: [(&str, Format); 2] = [("png", Format::Png), ("svg", Format::Svg)];
+
+/// The file of one plot in the folder of `--out`.
+fn plot_file(dir: &Path, stem: &str, ext: &str) -> PathBuf {
+    dir.join(format!("{stem}.{ext}"))
+}
+
 /// Runs `whitted tradeoff`.
 pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
+    // The plots' folder and files are checked before the measurements: created, writable, and
+    // none of them the scene.
+    if let Some(dir) = &args.out {
+        output::create_folder(dir)?;
+        for stem in PLOTS {
+            for (ext, _) in PLOT_FORMATS {
+                output::check(&plot_file(dir, stem, ext), &[ext], &[&args.scene])?;
+            }
+        }
+    }
     let pool = thread_pool(args.threads)?;
     let threads = pool.current_num_threads();
     match load_scene(&args.scene)? {
@@ -209,8 +229,6 @@ fn plots<V: Planar>(
     front: &[usize],
 ) -> Result<(), Failure> {
     let Some(dir) = &args.out else { return Ok(()) };
-    std::fs::create_dir_all(dir)
-        .map_err(|e| Failure::other(format!("{}: cannot create the folder: {e}", dir.display())))?;
     let (width, height) = canvas(None)?;
     let opts = Options { lang: args.lang.lang(), width, height };
     let name = scene_name(&args.scene);
@@ -238,11 +256,10 @@ fn plots<V: Planar>(
             opts,
         },
     )?;
-    for (stem, drawing) in [("tradeoff", plot.as_ref()), ("heat-map", Some(&heat))] {
+    for (stem, drawing) in PLOTS.into_iter().zip([plot.as_ref(), Some(&heat)]) {
         let Some(drawing) = drawing else { continue };
-        for format in [Format::Png, Format::Svg] {
-            let ext = if format == Format::Png { "png" } else { "svg" };
-            write_file(&dir.join(format!("{stem}.{ext}")), &format.encode(drawing)?)?;
+        for (ext, format) in PLOT_FORMATS {
+            write_file(&plot_file(dir, stem, ext), &format.encode(drawing)?)?;
         }
     }
     Ok(())

@@ -6,6 +6,7 @@ mod cli;
 mod figures;
 mod hardening;
 mod numerics;
+mod outputs;
 mod properties;
 mod sampling;
 mod support;

@@ -1,5 +1,6 @@
 //! Tidy checks (design.md habit 2): every source file opens with a `//!` line saying what it owns,
-//! and algorithm.md's Conventions cannot change without this project noticing (a stored hash).
+//! algorithm.md's Conventions cannot change without this project noticing (a stored hash), and only
+//! `cli/output.rs` writes files.
 
 use std::path::{Path, PathBuf};
 
@@ -58,5 +59,33 @@ fn algorithm_conventions_are_the_ones_the_tests_were_written_for() {
         now,
         "algorithm.md's Conventions changed: review the tests that pin them (tests/integration/traces.rs, \
          the numerics unit tests), then store the new hash in tests/data/conventions.hash"
+    );
+}
+
+/// The calls that create or replace a file; only `src/cli/output.rs` may make them.
+const FILE_WRITES: [&str; 5] = ["fs::write(", "File::create", "OpenOptions", "fs::rename(", "fs::copy("];
+
+#[test]
+fn every_file_is_written_through_the_one_atomic_writer() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    let writer = root.join("src/cli/output.rs");
+    let offending: Vec<String> = files
+        .iter()
+        .filter(|p| **p != writer)
+        .flat_map(|p| {
+            let text = std::fs::read_to_string(p).unwrap();
+            let name = p.strip_prefix(root).unwrap().display().to_string();
+            FILE_WRITES
+                .iter()
+                .filter(|w| text.contains(*w))
+                .map(move |w| format!("{name}: {w}"))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(
+        offending.is_empty(),
+        "write files through cli::write_file (temp + rename: whole or untouched), not: {offending:?}"
     );
 }
