@@ -302,3 +302,21 @@ fn every_cited_document_and_section_exists_in_docs() {
     }
     assert!(problems.is_empty(), "references that docs/ does not define:\n{}", problems.join("\n"));
 }
+
+/// The ```json blocks of a document, in order.
+fn json_blocks(doc: &str) -> Vec<&str> {
+    doc.split("```json\n").skip(1).filter_map(|b| b.split_once("```").map(|(json, _)| json)).collect()
+}
+
+#[test]
+fn product_md_examples_are_accepted_as_written() {
+    let product = read_doc(Path::new(env!("CARGO_MANIFEST_DIR")), "product.md");
+    let blocks = json_blocks(&product);
+    assert_eq!(blocks.len(), 2, "product.md shows a scene and a lesson");
+    // The scene's mesh names an OBJ file; any one-triangle file stands in for it.
+    let obj = |_: &str| Ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_string());
+    let scene = whitted::scene::load::load_str_with(blocks[0], &obj);
+    assert!(scene.is_ok(), "the example scene: {:?}", scene.err());
+    let lesson = whitted::lesson::parse(blocks[1]);
+    assert!(lesson.is_ok(), "the example lesson: {:?}", lesson.err());
+}
