@@ -1,4 +1,4 @@
-//! Watching the tracer at no cost when off (design.md "Observation is pushed to a recorder"):
+//! Watching the tracer at no cost when off (the tracer pushes each step to a recorder):
 //! the [`Recorder`] trait, the zero-sized [`NoRecorder`] that compiles away, the [`CountingRecorder`]
 //! that only counts (the benchmark's middle point) and the [`EventLog`] that keeps everything:
 //! the events in order and the ray tree.
