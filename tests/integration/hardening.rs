@@ -236,3 +236,173 @@ fn options_another_option_makes_meaningless_are_said_ignored() {
         whitted(&["trace", "scenes/whitted.json", "--pixel", "1,1", "--accel", "grid", "--grid", "2,2,2"]);
     assert!(!err.contains("ignored"), "{err}");
 }
+
+/// The lines of ```sh blocks in the README and in docs/ that run `whitted`.
+fn documented_examples(root: &Path) -> Vec<(String, String)> {
+    let mut files = vec![root.join("README.md")];
+    let mut docs: Vec<PathBuf> = std::fs::read_dir(root.join("docs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    docs.sort();
+    files.extend(docs);
+    let mut examples = Vec::new();
+    for file in files {
+        let name = file.strip_prefix(root).unwrap().display().to_string();
+        let mut in_sh = false;
+        for line in std::fs::read_to_string(&file).unwrap().lines() {
+            if line.trim_start().starts_with("```") {
+                in_sh = !in_sh && line.trim() == "```sh";
+            } else if in_sh && line.contains("whitted ") {
+                examples.push((name.clone(), line.trim().to_owned()));
+            }
+        }
+    }
+    examples
+}
+
+#[test]
+fn every_documented_example_runs_as_written() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let examples = documented_examples(root);
+    assert!(examples.len() >= 10, "the README's examples were not found: {examples:?}");
+    // A folder of its own, with the repository's inputs linked in, so outputs land there.
+    let dir = folder("examples");
+    for input in ["scenes", "lessons", "tests"] {
+        std::os::unix::fs::symlink(root.join(input), dir.join(input)).unwrap();
+    }
+    let bin = Path::new(env!("CARGO_BIN_EXE_whitted")).parent().unwrap().display().to_string();
+    let path = format!("{bin}:{}", std::env::var("PATH").unwrap_or_default());
+    for (file, line) in &examples {
+        let out = std::process::Command::new("sh")
+            .args(["-c", &format!("set -e; {line}")])
+            .current_dir(&dir)
+            .env("PATH", &path)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{file}: `{line}` failed ({}): {err}", out.status);
+        assert!(!err.contains("panicked"), "{file}: `{line}`: {err}");
+    }
+    for written in
+        ["whitted.png", "flat.png", "tree.svg", "grid.png", "course/index.html", "tradeoff/tradeoff.png"]
+    {
+        assert!(dir.join(written).is_file(), "{written} was not written");
+    }
+}
+
+/// Arguments a careless or hostile user might add, good and bad.
+const EXTRA_ARGS: &[&[&str]] = &[
+    &[],
+    &["--depth", "-1"],
+    &["--depth", "3"],
+    &["--depth", "64"],
+    &["--pixel", "-1,2"],
+    &["--pixel", "1,1"],
+    &["--pixel", "1"],
+    &["--ray", "-2,0,0:1,0,0"],
+    &["--ray", "0,0:0,0"],
+    &["--aa", "adaptive", "--max-level", "3"],
+    &["--aa", "corners"],
+    &["--threshold", "nan"],
+    &["--max-level", "9"],
+    &["--accel", "grid", "--grid", "2,2,2"],
+    &["--accel", "octree"],
+    &["--size", "0"],
+    &["--size", "4x3"],
+    &["--max-events", "10"],
+    &["--threads", "0"],
+    &["--bogus"],
+    &["--lang", "ro"],
+];
+
+/// True iff every number in `v` is finite (JSON has no NaN; a bug would have to write a string).
+fn json_is_finite(v: &serde_json::Value) -> bool {
+    match v {
+        serde_json::Value::Number(n) => n.as_f64().is_some_and(f64::is_finite),
+        serde_json::Value::String(s) => !s.eq_ignore_ascii_case("nan"),
+        serde_json::Value::Array(a) => a.iter().all(json_is_finite),
+        serde_json::Value::Object(m) => m.values().all(json_is_finite),
+        _ => true,
+    }
+}
+
+/// The output file after a run: the old bytes, or a whole new PNG or SVG.
+fn whole_or_old(path: &Path, old: &[u8]) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    if bytes == old {
+        return Ok(());
+    }
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("png") => image::load_from_memory(&bytes).map(|_| ()).map_err(|e| format!("a torn PNG: {e}")),
+        _ => {
+            let text = String::from_utf8(bytes).map_err(|e| e.to_string())?;
+            roxmltree::Document::parse(&text).map(|_| ()).map_err(|e| format!("a torn SVG: {e}"))
+        }
+    }
+}
+
+mod mutated {
+    use super::*;
+    use crate::properties::{at_mut, paths, wild_value};
+    use crate::support::fixture;
+    use proptest::prelude::*;
+    use serde_json::Value;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+        /// A mutated scene under a command with added arguments: exit 0 or 2 and never a panic, no
+        /// NaN in what is printed, and the output file that was there before is either untouched
+        /// or replaced by a whole new one.
+        #[test]
+        fn mutated_scenes_and_arguments_exit_0_or_2_and_keep_outputs_whole(
+            which in 0usize..4,
+            pick in any::<prop::sample::Index>(),
+            value in wild_value(),
+            mutate in any::<bool>(),
+            command in 0usize..4,
+            extra in 0..EXTRA_ARGS.len(),
+            extra2 in 0..EXTRA_ARGS.len(),
+        ) {
+            let name = ["glass.json", "lens_2d.json", "ortho_box.json", "tir_slab_2d.json"][which];
+            let mut doc: Value = serde_json::from_str(&fixture(name)).unwrap();
+            if mutate {
+                let mut all = Vec::new();
+                paths(&doc, vec![], &mut all);
+                let path = pick.get(&all).clone();
+                *at_mut(&mut doc, &path) = value;
+            }
+            let dir = std::env::temp_dir().join(format!("whitted-mutated-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            let scene = write(&dir, "scene.json", &doc.to_string());
+            let (png, svg) = (dir.join("out.png"), dir.join("out.svg"));
+            let (png_s, svg_s) = (png.display().to_string(), svg.display().to_string());
+            let mut args: Vec<&str> = match command {
+                0 => vec!["render", &scene, "--size", "8x6", "-o", &png_s, "--json"],
+                1 => vec!["trace", &scene, "--json"],
+                2 => vec!["figure", "rays", &scene, "--size", "320", "-o", &svg_s],
+                _ => vec!["check", &scene],
+            };
+            args.extend(EXTRA_ARGS[extra]);
+            args.extend(EXTRA_ARGS[extra2]);
+            // A good file from an earlier run, which the run must keep or replace whole.
+            let old_png = std::fs::read("docs/whitted.png").unwrap();
+            std::fs::write(&png, &old_png).unwrap();
+            let old_svg = b"<svg xmlns=\"http://www.w3.org/2000/svg\"/>".to_vec();
+            std::fs::write(&svg, &old_svg).unwrap();
+
+            let (code, out, err) = whitted(&args);
+            prop_assert!(code == 0 || code == 2, "{args:?} exited {code}: {err}");
+            prop_assert!(!err.contains("panicked"), "{args:?}: {err}");
+            if code == 0 && args.contains(&"--json") {
+                let printed: Value = serde_json::from_str(&out).map_err(|e| TestCaseError::fail(e.to_string()))?;
+                prop_assert!(json_is_finite(&printed), "{args:?}: a NaN in {out}");
+            }
+            prop_assert!(!out.contains("NaN"), "{args:?}: {out}");
+            prop_assert_eq!(whole_or_old(&png, &old_png), Ok(()));
+            prop_assert_eq!(whole_or_old(&svg, &old_svg), Ok(()));
+        }
+    }
+}
