@@ -1,9 +1,11 @@
-//! The acceleration options shared by `render` and `trace`: `--accel`, `--bounds`, `--grid`
-//! (algorithm.md §9), turned once into `accel::AccelOptions`.
+//! The acceleration options shared by `render`, `trace` and `figure`: `--accel`, `--bounds`,
+//! `--grid` (algorithm.md §9), turned into `request::options::AccelChoice` (checked there).
 
 use clap::{Args, ValueEnum};
-use whitted::accel::{AccelKind, AccelOptions};
+use whitted::accel::AccelKind;
 use whitted::bounds::VolumeKind;
+use whitted::request::options::AccelChoice;
+use whitted::request::parse;
 
 /// Which structure finds hits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -50,27 +52,21 @@ pub struct AccelArgs {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Cells(Vec<usize>);
 
+/// `--grid`'s parser: `request::parse::grid`.
+fn cells(s: &str) -> Result<Cells, String> {
+    parse::grid(s).map(Cells)
+}
+
 impl AccelArgs {
-    /// The options, checked against the scene's dimension.
-    ///
-    /// # Errors
-    /// A message when `--grid` has the wrong number of axes.
-    pub fn options(&self, dim: usize) -> Result<AccelOptions, String> {
-        self.options_for(dim, self.accel)
+    /// The choice for a command that traces with `--accel`'s structure.
+    pub fn choice(&self) -> AccelChoice {
+        self.choice_for(self.accel)
     }
 
-    /// [`Self::options`] for a command that traces with `used` whatever `--accel` says (a figure of
-    /// a structure): `--bounds` and `--grid` are said ignored unless `used` reads them.
-    ///
-    /// # Errors
-    /// A message when `--grid` has the wrong number of axes.
-    pub fn options_for(&self, dim: usize, used: AccelArg) -> Result<AccelOptions, String> {
-        if let Some(Cells(g)) = &self.grid {
-            if g.len() != dim {
-                return Err(format!("--grid: a {dim}D scene needs {dim} cell counts, got {}", g.len()));
-            }
-        }
-        // As `--threshold` without adaptive sampling: an option the structure does not read is said.
+    /// The choice, for `request::options::AccelChoice::options`, of a command that traces with
+    /// `used` whatever `--accel` says (a figure of a structure). As `--threshold` without adaptive
+    /// sampling, `--bounds` and `--grid` are said ignored on stderr unless `used` reads them.
+    pub fn choice_for(&self, used: AccelArg) -> AccelChoice {
         let name = used.to_possible_value().map(|v| v.get_name().to_owned()).unwrap_or_default();
         if self.bounds.is_some() && used != AccelArg::Bounds {
             eprintln!("whitted: --bounds applies to --accel bounds only; ignored with --accel {name}");
@@ -90,39 +86,6 @@ impl AccelArgs {
             BoundsArg::Aabb => VolumeKind::Aabb,
             BoundsArg::Kdop => VolumeKind::Kdop,
         };
-        Ok(AccelOptions { kind, volume, grid: self.grid.clone().map(|Cells(g)| g) })
-    }
-}
-
-/// Parses `NX,NY[,NZ]`: each at least 1, at most 2^24 cells in all.
-fn cells(s: &str) -> Result<Cells, String> {
-    let n: Vec<usize> = s
-        .split(',')
-        .map(|x| x.trim().parse::<usize>().map_err(|_| format!("`{x}` is not a cell count")))
-        .collect::<Result<_, _>>()?;
-    if !(2..=3).contains(&n.len()) {
-        return Err(format!("expected NX,NY,NZ (or NX,NY in 2D), got {} numbers", n.len()));
-    }
-    if n.contains(&0) {
-        return Err("every cell count must be at least 1".into());
-    }
-    let total = n.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
-    if total.is_none_or(|t| t > whitted::accel::grid::MAX_CELLS) {
-        return Err(format!("at most {} cells in all", whitted::accel::grid::MAX_CELLS));
-    }
-    Ok(Cells(n))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn grid_cells_parse() {
-        assert_eq!(cells("4,4,4"), Ok(Cells(vec![4, 4, 4])));
-        assert_eq!(cells("8,2"), Ok(Cells(vec![8, 2])));
-        assert!(cells("0,1,1").is_err());
-        assert!(cells("4").is_err());
-        assert!(cells("4096,4096,4096").is_err());
+        AccelChoice { kind, volume, grid: self.grid.clone().map(|Cells(g)| g) }
     }
 }

@@ -3,9 +3,9 @@
 //! (English) and `out/ro/index.html` (Romanian) that show them with their captions and the
 //! command that regenerates each.
 
-use super::figure::{canvas, figure, scene_name, Format, Request};
+use super::figure::{scene_name, Format};
 use super::trace::LangArg;
-use super::{load_scene, output, parse, print_out, read_text, write_file, Failure};
+use super::{load_scene, output, print_out, read_text, write_file, Failure};
 use clap::Args;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -14,6 +14,10 @@ use whitted::accel::AccelOptions;
 use whitted::figure::source::Tracing;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::{self, FigureSpec, Lesson, Shown};
+use whitted::request::figure::{figure, Request};
+use whitted::request::options::canvas;
+use whitted::request::parse;
+use whitted::request::target::Target;
 use whitted::sample::Sampling;
 use whitted::scene::load::MAX_SCENE_BYTES;
 use whitted::scene::AnyScene;
@@ -189,8 +193,10 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             let (png, svg) = (dir.join(format!("{stem}.png")), dir.join(format!("{stem}.svg")));
             let request = Request {
                 kind: spec.kind,
-                pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))),
-                ray: spec.ray.clone(),
+                target: Target {
+                    pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))),
+                    ray: spec.ray.clone(),
+                },
                 tracing: Tracing {
                     depth: spec.depth,
                     sampling: spec.sampling.unwrap_or(Sampling::Center),
@@ -202,7 +208,8 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
                 .as_ref()
                 .map_err(Clone::clone)
                 .and_then(|scene| figure(scene, &scene_name(&scene_path), &request).map_err(|f| f.message))
-                .and_then(|drawing| {
+                .and_then(|made| {
+                    let drawing = made.drawing;
                     for (path, format) in [(&png, Format::Png), (&svg, Format::Svg)] {
                         write_file(path, &format.encode(&drawing).map_err(|f| f.message)?)
                             .map_err(|f| f.message)?;

@@ -4,10 +4,9 @@
 //! to DIR: the error against the time with the Pareto front, and the reference's rays-per-pixel
 //! heat map.
 
-use super::figure::{canvas, figure_in, scene_name, Format, Request};
-use super::render::resize;
+use super::figure::{scene_name, Format};
 use super::trace::LangArg;
-use super::{load_scene, output, parse, print_out, thread_pool, write_file, Failure};
+use super::{load_scene, output, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
@@ -22,6 +21,10 @@ use whitted::figure::source::Tracing;
 use whitted::figure::tradeoff as tradeoff_plot;
 use whitted::figure::{FigureKind, Options};
 use whitted::render::{check_fits, RenderConfig};
+use whitted::request::figure::{figure_in, Request};
+use whitted::request::options::{canvas, resize};
+use whitted::request::parse;
+use whitted::request::target::Target;
 use whitted::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD};
 use whitted::scene::{AnyScene, Scene};
 use whitted::tradeoff::{self, Measured, Tradeoff, REFERENCE_DEPTH, REFERENCE_SAMPLING};
@@ -246,8 +249,7 @@ fn plots<V: Planar>(
         &name,
         &Request {
             kind: FigureKind::HeatMap,
-            pixel: None,
-            ray: None,
+            target: Target::default(),
             tracing: Tracing {
                 depth: None,
                 sampling: Sampling::Adaptive { threshold: DEFAULT_THRESHOLD, max_level: DEFAULT_MAX_LEVEL },
@@ -255,7 +257,8 @@ fn plots<V: Planar>(
             },
             opts,
         },
-    )?;
+    )?
+    .drawing;
     for (stem, drawing) in PLOTS.into_iter().zip([plot.as_ref(), Some(&heat)]) {
         let Some(drawing) = drawing else { continue };
         for (ext, format) in PLOT_FORMATS {

@@ -12,3 +12,4 @@ mod sampling;
 mod support;
 mod tidy;
 mod traces;
+mod web;
