@@ -10,7 +10,8 @@
 //! - **A UTF-8 byte-order mark is skipped** (editors write one), and the nesting depth is
 //!   serde_json's (128), so a hostile file cannot overflow the stack.
 
-use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde::de::{self, Deserialize, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde_json::value::RawValue;
 use std::borrow::Cow;
 use std::fmt;
 
@@ -29,6 +30,9 @@ pub enum Value<'a> {
     Array(Vec<Value<'a>>),
     /// An object: its pairs in file order.
     Object(Map<'a>),
+    /// A value not parsed yet, checked as JSON ([`parse_deferring`]): the reader parses it when
+    /// it comes to it and drops its tree after, so a long list never lives as a tree all at once.
+    Deferred(&'a str),
 }
 
 /// A JSON number as written: a whole number keeps its integer value.
@@ -68,15 +72,56 @@ const BYTE_ORDER_MARK: char = '\u{feff}';
 /// The first syntax error, with its line and column.
 pub fn parse(text: &str) -> Result<Value<'_>, SyntaxError> {
     let text = text.strip_prefix(BYTE_ORDER_MARK).unwrap_or(text);
-    serde_json::from_str(text).map_err(|e| {
-        let full = e.to_string();
-        // serde_json appends " at line L column C"; the position is kept apart.
-        let message = full.split(" at line ").next().unwrap_or(&full).to_string();
-        SyntaxError { message, line: e.line(), column: e.column() }
-    })
+    serde_json::from_str(text).map_err(syntax_error)
+}
+
+/// [`parse`], but the items of the top-level array `key` (a scene's `objects`) are left as
+/// [`Value::Deferred`] text, checked as JSON but not parsed into a tree: the reader parses each in
+/// turn ([`Value::parsed`]), so the file's largest part is never a tree all at once. Any other
+/// value under `key` is parsed as usual.
+///
+/// # Errors
+/// The first syntax error, with its line and column.
+pub fn parse_deferring<'a>(text: &'a str, key: &str) -> Result<Value<'a>, SyntaxError> {
+    let text = text.strip_prefix(BYTE_ORDER_MARK).unwrap_or(text);
+    let mut de = serde_json::Deserializer::from_str(text);
+    let value = de.deserialize_any(RootVisitor { deferred: key }).and_then(|v| de.end().map(|()| v));
+    value.map_err(syntax_error)
+}
+
+impl SyntaxError {
+    /// The error of a parse of `part`, a slice of `whole`, placed in `whole`: its line counted
+    /// from `whole`'s first, and on `part`'s first line its column too (columns count bytes, as
+    /// serde_json's do).
+    #[must_use]
+    pub fn within(self, whole: &str, part: &str) -> Self {
+        let offset = (part.as_ptr() as usize).saturating_sub(whole.as_ptr() as usize).min(whole.len());
+        let before = &whole.as_bytes()[..offset];
+        let lines = before.iter().filter(|b| **b == b'\n').count();
+        let column = before.iter().rev().take_while(|b| **b != b'\n').count();
+        let column = if self.line == 1 { self.column + column } else { self.column };
+        Self { line: self.line + lines, column, ..self }
+    }
+}
+
+fn syntax_error(e: serde_json::Error) -> SyntaxError {
+    let full = e.to_string();
+    // serde_json appends " at line L column C"; the position is kept apart.
+    let message = full.split(" at line ").next().unwrap_or(&full).to_string();
+    SyntaxError { message, line: e.line(), column: e.column() }
 }
 
 impl<'a> Value<'a> {
+    /// This value, or the tree of a [`Value::Deferred`] one (parsed now; its text is valid JSON).
+    ///
+    /// # Errors
+    /// A syntax error, which a deferred value cannot have but is reported rather than assumed.
+    pub fn parsed(&self) -> Result<Cow<'_, Value<'a>>, SyntaxError> {
+        match self {
+            Self::Deferred(text) => parse(text).map(Cow::Owned),
+            other => Ok(Cow::Borrowed(other)),
+        }
+    }
     /// The object, if this is one.
     #[must_use]
     pub fn as_object(&self) -> Option<&Map<'a>> {
@@ -277,6 +322,96 @@ impl<'de> Visitor<'de> for ValueVisitor {
     }
 }
 
+/// Forwards the visits of scalars and strings to [`ValueVisitor`].
+macro_rules! scalars_as_values {
+    () => {
+        fn visit_unit<E: de::Error>(self) -> Result<Self::Value, E> {
+            ValueVisitor.visit_unit()
+        }
+        fn visit_bool<E: de::Error>(self, b: bool) -> Result<Self::Value, E> {
+            ValueVisitor.visit_bool(b)
+        }
+        fn visit_u64<E: de::Error>(self, n: u64) -> Result<Self::Value, E> {
+            ValueVisitor.visit_u64(n)
+        }
+        fn visit_i64<E: de::Error>(self, n: i64) -> Result<Self::Value, E> {
+            ValueVisitor.visit_i64(n)
+        }
+        fn visit_f64<E: de::Error>(self, x: f64) -> Result<Self::Value, E> {
+            ValueVisitor.visit_f64(x)
+        }
+        fn visit_borrowed_str<E: de::Error>(self, s: &'de str) -> Result<Self::Value, E> {
+            ValueVisitor.visit_borrowed_str(s)
+        }
+        fn visit_str<E: de::Error>(self, s: &str) -> Result<Self::Value, E> {
+            ValueVisitor.visit_str(s)
+        }
+        fn visit_string<E: de::Error>(self, s: String) -> Result<Self::Value, E> {
+            ValueVisitor.visit_string(s)
+        }
+    };
+}
+
+/// The top-level value of [`parse_deferring`]: the array under `deferred` keeps its items as text.
+struct RootVisitor<'k> {
+    deferred: &'k str,
+}
+
+impl<'de> Visitor<'de> for RootVisitor<'_> {
+    type Value = Value<'de>;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("any JSON value")
+    }
+    scalars_as_values!();
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Self::Value, A::Error> {
+        ValueVisitor.visit_seq(seq)
+    }
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+        let mut pairs = Vec::new();
+        while let Some(key) = map.next_key::<Key<'de>>()? {
+            let value = if key.0 == self.deferred {
+                map.next_value_seed(Deferring)?
+            } else {
+                map.next_value::<Value<'de>>()?
+            };
+            pairs.push((key.0, value));
+        }
+        pairs.shrink_to_fit();
+        Ok(Value::Object(Map { pairs }))
+    }
+}
+
+/// A value whose array items stay text ([`Value::Deferred`]).
+struct Deferring;
+
+impl<'de> DeserializeSeed<'de> for Deferring {
+    type Value = Value<'de>;
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
+        deserializer.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for Deferring {
+    type Value = Value<'de>;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("any JSON value")
+    }
+    scalars_as_values!();
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let mut items = Vec::new();
+        while let Some(raw) = seq.next_element::<&'de RawValue>()? {
+            items.push(Value::Deferred(raw.get()));
+        }
+        items.shrink_to_fit();
+        Ok(Value::Array(items))
+    }
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Self::Value, A::Error> {
+        ValueVisitor.visit_map(map)
+    }
+}
+
 /// An object's key, borrowed from the text where it holds no escape.
 struct Key<'a>(Cow<'a, str>);
 
@@ -329,6 +464,33 @@ mod tests {
         let v = parse(text).unwrap();
         assert!(matches!(v.get("plain"), Some(Value::String(Cow::Borrowed("glass")))));
         assert!(matches!(v.get("escaped"), Some(Value::String(Cow::Owned(s))) if s == "a\"b"));
+    }
+
+    #[test]
+    fn deferred_items_parse_to_what_parse_gives() {
+        let text = r#"{"objects": [{"a": 1, "a": 2}, [true, null]], "other": [{"b": "x"}]}"#;
+        let lazy = parse_deferring(text, "objects").unwrap();
+        let eager = parse(text).unwrap();
+        let items = lazy.get("objects").unwrap().as_array().unwrap();
+        assert!(matches!(items[0], Value::Deferred(_)));
+        let parsed: Vec<Value<'_>> = items.iter().map(|v| v.parsed().unwrap().into_owned()).collect();
+        assert_eq!(&parsed, eager.get("objects").unwrap().as_array().unwrap());
+        assert_eq!(lazy.get("other"), eager.get("other"));
+        assert_eq!(parsed[0].as_object().unwrap().duplicates(), ["a"]);
+        // Not an array: parsed as it is; a syntax error inside an item is still the file's.
+        assert_eq!(
+            parse_deferring(r#"{"objects": 3}"#, "objects").unwrap().get("objects"),
+            Some(&Value::Number(Number::Unsigned(3)))
+        );
+        let e = parse_deferring("{\"objects\": [{\"a\": }]}", "objects").unwrap_err();
+        assert_eq!((e.line, e.column), (1, 20));
+        assert!(parse_deferring("{} x", "objects").is_err());
+        // A number out of range passes the first scan; its item's parse places it in the file.
+        let text = "{\"objects\": [\n  {\"r\": 1},\n  {\"r\": 1e400}]}";
+        let lazy = parse_deferring(text, "objects").unwrap();
+        let Value::Deferred(part) = lazy.get("objects").unwrap().as_array().unwrap()[1] else { panic!() };
+        let e = parse(part).unwrap_err().within(text, part);
+        assert_eq!((e.line, e.column), (parse(text).unwrap_err().line, parse(text).unwrap_err().column));
     }
 
     #[test]

@@ -61,7 +61,7 @@ pub fn load_str(text: &str) -> Result<AnyScene, Vec<SceneError>> {
 /// # Errors
 /// Every problem found, each naming its JSON path; a syntax error alone if the text is not JSON.
 pub fn load_str_with(text: &str, read_file: ReadFile<'_>) -> Result<AnyScene, Vec<SceneError>> {
-    let root = json::parse(text).map_err(|e| {
+    let root = json::parse_deferring(text, "objects").map_err(|e| {
         vec![SceneError::new(
             "",
             format!("invalid JSON at line {}, column {}: {}", e.line, e.column, e.message),
@@ -76,8 +76,8 @@ pub fn load_str_with(text: &str, read_file: ReadFile<'_>) -> Result<AnyScene, Ve
         return Err(r.errors);
     };
     match dimension_of(camera) {
-        Some(2) => build::<DVec2>(r, top, read_file).map(AnyScene::Flat),
-        Some(3) => build::<DVec3>(r, top, read_file).map(AnyScene::Space),
+        Some(2) => build::<DVec2>(r, top, text, read_file).map(AnyScene::Flat),
+        Some(3) => build::<DVec3>(r, top, text, read_file).map(AnyScene::Space),
         _ => {
             r.err("camera.eye", "must be a point of 2 numbers (a 2D scene) or 3 numbers (a 3D scene)");
             Err(r.errors)
@@ -115,6 +115,7 @@ fn type_name(v: &Value) -> &'static str {
         Value::String(_) => "a string",
         Value::Array(_) => "an array",
         Value::Object(_) => "an object",
+        Value::Deferred(_) => "a value",
     }
 }
 
@@ -491,6 +492,7 @@ fn vertices<V: Vector>(r: &mut Reader, map: &Map<'_>, path: &str, min: usize, ma
 fn build<V: LoadDim>(
     mut r: Reader,
     top: &Map<'_>,
+    source: &str,
     read_file: ReadFile<'_>,
 ) -> Result<Scene<V>, Vec<SceneError>> {
     let camera = read_camera::<V>(&mut r, &top["camera"]);
@@ -502,7 +504,7 @@ fn build<V: LoadDim>(
     };
     let lights = read_lights::<V>(&mut r, top.get("lights"));
     let (mut materials, names) = read_named_materials(&mut r, top.get("materials"));
-    let objects = read_objects::<V>(&mut r, top.get("objects"), &mut materials, &names, read_file);
+    let objects = read_objects::<V>(&mut r, top.get("objects"), source, &mut materials, &names, read_file);
     match camera {
         Some(camera) if r.errors.is_empty() => Ok(Scene {
             camera,
@@ -702,6 +704,7 @@ fn read_named_materials(r: &mut Reader, v: Option<&Value>) -> (Vec<Material>, Ve
 fn read_objects<V: LoadDim>(
     r: &mut Reader,
     v: Option<&Value>,
+    source: &str,
     materials: &mut Vec<Material>,
     names: &[String],
     read_file: ReadFile<'_>,
@@ -715,6 +718,20 @@ fn read_objects<V: LoadDim>(
     let mut out = Vec::new();
     for (i, item) in items.iter().enumerate() {
         let path = format!("objects[{i}]");
+        // Each object is parsed from its text here and its tree dropped after (json::parse_deferring).
+        let item = match item.parsed() {
+            Ok(item) => item,
+            Err(e) => {
+                // A number out of range is found only now: said as the whole file's syntax error is.
+                let e = match item {
+                    Value::Deferred(part) => e.within(source, part),
+                    _ => e,
+                };
+                r.err("", format!("invalid JSON at line {}, column {}: {}", e.line, e.column, e.message));
+                continue;
+            }
+        };
+        let item = item.as_ref();
         let Some(map) = item.as_object() else {
             r.err(path, format!("must be an object, got {}", type_name(item)));
             continue;

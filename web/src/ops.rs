@@ -11,8 +11,7 @@ use whitted::doc::narrate::Lang;
 use whitted::doc::TraceTarget;
 use whitted::figure::source::Tracing;
 use whitted::figure::{svg, FigureKind};
-use whitted::record::DEFAULT_LIMIT;
-use whitted::request::figure::{default_aa, figure, structure, Request};
+use whitted::request::figure::{default_aa, figure, Request};
 use whitted::request::options::{canvas, resize, Aa};
 use whitted::request::render::{self as job, Job};
 use whitted::request::target::Target;
@@ -209,19 +208,17 @@ fn render_op(f: &Fields<'_>) -> Result<Answer, Failure> {
             let rows = resize(&mut s, options.size);
             let (w, h) = image_size(&s, rows);
             fits("render", w, h)?;
-            job::run(&s, &run(rows))?
+            job::run(&s, &run(rows))
         }
         AnyScene::Space(mut s) => {
             let rows = resize(&mut s, options.size);
             let (w, h) = image_size(&s, rows);
             fits("render", w, h)?;
-            job::run(&s, &run(rows))?
+            job::run(&s, &run(rows))
         }
-    };
+    }?;
     let mut doc = outcome.json(load_seconds, rayon::current_num_threads(), None);
-    let notes: Vec<String> =
-        chosen.notes.into_iter().chain(options.accel.notes(options.accel.kind)).collect();
-    doc["notes"] = json!(notes);
+    doc["notes"] = json!(chosen.notes);
     Ok(Answer { code: 0, json: doc.to_string(), bytes: outcome.rendered.image.to_rgba8() })
 }
 
@@ -237,10 +234,9 @@ fn trace_of(f: &Fields<'_>, op: &str) -> Result<(AnyScene, Trace, Options, Vec<S
         depth: options.depth,
         sampling: chosen.sampling,
         accel: options.accel.clone(),
-        max_events: options.max_events.unwrap_or(DEFAULT_LIMIT),
+        max_events: options.max_events.unwrap_or(whitted::record::DEFAULT_LIMIT),
     };
-    let notes = chosen.notes.into_iter().chain(trace.check(&scene)?).collect();
-    Ok((scene, trace, options, notes))
+    Ok((scene, trace, options, chosen.notes))
 }
 
 fn trace_op(f: &Fields<'_>) -> Result<Answer, Failure> {
@@ -301,8 +297,8 @@ fn command(scene: &str, target: &Target, options: &Options, lang: Lang) -> Strin
     if a.kind != default.kind {
         cmd.push_str(&format!(" --accel {}", a.kind.name()));
     }
-    if let Some(volume) = a.volume {
-        cmd.push_str(&format!(" --bounds {}", volume.name()));
+    if a.volume != default.volume {
+        cmd.push_str(&format!(" --bounds {}", a.volume.name()));
     }
     if let Some(g) = &a.grid {
         cmd.push_str(&format!(" --grid {}", g.iter().map(ToString::to_string).collect::<Vec<_>>().join(",")));
@@ -342,9 +338,7 @@ fn figure_op(f: &Fields<'_>) -> Result<Answer, Failure> {
         opts: whitted::figure::Options { lang, width, height },
     };
     let made = figure(&scene, &stem(name(f)?), &request)?;
-    let notes: Vec<String> =
-        chosen.notes.into_iter().chain(options.accel.notes(structure(kind, options.accel.kind))).collect();
-    let mut answer = json!({"svg": svg::to_svg(&made.drawing), "pick": made.pick, "notes": notes});
+    let mut answer = json!({"svg": svg::to_svg(&made.drawing), "pick": made.pick, "notes": chosen.notes});
     traced(&mut answer, &made.traced);
     Ok(Answer::ok(answer.to_string()))
 }
