@@ -5,7 +5,7 @@
 //! `I = I_local + ks·R + kt·T` (`trace`) while reporting every step to a recorder chosen at compile
 //! time (`record`), and what was recorded becomes the trace document (`doc`), a narration, an image
 //! (`render`, `image`) or a diagram (`figure`), and the lessons (`lesson`) gather the diagrams of
-//! the lecture; `tradeoff` measures what accuracy costs. The mathematics is written once for 2D
+//! the lecture, with the interactive pages of the course (`site`); `tradeoff` measures what accuracy costs. The mathematics is written once for 2D
 //! and 3D (`geom`, `shape`).
 //! See `ARCHITECTURE.md` for the codemap and the invariants.
 #![forbid(unsafe_code)]
@@ -22,5 +22,6 @@ pub mod render;
 pub mod sample;
 pub mod scene;
 pub mod shape;
+pub mod site;
 pub mod trace;
 pub mod tradeoff;

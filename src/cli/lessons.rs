@@ -1,7 +1,10 @@
 //! `whitted lessons`: read every lesson file of `lessons/` (`whitted::lesson`), draw each figure in
 //! each language as PNG and SVG into `out/en/` and `out/ro/`, and write the pages `out/index.html`
 //! (English) and `out/ro/index.html` (Romanian) that show them with their captions and the
-//! command that regenerates each.
+//! command that regenerates each; then the interactive course (`whitted::site`): a page per lesson
+//! and language (`out/en/NAME.html`, `out/ro/NAME.html`), the playgrounds (`play.html`), the
+//! scripts and style of `web/site/`, and the WebAssembly module as `out/whitted-wasm.js` when
+//! `web/build.sh` has built it (otherwise stderr says what is missing and how to get it).
 
 use super::figure::{canvas, figure, scene_name, Format, Request};
 use super::trace::LangArg;
@@ -16,6 +19,7 @@ use whitted::figure::{Lang, Options};
 use whitted::lesson::{self, FigureSpec, Lesson, Shown};
 use whitted::sample::Sampling;
 use whitted::scene::AnyScene;
+use whitted::site::{self, Nav, View};
 
 /// Options of `whitted lessons`.
 #[derive(Args, Debug)]
@@ -35,7 +39,25 @@ pub struct LessonsArgs {
     /// Canvas size WxH in pixels (default 1920x1080).
     #[arg(long, value_parser = parse::size)]
     size: Option<(usize, Option<usize>)>,
+    /// The WebAssembly module that makes the pages live (built by web/build.sh).
+    #[arg(long, default_value = DEFAULT_WASM)]
+    wasm: PathBuf,
 }
+
+/// The playground's first scene.
+const FIRST_EXAMPLE: &str = "whitted.json";
+
+/// Where `web/build.sh` writes the module.
+const DEFAULT_WASM: &str = "target/wasm/whitted_web.wasm";
+
+/// The page script and style, written beside the pages (`out/whitted.js`, `out/whitted.css`).
+const SITE_FILES: [(&str, &str); 2] = [
+    ("whitted.js", include_str!("../../web/site/whitted.js")),
+    ("whitted.css", include_str!("../../web/site/whitted.css")),
+];
+
+/// One figure drawn: (lesson, figure, language) and why it failed, if it did.
+type Drawn = ((usize, usize, Lang), Option<String>);
 
 /// A lesson file read, with the folder its scene paths are relative to.
 struct Read {
@@ -145,7 +167,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             jobs.extend(langs.iter().map(|g| (l, f, *g)));
         }
     }
-    let results: Vec<((usize, usize, Lang), Option<String>)> = jobs
+    let results: Vec<Drawn> = jobs
         .par_iter()
         .map(|&(l, f, lang)| {
             let r = &read[l];
@@ -221,6 +243,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
         };
         write_file(&page, lesson::index_html(&lessons, &shown, *lang, other).as_bytes())?;
     }
+    write_site(args, &read, &langs, &results)?;
     let figures: usize =
         read.iter().zip(&drawn).filter(|(_, d)| **d).map(|(r, _)| r.lesson.figures.len()).sum();
     print_out(&format!(
@@ -234,4 +257,102 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
     } else {
         Err(Failure::other(failed.join("\n")))
     }
+}
+
+/// The interactive course: a page per lesson and language, the playgrounds, the scripts, and the
+/// module if it was built. `results` says which static figures were drawn (the pages show them
+/// until the module replaces them with live ones).
+fn write_site(args: &LessonsArgs, read: &[Read], langs: &[Lang], results: &[Drawn]) -> Result<(), Failure> {
+    let module = match std::fs::read(&args.wasm) {
+        Ok(wasm) => {
+            write_file(&args.out.join(site::MODULE_SCRIPT), site::module_script(&wasm).as_bytes())?;
+            true
+        }
+        Err(e) => {
+            eprintln!(
+                "whitted lessons: {}: {e}; the pages are written without their live part. \
+                 Build the module with `web/build.sh` (`web/build.sh --install` first installs its \
+                 toolchain), then run `whitted lessons` again, or run ./run.sh, which does both.",
+                args.wasm.display()
+            );
+            false
+        }
+    };
+    for (name, text) in SITE_FILES {
+        write_file(&args.out.join(name), text.as_bytes())?;
+    }
+    // Every scene a lesson names, read once, in the lessons' order: the views' editors and the
+    // playground's examples.
+    let mut texts: Vec<(PathBuf, String)> = Vec::new();
+    for r in read {
+        for spec in &r.lesson.figures {
+            let path = r.dir.join(&spec.scene);
+            if !texts.iter().any(|(p, _)| *p == path) {
+                let text = std::fs::read_to_string(&path)
+                    .map_err(|e| Failure::input(format!("{}: cannot read: {e}", path.display())))?;
+                texts.push((path, text));
+            }
+        }
+    }
+    let text_of = |path: &Path| texts.iter().find(|(p, _)| p == path).map_or("", |(_, t)| t.as_str());
+    for lang in langs {
+        let code = site::code(*lang);
+        let other = match lang {
+            Lang::En => "ro",
+            Lang::Ro => "en",
+        };
+        let index = match lang {
+            Lang::En => "../index.html",
+            Lang::Ro => "index.html",
+        };
+        let dir = args.out.join(code);
+        for (l, r) in read.iter().enumerate() {
+            let lesson = &r.lesson;
+            let views: Vec<View> = lesson
+                .figures
+                .iter()
+                .enumerate()
+                .map(|(f, spec)| {
+                    let drawn = results.iter().any(|(key, error)| *key == (l, f, *lang) && error.is_none());
+                    let png = format!("{}.png", lesson.file_stem(f));
+                    View {
+                        scene: &spec.scene,
+                        text: text_of(&r.dir.join(&spec.scene)),
+                        spec: Some(spec),
+                        png: (drawn || dir.join(&png).exists()).then_some(png),
+                        caption: spec.caption.get(*lang),
+                    }
+                })
+                .collect();
+            let page_of = |k: usize| read.get(k).map(|n| format!("{}.html", n.lesson.name));
+            let nav = Nav {
+                index: index.to_owned(),
+                other: format!("../{other}/{}.html", lesson.name),
+                prev: l.checked_sub(1).and_then(page_of),
+                next: page_of(l + 1),
+                play: "play.html".to_owned(),
+            };
+            let page = site::lesson_page(lesson, &views, *lang, &nav, module);
+            write_file(&dir.join(format!("{}.html", lesson.name)), page.as_bytes())?;
+        }
+        // Whitted's scene first, then the others in the lessons' order.
+        let mut examples: Vec<(String, String)> = texts
+            .iter()
+            .map(|(path, text)| {
+                (
+                    path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+                    text.clone(),
+                )
+            })
+            .collect();
+        examples.sort_by_key(|(name, _)| name != FIRST_EXAMPLE);
+        let nav = Nav {
+            index: index.to_owned(),
+            other: format!("../{other}/play.html"),
+            play: "play.html".to_owned(),
+            ..Nav::default()
+        };
+        write_file(&dir.join("play.html"), site::play_page(&examples, *lang, &nav, module).as_bytes())?;
+    }
+    Ok(())
 }
