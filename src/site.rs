@@ -210,7 +210,7 @@ fn page(title: &str, body: &str, lang: Lang, nav: &Nav, module: bool) -> String 
         title = esc(title),
         words = words_json(lang),
         status = esc(word(if module { "loading" } else { "missing" }, lang)),
-        class = if module { "module" } else { "static" },
+        class = if module { "live" } else { "static" },
     )
 }
 
@@ -289,7 +289,8 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
          <p class=\"stats\" data-whitted=\"stats\"></p>\n\
          <form class=\"pixel-form\" data-whitted=\"pixel-form\"><label>{pixel} <input data-whitted=\"pixel\" size=\"9\" inputmode=\"numeric\" autocomplete=\"off\"></label> \
          <button type=\"submit\">{show}</button></form>\n\
-         <p class=\"message\" data-whitted=\"message\" role=\"alert\"></p>\n</div>\n\
+         <p class=\"message\" data-whitted=\"message\" role=\"alert\"></p>\n\
+         <p class=\"pick\" data-whitted=\"pick\"></p>\n</div>\n\
          <div class=\"pane figure-pane\">\n<div class=\"figure\" data-whitted=\"figure\">{figure}</div>\n\
          <div class=\"stepnav\"><button type=\"button\" data-whitted=\"back\">{back}</button>\
          <span data-whitted=\"position\" aria-live=\"polite\"></span>\

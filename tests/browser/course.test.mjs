@@ -12,8 +12,8 @@ import { ROOT, cutSteps, launch, open, settled, shot, whitted } from './support.
 /** Whitted's scene as the secondary-rays lesson names it, and as the CLI reaches it. */
 const LESSON = 'secondary-rays';
 const SCENE = 'lessons/../scenes/whitted.json';
-/** A pixel on the glass sphere (the refraction figure's own pick). */
-const GLASS = [422, 292];
+/** A pixel inside the glass sphere's image: a click near it lands on the glass. */
+const GLASS = [430, 280];
 
 let browser;
 before(async () => { browser = await launch(); });
@@ -53,13 +53,23 @@ function expectedLit(items, events) {
   return items.filter((e) => e.split(' ').some((x) => wanted.has(x)));
 }
 
-/** Clicks pixel (i, j) of a view's image at its centre, by the contract's formula inverted. */
+/** Clicks near the centre of pixel (i, j) of a view's image and returns the pixel that the
+ *  contract's formula gives for where the click landed (Chromium's clientX and clientY are whole
+ *  CSS pixels, finer than an image pixel only when the image is shown enlarged):
+ *  i = ⌊x·Nx/W⌋, j = Ny − 1 − ⌊y·Ny/H⌋. The page must select exactly that pixel. */
 async function clickPixel(page, [i, j], view = 0) {
   const canvas = page.locator('[data-whitted="view"]').nth(view).locator('[data-whitted="image"]');
   const box = await canvas.boundingBox();
   const { width: nx, height: ny } = await canvas.evaluate((c) => ({ width: c.width, height: c.height }));
-  await page.mouse.click(box.x + ((i + 0.5) * box.width) / nx, box.y + ((ny - 1 - j + 0.5) * box.height) / ny);
+  await canvas.evaluate((c) => c.addEventListener('click', (e) => {
+    const r = c.getBoundingClientRect();
+    self.landed = { x: e.clientX - r.left, y: e.clientY - r.top, w: r.width, h: r.height };
+  }, { once: true, capture: true }));
+  await page.mouse.click(box.x + ((i + 0.5) * box.width) / nx, box.y + ((ny - 1 - (j || 0) + 0.5) * box.height) / ny);
+  const at = await page.evaluate(() => self.landed);
   await settled(page);
+  const chosen = [Math.floor((at.x * nx) / at.w), ny - 1 - Math.floor((at.y * ny) / at.h)];
+  return j === undefined ? [chosen[0]] : chosen;
 }
 
 /** A request to the page's own module (the quick worker). */
@@ -80,20 +90,22 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   await shot(page, '01-opened');
 
   // A click on the glass sphere: the narration is `whitted trace`'s, step by step.
-  await clickPixel(page, GLASS);
+  const pixel = await clickPixel(page, GLASS);
+  assert.ok(Math.abs(pixel[0] - GLASS[0]) <= 1 && Math.abs(pixel[1] - GLASS[1]) <= 1, `${pixel}`);
   s = await state(page);
   await shot(page, '02-clicked-glass');
-  const narration = cutSteps(whitted(['trace', SCENE, '--pixel', GLASS.join(',')]));
+  assert.match(s.hash, new RegExp(`^#pixel=${pixel.join(',')}&step=1&`));
+  const narration = cutSteps(whitted(['trace', SCENE, '--pixel', pixel.join(',')]));
+  assert.ok(narration.some((t) => t.includes('Nearest hit I on “glass”')), 'the pixel is on the glass sphere');
   assert.deepEqual(s.steps.map((x) => x.step), narration.map((_, k) => k + 1));
   s.steps.forEach((x, k) => assert.equal(x.text, narration[k], `step ${k + 1}`));
-  assert.match(s.hash, /^#pixel=422,292&step=1&/);
-  assert.match(s.command, /^whitted trace .*--pixel 422,292/);
+  assert.match(s.command, new RegExp(`^whitted trace .*--pixel ${pixel.join(',')}`));
   // The events each step names are the module's narrate answer, indices into `trace --json`.
-  const doc = whitted(['trace', SCENE, '--pixel', GLASS.join(','), '--json']);
+  const doc = whitted(['trace', SCENE, '--pixel', pixel.join(','), '--json']);
   const events = JSON.parse(doc).events.length;
-  const request = { scene: readFileSync(join(ROOT, 'scenes/whitted.json'), 'utf8'), name: SCENE, target: { pixel: GLASS } };
+  const request = { scene: readFileSync(join(ROOT, 'scenes/whitted.json'), 'utf8'), name: SCENE, target: { pixel } };
   const traced = await call(page, { op: 'trace', ...request });
-  assert.equal(traced.text, doc.replace(/\n$/, ''), 'the page module traces as the CLI does');
+  assert.equal(traced.text, doc, 'the page module traces as the CLI does');
   const narrated = JSON.parse((await call(page, { op: 'narrate', ...request, lang: 'en' })).text);
   assert.deepEqual(s.steps.map((x) => x.events), narrated.steps.map((x) => x.events.join(' ')));
   for (const x of narrated.steps) for (const e of x.events) assert.ok(e >= 0 && e < events, `event ${e}`);
@@ -114,12 +126,12 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   assert.match(s.hash, /step=4/);
 
   // Romanian: the same place, Romanian words and narration.
-  await Promise.all([page.waitForURL(/\/ro\/secondary-rays\.html#pixel=422,292&step=4/), page.click('[data-whitted="lang"]')]);
+  await Promise.all([page.waitForURL(new RegExp(`/ro/secondary-rays\\.html#pixel=${pixel.join(',')}&step=4`)), page.click('[data-whitted="lang"]')]);
   await settled(page);
   s = await state(page);
   await shot(page, '04-romanian');
   assert.equal(s.current.step, 4);
-  const ro = cutSteps(whitted(['trace', SCENE, '--pixel', GLASS.join(','), '--lang', 'ro']));
+  const ro = cutSteps(whitted(['trace', SCENE, '--pixel', pixel.join(','), '--lang', 'ro']));
   assert.equal(s.currentText, ro[3].replace(/^\s+/, ''));
   assert.equal(await page.locator('[data-whitted="view"] label', { hasText: 'Adâncimea' }).count(), 3);
   assert.match(await page.textContent('[data-whitted="position"]'), /^Pasul 4 din/);
@@ -155,7 +167,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   await shot(page, '06-depth-1');
   assert.ok(s.steps.length < before, `${s.steps.length} < ${before}`);
   assert.match(s.hash, /depth=1/);
-  const depth1 = cutSteps(whitted(['trace', SCENE, '--pixel', GLASS.join(','), '--depth', '1', '--lang', 'ro']));
+  const depth1 = cutSteps(whitted(['trace', SCENE, '--pixel', pixel.join(','), '--depth', '1', '--lang', 'ro']));
   assert.equal(s.steps.length, depth1.length);
 
   // A depth beyond the CLI's limit and a pixel outside the image are refused with a message.
@@ -179,14 +191,24 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
 });
 
 test('a page opened with a fragment shows that state', async () => {
-  const page = await open(browser, `en/${LESSON}.html#pixel=400,200&step=7&depth=2&aa=corners`);
+  let page = await open(browser, `en/${LESSON}.html#pixel=400,200&step=7&depth=2&aa=center`);
   await settled(page);
-  const s = await state(page);
+  let s = await state(page);
   await shot(page, '08-fragment');
   assert.equal(s.current.step, 7);
   assert.equal(s.depth, '2');
+  let cli = cutSteps(whitted(['trace', SCENE, '--pixel', '400,200', '--depth', '2']));
+  assert.deepEqual(s.steps.map((x) => x.text), cli);
+  assert.equal(s.currentText, cli[6].replace(/^\s+/, ''));
+  assert.deepEqual(page.problems, []);
+  // Sampled: the narration of the pixel's samples, as `whitted trace --aa corners` tells it.
+  page = await open(browser, `ro/${LESSON}.html#pixel=400,200&step=2&aa=corners`);
+  await settled(page);
+  s = await state(page);
+  await shot(page, '08-fragment-corners');
   assert.equal(s.aa, 'corners');
-  const cli = cutSteps(whitted(['trace', SCENE, '--pixel', '400,200', '--depth', '2', '--aa', 'corners']));
+  assert.equal(s.current.step, 2);
+  cli = cutSteps(whitted(['trace', SCENE, '--pixel', '400,200', '--aa', 'corners', '--lang', 'ro']));
   assert.deepEqual(s.steps.map((x) => x.text), cli);
   assert.deepEqual(page.problems, []);
 });
@@ -200,12 +222,13 @@ test('every lesson and playground page opens live in both languages, also at pho
       await settled(page);
       const views = await page.evaluate(() => [...document.querySelectorAll('[data-whitted="view"]')].map((v) => ({
         width: v.querySelector('canvas').width,
+        stats: v.querySelector('[data-whitted="stats"]').textContent,
         figure: !!v.querySelector('[data-whitted="figure"] svg'),
         message: v.querySelector('[data-whitted="message"]').textContent,
       })));
       assert.ok(views.length > 0, name);
       for (const v of views) {
-        assert.ok(v.width > 1 && v.figure, `${lang}/${name}: ${JSON.stringify(v)}`);
+        assert.ok(v.width >= 1 && v.stats && v.figure && !v.message, `${lang}/${name}: ${JSON.stringify(v)}`);
       }
       if (lang === 'en' && ['ray-tree', 'bvh', 'adaptive', 'play'].includes(name)) await shot(page, `09-${name}`);
       assert.deepEqual(page.problems, [], `${lang}/${name}`);
@@ -215,6 +238,7 @@ test('every lesson and playground page opens live in both languages, also at pho
   const phone = await open(browser, `ro/${LESSON}.html`, { width: 390, height: 844 });
   await settled(phone);
   await clickPixel(phone, GLASS);
+  await phone.keyboard.press('ArrowRight');
   await shot(phone, '10-phone');
   const overflow = await phone.evaluate(() => document.scrollingElement.scrollWidth - innerWidth);
   assert.ok(overflow <= 0, `no sideways scrolling at phone width (${overflow} px too wide)`);
@@ -227,10 +251,10 @@ test('the playground: an example picked, a pixel clicked', async () => {
   await page.selectOption('[data-whitted="example"]', 'flat.json');
   await page.waitForFunction(() => document.querySelector('[data-whitted="view"]').dataset.scene === 'flat.json');
   await settled(page);
-  await clickPixel(page, [30, 0]);
+  const pixel = await clickPixel(page, [30]);
   const s = await state(page);
   await shot(page, '11-playground-flat');
-  const cli = cutSteps(whitted(['trace', 'scenes/flat.json', '--pixel', '30']));
+  const cli = cutSteps(whitted(['trace', 'scenes/flat.json', '--pixel', String(pixel[0])]));
   assert.deepEqual(s.steps.map((x) => x.text), cli);
   assert.deepEqual(page.problems, []);
 });
@@ -251,7 +275,7 @@ test('the WebAssembly build traces and draws byte for byte as the CLI', async ()
       : [0, 1, 2, 3].flatMap((a) => [0, 1, 2].map((b) => [
         Math.floor(((a + 0.5) * info.width) / 4), Math.floor(((b + 0.5) * info.height) / 3)]));
     for (const pixel of pixels) {
-      const cli = whitted(['trace', path, '--pixel', pixel.join(','), '--json']).replace(/\n$/, '');
+      const cli = whitted(['trace', path, '--pixel', pixel.join(','), '--json']);
       const wasm = await call(page, { op: 'trace', scene, name: path, target: { pixel } });
       assert.equal(wasm.status, 0, wasm.text);
       assert.equal(wasm.text, cli, `${path} ${pixel}`);

@@ -32,7 +32,8 @@ export async function open(browser, path, { width = 1280, height = 720 } = {}) {
   page.on('pageerror', (e) => problems.push('exception: ' + e.message));
   page.on('crash', () => problems.push('crash'));
   page.problems = problems;
-  await page.goto(pathToFileURL(join(SITE, path)).href);
+  const [file, fragment] = path.split('#');
+  await page.goto(pathToFileURL(join(SITE, file)).href + (fragment ? '#' + fragment : ''));
   return page;
 }
 

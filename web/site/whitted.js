@@ -364,7 +364,8 @@
           this.complain(answer);
           return;
         }
-        rays += answer.json.rays || 0;
+        // `rays` is by kind (primary, reflected, transmitted, shadow), as `render --json` gives it.
+        rays += Object.values(answer.json.rays || {}).reduce((a, b) => a + b, 0);
         const band = answer.bytes;
         if (band.length === width * height * 4) {
           // The whole image came at once (a module without bands).
@@ -434,7 +435,8 @@
         this.complain(narration);
         return;
       }
-      this.message(figure.json.pick || '');
+      this.message('');
+      this.part('pick').textContent = figure.json.pick || '';
       this.shown = figure.json.pixel || null;
       this.part('figure').innerHTML = isolateIds(figure.json.svg, 'v' + this.index + '-');
       this.showSteps(narration ? narration.json : null);
@@ -591,8 +593,8 @@
     if (views.length === 1) playground(views[0]);
     self.whitted = { engines, views }; // for tests and the benchmark
     status.textContent = say('ready', { ms: Math.round(performance.now() - started) });
-    document.body.classList.add('live');
     await Promise.all(views.map((v) => v.start()));
+    document.body.dataset.readyMs = String(Math.round(performance.now()));
     document.body.dataset.ready = 'true';
   }
 
