@@ -54,6 +54,12 @@ impl Image {
         }
         out
     }
+    /// 8-bit RGBA bytes in file order (top row first), alpha 255: the pixels of [`Image::to_png`]
+    /// as a browser's `ImageData` takes them.
+    #[must_use]
+    pub fn to_rgba8(&self) -> Vec<u8> {
+        self.to_rgb8().chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], u8::MAX]).collect()
+    }
     /// The image as PNG bytes.
     ///
     /// # Errors

@@ -5,13 +5,17 @@
 //! `I = I_local + ks·R + kt·T` (`trace`) while reporting every step to a recorder chosen at compile
 //! time (`record`), and what was recorded becomes the trace document (`doc`), a narration, an image
 //! (`render`, `image`) or a diagram (`figure`), and the lessons (`lesson`) gather the diagrams of
-//! the lecture, with the interactive pages of the course (`site`); `tradeoff` measures what accuracy costs. The mathematics is written once for 2D
+//! the lecture, with the interactive pages of the course (`site`); `tradeoff` measures what
+//! accuracy costs. `request` is what a command does between
+//! its arguments and its answer, shared by the command line and the WebAssembly binding; `clock`
+//! times where the platform has a clock. The mathematics is written once for 2D
 //! and 3D (`geom`, `shape`).
 //! See `ARCHITECTURE.md` for the codemap and the invariants.
 #![forbid(unsafe_code)]
 
 pub mod accel;
 pub mod bounds;
+pub mod clock;
 pub mod doc;
 pub mod figure;
 pub mod geom;
@@ -19,6 +23,7 @@ pub mod image;
 pub mod lesson;
 pub mod record;
 pub mod render;
+pub mod request;
 pub mod sample;
 pub mod scene;
 pub mod shape;

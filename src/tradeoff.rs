@@ -11,13 +11,13 @@
 //! the share of pixels with a channel off by more than 1/255.
 
 use crate::accel::{Accel, AccelKind, AccelOptions};
+use crate::clock::Stopwatch;
 use crate::image::Image;
 use crate::render::{render, RenderConfig, Rendered};
 use crate::sample::Sampling;
 use crate::scene::Scene;
 use crate::shape::Dim;
 use crate::trace::stats::Stats;
-use std::time::Instant;
 
 /// The reference: adaptive, threshold 0, K = 3 (81 shared samples per pixel area).
 pub const REFERENCE_SAMPLING: Sampling = Sampling::Adaptive { threshold: 0.0, max_level: 3 };
@@ -191,9 +191,9 @@ fn measure<V: Dim>(scene: &Scene<V>, setting: Setting, runs: usize) -> (f64, Ren
     let accel = Accel::build_with(scene, &AccelOptions::of(setting.accel));
     let config = RenderConfig { sampling: setting.sampling, ..RenderConfig::centers(setting.depth) };
     let timed = || {
-        let start = Instant::now();
+        let watch = Stopwatch::start();
         let rendered = render(scene, &accel, &config);
-        (start.elapsed().as_secs_f64(), rendered)
+        (watch.seconds(), rendered)
     };
     let (first, mut rendered) = timed();
     let mut times = vec![first];

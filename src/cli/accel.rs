@@ -1,9 +1,11 @@
-//! The acceleration options shared by `render` and `trace`: `--accel`, `--bounds`, `--grid`
-//! (algorithm.md §9), turned once into `accel::AccelOptions`.
+//! The acceleration options shared by `render`, `trace` and `figure`: `--accel`, `--bounds`,
+//! `--grid` (algorithm.md §9), turned into `request::options::AccelChoice` (checked there).
 
 use clap::{Args, ValueEnum};
-use whitted::accel::{AccelKind, AccelOptions};
+use whitted::accel::AccelKind;
 use whitted::bounds::VolumeKind;
+use whitted::request::options::AccelChoice;
+use whitted::request::parse;
 
 /// Which structure finds hits.
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -50,17 +52,14 @@ pub struct AccelArgs {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Cells(Vec<usize>);
 
+/// `--grid`'s parser: `request::parse::grid`.
+fn cells(s: &str) -> Result<Cells, String> {
+    parse::grid(s).map(Cells)
+}
+
 impl AccelArgs {
-    /// The options, checked against the scene's dimension.
-    ///
-    /// # Errors
-    /// A message when `--grid` has the wrong number of axes.
-    pub fn options(&self, dim: usize) -> Result<AccelOptions, String> {
-        if let Some(Cells(g)) = &self.grid {
-            if g.len() != dim {
-                return Err(format!("--grid: a {dim}D scene needs {dim} cell counts, got {}", g.len()));
-            }
-        }
+    /// The choice, for `request::options::AccelChoice::options`.
+    pub fn choice(&self) -> AccelChoice {
         let kind = match self.accel {
             AccelArg::None => AccelKind::None,
             AccelArg::Bounds => AccelKind::Bounds,
@@ -73,39 +72,6 @@ impl AccelArgs {
             BoundsArg::Aabb => VolumeKind::Aabb,
             BoundsArg::Kdop => VolumeKind::Kdop,
         };
-        Ok(AccelOptions { kind, volume, grid: self.grid.clone().map(|Cells(g)| g) })
-    }
-}
-
-/// Parses `NX,NY[,NZ]`: each at least 1, at most 2^24 cells in all.
-fn cells(s: &str) -> Result<Cells, String> {
-    let n: Vec<usize> = s
-        .split(',')
-        .map(|x| x.trim().parse::<usize>().map_err(|_| format!("`{x}` is not a cell count")))
-        .collect::<Result<_, _>>()?;
-    if !(2..=3).contains(&n.len()) {
-        return Err(format!("expected NX,NY,NZ (or NX,NY in 2D), got {} numbers", n.len()));
-    }
-    if n.contains(&0) {
-        return Err("every cell count must be at least 1".into());
-    }
-    let total = n.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
-    if total.is_none_or(|t| t > whitted::accel::grid::MAX_CELLS) {
-        return Err(format!("at most {} cells in all", whitted::accel::grid::MAX_CELLS));
-    }
-    Ok(Cells(n))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn grid_cells_parse() {
-        assert_eq!(cells("4,4,4"), Ok(Cells(vec![4, 4, 4])));
-        assert_eq!(cells("8,2"), Ok(Cells(vec![8, 2])));
-        assert!(cells("0,1,1").is_err());
-        assert!(cells("4").is_err());
-        assert!(cells("4096,4096,4096").is_err());
+        AccelChoice { kind, volume, grid: self.grid.clone().map(|Cells(g)| g) }
     }
 }

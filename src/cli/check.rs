@@ -1,14 +1,11 @@
 //! `whitted check`: validate a scene and say what it models — dimension, objects by type,
-//! lights, which ray kinds can occur and why, the depth — or every error at once (exit code 2).
+//! lights, which ray kinds can occur and why, the depth (`request::check`) — or every error at
+//! once (exit code 2).
 
 use super::{load_scene, print_out, Failure};
 use clap::Args;
-use std::collections::BTreeMap;
-use std::fmt::Write;
 use std::path::PathBuf;
-use whitted::scene::camera::Projection;
-use whitted::scene::{AnyScene, Scene};
-use whitted::shape::Dim;
+use whitted::request::check::report;
 
 /// Options of `whitted check`.
 #[derive(Args, Debug)]
@@ -19,84 +16,7 @@ pub struct CheckArgs {
 
 /// Runs `whitted check`.
 pub fn run(args: &CheckArgs) -> Result<(), Failure> {
-    let text = match load_scene(&args.scene)? {
-        AnyScene::Flat(s) => describe(&s),
-        AnyScene::Space(s) => describe(&s),
-    };
-    print_out(&format!("{}: valid\n{text}", args.scene.display()));
+    let scene = load_scene(&args.scene)?;
+    print_out(&report(&scene, &args.scene.display().to_string()));
     Ok(())
-}
-
-/// What a valid scene models, a few lines for a person.
-fn describe<V: Dim>(scene: &Scene<V>) -> String {
-    let mut out = String::new();
-    let cam = &scene.camera;
-    let projection = match cam.projection {
-        Projection::Perspective => "perspective",
-        Projection::Orthographic => "orthographic",
-    };
-    let image =
-        if V::DIM == 2 { format!("{} pixels", cam.nx) } else { format!("{}x{} pixels", cam.nx, cam.ny) };
-    let _ = writeln!(out, "  dimension: {} ({projection} camera, {image}, p = {})", V::NAME, cam.p);
-    let mut by_type: BTreeMap<&str, usize> = BTreeMap::new();
-    for o in &scene.objects {
-        *by_type.entry(o.shape.kind()).or_default() += 1;
-    }
-    let types: Vec<String> = by_type.iter().map(|(k, n)| format!("{n} {k}")).collect();
-    let _ = writeln!(
-        out,
-        "  objects: {}{}",
-        scene.objects.len(),
-        if types.is_empty() {
-            " (the image is the background)".to_string()
-        } else {
-            format!(" ({})", types.join(", "))
-        }
-    );
-    for (i, o) in scene.objects.iter().enumerate() {
-        if let whitted::shape::Shape::Mesh(m) = &o.shape {
-            use whitted::shape::Parts;
-            let _ = writeln!(
-                out,
-                "  mesh {}: {} triangles, {} degenerate skipped",
-                scene.object_label(i),
-                m.count(),
-                m.skipped()
-            );
-        }
-    }
-    let _ = writeln!(out, "  lights: {}", scene.lights.len());
-    let _ = writeln!(out, "  materials: {}", scene.materials.len());
-    let _ = writeln!(out, "  max_depth: {} ({})", scene.max_depth, depth_meaning(scene.max_depth));
-    let _ = writeln!(out, "  rays that can occur:");
-    let _ = writeln!(out, "    primary: yes, one per pixel centre");
-    let shadow = if scene.lights.is_empty() || scene.objects.is_empty() {
-        "no: no lights or no objects".to_string()
-    } else {
-        format!("yes, at most one per light ({}) at every hit where N·L > 0", scene.lights.len())
-    };
-    let _ = writeln!(out, "    shadow: {shadow}");
-    let names = |pred: &dyn Fn(usize) -> bool| -> Vec<String> {
-        (0..scene.objects.len()).filter(|i| pred(*i)).map(|i| scene.object_label(i)).collect()
-    };
-    let secondary = |kind: &str, field: &str, objs: Vec<String>| {
-        if scene.max_depth == 0 {
-            format!("    {kind}: no: max_depth = 0 is ray casting")
-        } else if objs.is_empty() {
-            format!("    {kind}: no: no object has {field} > 0")
-        } else {
-            format!("    {kind}: yes, from {} ({field} > 0)", objs.join(", "))
-        }
-    };
-    let _ = writeln!(out, "{}", secondary("reflected", "ks", names(&|i| scene.material_of(i).reflects())));
-    let _ = writeln!(out, "{}", secondary("transmitted", "kt", names(&|i| scene.material_of(i).transmits())));
-    out
-}
-
-fn depth_meaning(d: u32) -> String {
-    match d {
-        0 => "ray casting: no secondary rays".into(),
-        1 => "one generation of secondary rays".into(),
-        n => format!("up to {n} generations of secondary rays"),
-    }
 }

@@ -3,16 +3,19 @@
 //! kind with one line.
 
 use super::accel::AccelArgs;
-use super::sampling::{AaArg, SamplingArgs};
-use super::trace::{target, LangArg};
-use super::{load_scene, parse, print_out, write_file, Failure};
+use super::sampling::SamplingArgs;
+use super::trace::LangArg;
+use super::{load_scene, print_out, write_file, Failure};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use whitted::figure::drawing::Drawing;
-use whitted::figure::plane::Planar;
-use whitted::figure::source::{self, Aim, Tracing};
-use whitted::figure::{self as fig, skia, svg, FigureKind, Options};
-use whitted::scene::{AnyScene, Scene};
+use whitted::figure::source::Tracing;
+use whitted::figure::{skia, svg, FigureKind, Options};
+use whitted::request::figure::{default_aa, figure, Request};
+use whitted::request::options::canvas;
+use whitted::request::parse;
+use whitted::request::target::Target;
+use whitted::scene::AnyScene;
 
 /// Options of `whitted figure`.
 #[derive(Args, Debug)]
@@ -63,14 +66,6 @@ fn kind(text: &str) -> Result<FigureKind, String> {
     })
 }
 
-/// The canvas size of `--size` (1920×1080 without it; W alone keeps 16:9).
-pub fn canvas(size: Option<(usize, Option<usize>)>) -> (u32, u32) {
-    let Some((w, h)) = size else { return (1920, 1080) };
-    let h = h.unwrap_or(((w * 9 + 8) / 16).max(1));
-    // parse::size caps both at 65536.
-    (u32::try_from(w).unwrap_or(u32::MAX), u32::try_from(h).unwrap_or(u32::MAX))
-}
-
 /// Runs `whitted figure`.
 pub fn run(args: &FigureArgs) -> Result<(), Failure> {
     if args.list {
@@ -88,34 +83,16 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
     let scene = load_scene(scene_path)?;
     let request = Request {
         kind,
-        pixel: args.pixel,
-        ray: args.ray.clone(),
+        target: Target { pixel: args.pixel, ray: args.ray.clone() },
         tracing: Tracing {
             depth: args.depth,
-            sampling: match kind {
-                FigureKind::Adaptive | FigureKind::HeatMap => args.sampling.sampling_or(AaArg::Adaptive)?,
-                _ => args.sampling.sampling()?,
-            },
-            accel: args.accel.options(dim_of(&scene)).map_err(Failure::input)?,
+            sampling: args.sampling.sampling_or(default_aa(kind))?,
+            accel: args.accel.choice().options(dim_of(&scene))?,
         },
         opts: Options { lang: args.lang.lang(), width, height },
     };
-    let drawing = figure(&scene, &scene_name(scene_path), &request)?;
-    write_file(&output, &format.encode(&drawing)?)
-}
-
-/// One figure to make: its kind, what to trace, how to draw.
-pub struct Request {
-    /// The diagram.
-    pub kind: FigureKind,
-    /// `--pixel`.
-    pub pixel: Option<(usize, Option<usize>)>,
-    /// `--ray`.
-    pub ray: Option<(Vec<f64>, Vec<f64>)>,
-    /// Depth (and, later, the structure).
-    pub tracing: Tracing,
-    /// Language and size.
-    pub opts: Options,
+    let made = figure(&scene, &scene_name(scene_path), &request)?;
+    write_file(&output, &format.encode(&made.drawing)?)
 }
 
 /// The dimension of a loaded scene.
@@ -129,32 +106,6 @@ fn dim_of(scene: &AnyScene) -> usize {
 /// The scene's name for captions: its file stem.
 pub fn scene_name(path: &Path) -> String {
     path.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
-}
-
-/// Records and draws one figure of a loaded scene.
-pub fn figure(scene: &AnyScene, name: &str, request: &Request) -> Result<Drawing, Failure> {
-    match scene {
-        AnyScene::Flat(s) => figure_in(s, name, request),
-        AnyScene::Space(s) => figure_in(s, name, request),
-    }
-}
-
-/// [`figure`] of a scene of known dimension.
-pub fn figure_in<V: Planar>(scene: &Scene<V>, name: &str, request: &Request) -> Result<Drawing, Failure> {
-    let aim = if request.pixel.is_some() || request.ray.is_some() {
-        let (ray, traced) = target(scene, request.pixel, request.ray.as_ref())?;
-        match traced.pixel.as_deref() {
-            Some([i]) => Aim::Pixel(*i, 0),
-            Some([i, j]) => Aim::Pixel(*i, *j),
-            _ => Aim::Ray(ray),
-        }
-    } else {
-        Aim::Auto
-    };
-    let traces = source::record(request.kind, scene, name, &aim, &request.tracing)
-        .map_err(|e| Failure::input(format!("{}: {e}", request.kind.name())))?;
-    fig::draw(request.kind, &traces, scene, &request.opts)
-        .map_err(|e| Failure::input(format!("{}: {e}", request.kind.name())))
 }
 
 /// The two output formats.

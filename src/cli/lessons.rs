@@ -6,9 +6,9 @@
 //! scripts and style of `web/site/`, and the WebAssembly module as `out/whitted-wasm.js` when
 //! `web/build.sh` has built it (otherwise stderr says what is missing and how to get it).
 
-use super::figure::{canvas, figure, scene_name, Format, Request};
+use super::figure::{scene_name, Format};
 use super::trace::LangArg;
-use super::{load_scene, parse, print_out, write_file, Failure};
+use super::{load_scene, print_out, write_file, Failure};
 use clap::Args;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -17,6 +17,10 @@ use whitted::accel::AccelOptions;
 use whitted::figure::source::Tracing;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::{self, FigureSpec, Lesson, Shown};
+use whitted::request::figure::{figure, Request};
+use whitted::request::options::canvas;
+use whitted::request::parse;
+use whitted::request::target::Target;
 use whitted::sample::Sampling;
 use whitted::scene::AnyScene;
 use whitted::site::{self, Nav, View};
@@ -178,8 +182,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             let (png, svg) = (dir.join(format!("{stem}.png")), dir.join(format!("{stem}.svg")));
             let request = Request {
                 kind: spec.kind,
-                pixel: spec.pixel,
-                ray: spec.ray.clone(),
+                target: Target { pixel: spec.pixel, ray: spec.ray.clone() },
                 tracing: Tracing {
                     depth: spec.depth,
                     sampling: spec.sampling.unwrap_or(Sampling::Center),
@@ -191,7 +194,8 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
                 .as_ref()
                 .map_err(Clone::clone)
                 .and_then(|scene| figure(scene, &scene_name(&scene_path), &request).map_err(|f| f.message))
-                .and_then(|drawing| {
+                .and_then(|made| {
+                    let drawing = made.drawing;
                     for (path, format) in [(&png, Format::Png), (&svg, Format::Svg)] {
                         write_file(path, &format.encode(&drawing).map_err(|f| f.message)?)
                             .map_err(|f| f.message)?;

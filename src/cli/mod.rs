@@ -6,7 +6,6 @@ mod accel;
 mod check;
 mod figure;
 mod lessons;
-mod parse;
 mod render;
 mod sampling;
 mod step;
@@ -14,7 +13,6 @@ mod trace;
 mod tradeoff;
 
 use clap::{Parser, Subcommand};
-use std::fmt;
 use std::path::{Path, PathBuf};
 use whitted::scene::load::load_str_with;
 use whitted::scene::AnyScene;
@@ -49,30 +47,7 @@ enum Command {
 }
 
 /// An error with its exit code: 2 for bad input (scene, arguments), 1 for anything else.
-#[derive(Debug)]
-pub struct Failure {
-    /// The message, one line per problem.
-    pub message: String,
-    /// The process exit code.
-    pub code: u8,
-}
-
-impl Failure {
-    /// Bad input: exit code 2.
-    pub fn input(message: impl Into<String>) -> Self {
-        Self { message: message.into(), code: 2 }
-    }
-    /// Anything else (writing a file failed): exit code 1.
-    pub fn other(message: impl Into<String>) -> Self {
-        Self { message: message.into(), code: 1 }
-    }
-}
-
-impl fmt::Display for Failure {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
+pub use whitted::request::Failure;
 
 /// Reads and validates a scene file; every problem becomes one line of the failure. A mesh's
 /// OBJ file is read relative to the scene file's folder.
@@ -99,6 +74,13 @@ pub fn thread_pool(threads: Option<u32>) -> Result<rayon::ThreadPool, Failure> {
         builder = builder.num_threads(n as usize);
     }
     builder.build().map_err(|e| Failure::other(format!("cannot start the worker threads: {e}")))
+}
+
+/// Says on stderr the options a command ignores (`whitted: --threshold applies to …`).
+pub fn print_notes(notes: &[String]) {
+    for note in notes {
+        eprintln!("whitted: {note}");
+    }
 }
 
 /// Prints to stdout; a closed pipe (`| head`) is not an error.
@@ -131,7 +113,7 @@ pub fn main() -> u8 {
         Ok(()) => 0,
         Err(f) => {
             eprintln!("{}", prefix_lines(&f.message));
-            f.code
+            f.code()
         }
     }
 }

@@ -4,16 +4,16 @@
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::{default_output, load_scene, parse, print_out, thread_pool, write_file, Failure};
+use super::{default_output, load_scene, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use serde_json::json;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
-use whitted::accel::{Accel, AccelOptions};
-use whitted::doc::float;
-use whitted::render::{render, RenderConfig, Rendered, EDGE_MEMORY};
+use whitted::accel::AccelOptions;
+use whitted::request::options::resize;
+use whitted::request::parse;
+use whitted::request::render::{self as job, Job, Outcome};
 use whitted::sample::Sampling;
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
@@ -44,23 +44,6 @@ pub struct RenderArgs {
     accel: AccelArgs,
 }
 
-/// Applies `--size` to a scene's camera: the window stays, the pixel count changes.
-pub fn resize<V: Dim>(scene: &mut Scene<V>, size: Option<(usize, Option<usize>)>) -> Option<usize> {
-    let (w, h) = size?;
-    let cam = &mut scene.camera;
-    if V::DIM == 2 {
-        cam.nx = w;
-        return h;
-    }
-    let h = h.unwrap_or_else(|| {
-        let scaled = (w * cam.ny + cam.nx / 2) / cam.nx;
-        scaled.max(1)
-    });
-    cam.nx = w;
-    cam.ny = h;
-    None
-}
-
 /// Runs `whitted render`.
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let sampling = args.sampling.sampling()?;
@@ -73,7 +56,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         AnyScene::Flat(_) => 2,
         AnyScene::Space(_) => 3,
     };
-    let options = args.accel.options(dim).map_err(Failure::input)?;
+    let options = args.accel.choice().options(dim)?;
     let outcome = match scene {
         AnyScene::Flat(mut s) => {
             let rows = resize(&mut s, args.size);
@@ -112,36 +95,10 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         threads,
     );
     if args.json {
-        let mut doc = json!({
-            "pixels": outcome.rendered.pixels,
-            "samples": rays.primary,
-            "load_seconds": load_seconds,
-            "build_seconds": outcome.build_seconds,
-            "seconds": outcome.seconds,
-            "threads": threads,
-            "accel": outcome.accel,
-            "aa": sampling.name(),
-            "width": outcome.rendered.image.width,
-            "height": outcome.rendered.image.height,
-            "output": output.display().to_string(),
-        });
-        let st = whitted::doc::stats(stats);
-        doc["rays"] = st["rays"].clone();
-        doc["tests"] = st["tests"].clone();
-        if let Sampling::Adaptive { threshold, max_level } = sampling {
-            doc["threshold"] = float(threshold);
-            doc["max_level"] = json!(max_level);
-        }
+        let doc = outcome.json(load_seconds, threads, Some(&output.display().to_string()));
         print_out(&format!("{doc}\n"));
     }
     Ok(())
-}
-
-struct Outcome {
-    rendered: Rendered,
-    build_seconds: f64,
-    seconds: f64,
-    accel: &'static str,
 }
 
 /// The sampling mode as the summary line shows it.
@@ -161,10 +118,6 @@ fn render_scene<V: Dim>(
     options: &AccelOptions,
     strip_rows: Option<usize>,
 ) -> Outcome {
-    let build = Instant::now();
-    let accel = Accel::build_with(scene, options);
-    let build_seconds = build.elapsed().as_secs_f64();
-    let max_depth = args.depth.unwrap_or(scene.max_depth);
     // A progress bar over pixel rows, only for a person watching a terminal.
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = ProgressBar::new(scene.camera.ny as u64);
@@ -180,19 +133,18 @@ fn render_scene<V: Dim>(
             bar.inc(rows);
         }
     };
-    let config = RenderConfig {
-        sampling,
-        max_depth,
-        strip_rows,
-        rays_per_pixel: false,
-        progress: bar.is_some().then_some(&tick as &(dyn Fn(u64) + Sync)),
-        edge_memory: EDGE_MEMORY,
-    };
-    let trace = Instant::now();
-    let rendered = render(scene, &accel, &config);
-    let seconds = trace.elapsed().as_secs_f64();
+    let outcome = job::run(
+        scene,
+        &Job {
+            depth: args.depth,
+            sampling,
+            accel: options,
+            strip_rows,
+            progress: bar.is_some().then_some(&tick as &(dyn Fn(u64) + Sync)),
+        },
+    );
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    Outcome { rendered, build_seconds, seconds, accel: accel.kind().name() }
+    outcome
 }

@@ -1,9 +1,11 @@
 //! `--aa center|corners|adaptive`, `--threshold X`, `--max-level K` (product.md; algorithm.md §8),
 //! shared by `render` and `trace`, turned into a validated `Sampling` once.
 
-use super::{parse, Failure};
+use super::{print_notes, Failure};
 use clap::{Args, ValueEnum};
-use whitted::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD, MAX_LEVEL};
+use whitted::request::options::{Aa, SamplingOptions};
+use whitted::request::parse;
+use whitted::sample::{Sampling, MAX_LEVEL};
 
 /// The `--aa` modes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -43,33 +45,22 @@ impl SamplingArgs {
     /// # Errors
     /// Bad input (exit 2) naming `--threshold` or `--max-level` (the parsers check them first).
     pub fn sampling(&self) -> Result<Sampling, Failure> {
-        self.sampling_or(AaArg::Center)
+        self.sampling_or(Aa::Center)
     }
     /// The validated mode, `default` when `--aa` is not given. A `--threshold` or `--max-level`
     /// that the mode does not use is said on stderr (the run goes on).
     ///
     /// # Errors
     /// As [`SamplingArgs::sampling`].
-    pub fn sampling_or(&self, default: AaArg) -> Result<Sampling, Failure> {
-        let aa = self.aa.unwrap_or(default);
-        if aa != AaArg::Adaptive {
-            let mode = aa.to_possible_value().map(|v| v.get_name().to_owned()).unwrap_or_default();
-            for (given, flag) in
-                [(self.threshold.is_some(), "--threshold"), (self.max_level.is_some(), "--max-level")]
-            {
-                if given {
-                    eprintln!("whitted: {flag} applies to --aa adaptive only; ignored with --aa {mode}");
-                }
-            }
-        }
-        match aa {
-            AaArg::Center => Ok(Sampling::Center),
-            AaArg::Corners => Ok(Sampling::Corners),
-            AaArg::Adaptive => Sampling::adaptive(
-                self.threshold.unwrap_or(DEFAULT_THRESHOLD),
-                self.max_level.unwrap_or(DEFAULT_MAX_LEVEL),
-            )
-            .map_err(|e| Failure::input(e.to_string())),
-        }
+    pub fn sampling_or(&self, default: Aa) -> Result<Sampling, Failure> {
+        let aa = self.aa.map(|a| match a {
+            AaArg::Center => Aa::Center,
+            AaArg::Corners => Aa::Corners,
+            AaArg::Adaptive => Aa::Adaptive,
+        });
+        let given = SamplingOptions { aa, threshold: self.threshold, max_level: self.max_level };
+        let chosen = given.choose(default)?;
+        print_notes(&chosen.notes);
+        Ok(chosen.sampling)
     }
 }

@@ -1,23 +1,16 @@
-//! `whitted trace`: one pixel (or one ray) traced with `EventLog`; `--json` prints the trace
-//! document, otherwise the numbered narration (`doc::narrate`) in English or Romanian. With
-//! `--aa corners|adaptive` the pixel's samples are traced instead of its centre (`sample::trace_pixel`,
-//! `doc::samples`).
+//! `whitted trace`: one pixel (or one ray) traced with `EventLog` (`request::trace`); `--json`
+//! prints the trace document, otherwise the numbered narration (`doc::narrate`) in English or
+//! Romanian. With `--aa corners|adaptive` the pixel's samples are traced instead of its centre.
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::{load_scene, parse, print_out, Failure};
+use super::{load_scene, print_out, Failure};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
-use whitted::accel::Accel;
-use whitted::doc::narrate::{narrate, Lang};
-use whitted::doc::samples::{narrate_samples, sampled_document};
-use whitted::doc::{trace_document, TraceTarget};
-use whitted::geom::ray::Ray;
-use whitted::record::EventLog;
-use whitted::sample::{trace_pixel, Sampling};
-use whitted::scene::{AnyScene, Scene};
-use whitted::shape::Dim;
-use whitted::trace::Tracer;
+use whitted::doc::narrate::Lang;
+use whitted::request::parse;
+use whitted::request::target::Target;
+use whitted::request::trace::{document_text, Trace};
 
 /// The narration's language.
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -93,84 +86,16 @@ pub fn narration(what: &TraceWhat) -> Result<String, Failure> {
 
 /// The trace document (`json`) or the narration.
 fn traced(what: &TraceWhat, json: bool) -> Result<String, Failure> {
-    match load_scene(&what.scene)? {
-        AnyScene::Flat(s) => trace_scene(&s, what, json),
-        AnyScene::Space(s) => trace_scene(&s, what, json),
-    }
-}
-
-/// The primary ray and what it was asked as: `--pixel I,J` (validated against the image) or
-/// `--ray O:D` (validated against the dimension); shared by `trace`, `figure` and `lessons`.
-pub fn target<V: Dim>(
-    scene: &Scene<V>,
-    pixel: Option<(usize, Option<usize>)>,
-    ray: Option<&(Vec<f64>, Vec<f64>)>,
-) -> Result<(Ray<V>, TraceTarget), Failure> {
-    let cam = &scene.camera;
-    if let Some((i, j)) = pixel {
-        let j = match (V::DIM, j) {
-            (2, None | Some(0)) => 0,
-            (2, Some(j)) => {
-                return Err(Failure::input(format!("--pixel: a 2D image has one row (j = 0), got j = {j}")))
-            }
-            (_, None) => return Err(Failure::input("--pixel: a 3D scene needs I,J".to_string())),
-            (_, Some(j)) => j,
-        };
-        if i >= cam.nx || j >= cam.ny {
-            return Err(Failure::input(format!(
-                "--pixel: ({i}, {j}) is outside the image: i must be < {}, j < {}",
-                cam.nx, cam.ny
-            )));
-        }
-        let (u, v) = cam.pixel_center(i, j);
-        let ray = cam.primary_ray(u, v);
-        let (pixel, uv) = if V::DIM == 2 { (vec![i], vec![u]) } else { (vec![i, j], vec![u, v]) };
-        return Ok((ray, TraceTarget { pixel: Some(pixel), uv: Some(uv) }));
-    }
-    let Some((o, d)) = ray else {
-        return Err(Failure::input("give --pixel I,J or --ray O:D"));
+    let scene = load_scene(&what.scene)?;
+    let trace = Trace {
+        target: Target { pixel: what.pixel, ray: what.ray.clone() },
+        depth: what.depth,
+        sampling: what.sampling.sampling()?,
+        accel: what.accel.choice(),
     };
-    let wrong = |what: &str, n: usize| {
-        Failure::input(format!(
-            "--ray: the {what} must have {} numbers in a {}D scene, got {n}",
-            V::DIM,
-            V::DIM
-        ))
-    };
-    let origin = V::from_slice(o).ok_or_else(|| wrong("origin", o.len()))?;
-    let dir = V::from_slice(d).ok_or_else(|| wrong("direction", d.len()))?;
-    let dir = dir.try_unit().ok_or_else(|| Failure::input("--ray: the direction must not be zero"))?;
-    Ok((Ray::new(origin, dir), TraceTarget { pixel: None, uv: None }))
-}
-
-fn trace_scene<V: Dim>(scene: &Scene<V>, args: &TraceWhat, json: bool) -> Result<String, Failure> {
-    let sampling = args.sampling.sampling()?;
-    let (ray, target) = target(scene, args.pixel, args.ray.as_ref())?;
-    let options = args.accel.options(V::DIM).map_err(Failure::input)?;
-    let accel = Accel::build_with(scene, &options);
-    let mut tracer = Tracer::new(scene, &accel, EventLog::new());
-    if let Some(d) = args.depth {
-        tracer.max_depth = d;
-    }
-    let pretty = |doc: &serde_json::Value| {
-        serde_json::to_string_pretty(doc).map(|t| t + "\n").map_err(|e| Failure::other(e.to_string()))
-    };
-    if sampling != Sampling::Center {
-        let Some(pixel) = target.pixel.clone() else {
-            return Err(Failure::input("--aa corners|adaptive samples a pixel: give --pixel, not --ray"));
-        };
-        let traced = trace_pixel(&mut tracer, sampling, pixel[0], pixel.get(1).copied().unwrap_or(0));
-        return if json {
-            pretty(&sampled_document(scene, &tracer.recorder, &tracer.stats, &target, sampling, &traced))
-        } else {
-            Ok(narrate_samples(&target, sampling, &traced, &tracer.stats, args.lang.lang()))
-        };
-    }
-    let uv = target.uv.clone().unwrap_or_default();
-    let color = tracer.trace_primary(&ray, &uv);
     if json {
-        pretty(&trace_document(scene, &tracer.recorder, &tracer.stats, &target, color))
+        document_text(&trace.document(&scene)?)
     } else {
-        Ok(narrate(scene, &tracer.recorder, &tracer.stats, &target, tracer.max_depth, args.lang.lang()))
+        Ok(trace.narration(&scene, what.lang())?.narration.text)
     }
 }

@@ -4,10 +4,9 @@
 //! to DIR: the error against the time with the Pareto front, and the reference's rays-per-pixel
 //! heat map.
 
-use super::figure::{canvas, figure_in, scene_name, Format, Request};
-use super::render::resize;
+use super::figure::{scene_name, Format};
 use super::trace::LangArg;
-use super::{load_scene, parse, print_out, thread_pool, write_file, Failure};
+use super::{load_scene, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
@@ -21,6 +20,10 @@ use whitted::figure::plane::Planar;
 use whitted::figure::source::Tracing;
 use whitted::figure::tradeoff as tradeoff_plot;
 use whitted::figure::{FigureKind, Options};
+use whitted::request::figure::{figure_in, Request};
+use whitted::request::options::{canvas, resize};
+use whitted::request::parse;
+use whitted::request::target::Target;
 use whitted::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD};
 use whitted::scene::{AnyScene, Scene};
 use whitted::tradeoff::{self, Measured, Tradeoff, REFERENCE_DEPTH, REFERENCE_SAMPLING};
@@ -224,8 +227,7 @@ fn plots<V: Planar>(
         &name,
         &Request {
             kind: FigureKind::HeatMap,
-            pixel: None,
-            ray: None,
+            target: Target::default(),
             tracing: Tracing {
                 depth: None,
                 sampling: Sampling::Adaptive { threshold: DEFAULT_THRESHOLD, max_level: DEFAULT_MAX_LEVEL },
@@ -233,7 +235,8 @@ fn plots<V: Planar>(
             },
             opts,
         },
-    )?;
+    )?
+    .drawing;
     for (stem, drawing) in [("tradeoff", plot.as_ref()), ("heat-map", Some(&heat))] {
         let Some(drawing) = drawing else { continue };
         for format in [Format::Png, Format::Svg] {

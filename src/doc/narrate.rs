@@ -1,6 +1,11 @@
 //! The narration of a trace: numbered steps a student can follow, each giving the lecture's
 //! formula and then the numbers put into it, in English or Romanian (`whitted trace` without
 //! `--json`). It reads the recorded events and tree only; it never traces anything itself.
+//!
+//! Every numbered step names the events it explains, as indices into the log's events (which are
+//! the trace document's `events`, in the same order): a test step its test, a hit step its hit, a
+//! ray's title the event that spawned the ray (`primary_ray`, `reflect`, `refract`), a light its
+//! shadow ray and that ray's tests, a colour the hit and the rays it sums ([`Narration`]).
 
 use super::TraceTarget;
 use crate::geom::Vector;
@@ -74,15 +79,57 @@ fn rgb(c: Rgb) -> String {
     format!("({}, {}, {})", num(c.0[0]), num(c.0[1]), num(c.0[2]))
 }
 
+/// A narration and, for each of its numbered steps in order, the indices of the events it
+/// explains.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Narration {
+    /// The text `whitted trace` prints.
+    pub text: String,
+    /// Per numbered step (step k at `k − 1`), the indices into the log's (the document's) events.
+    pub events: Vec<Vec<usize>>,
+}
+
+/// One numbered step of a narration.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Step {
+    /// Its number, from 1.
+    pub number: usize,
+    /// Its text as [`steps`] cuts it from the narration.
+    pub text: String,
+    /// The indices of the events it explains.
+    pub events: Vec<usize>,
+}
+
+impl Narration {
+    /// The numbered steps: [`steps`] of the text, each with its events.
+    #[must_use]
+    pub fn steps(&self) -> Vec<Step> {
+        steps(&self.text)
+            .into_iter()
+            .enumerate()
+            .map(|(k, text)| Step {
+                number: k + 1,
+                text,
+                events: self.events.get(k).cloned().unwrap_or_default(),
+            })
+            .collect()
+    }
+}
+
+/// An event of the log with its index.
+type Indexed<'a, V> = (usize, &'a Event<V>);
+
 struct Writer<'a, V: Dim> {
     scene: &'a Scene<V>,
     log: &'a EventLog<V>,
     lang: Lang,
     out: String,
     step: usize,
+    /// The events of each step written so far.
+    events: Vec<Vec<usize>>,
     max_depth: u32,
     /// The tests of each shadow ray of the node being told: (light, tests).
-    shadow_tests: Vec<(usize, Vec<&'a Event<V>>)>,
+    shadow_tests: Vec<(usize, Vec<Indexed<'a, V>>)>,
 }
 
 impl<'a, V: Dim> Writer<'a, V> {
@@ -93,9 +140,10 @@ impl<'a, V: Dim> Writer<'a, V> {
         }
     }
 
-    /// A numbered step: its title, then indented lines.
-    fn step(&mut self, indent: usize, title: &str, lines: &[String]) {
+    /// A numbered step: its title, then indented lines; it explains `events`.
+    fn step(&mut self, indent: usize, title: &str, lines: &[String], events: Vec<usize>) {
         self.step += 1;
+        self.events.push(events);
         let pad = "   ".repeat(indent);
         let _ = writeln!(self.out, "{pad}{}. {title}", self.step);
         for l in lines {
@@ -124,8 +172,14 @@ impl<'a, V: Dim> Writer<'a, V> {
         }
     }
 
-    fn events_of(&self, node: usize) -> Vec<&'a Event<V>> {
-        self.log.events.iter().filter(|e| e.ray == Some(node)).map(|e| &e.event).collect()
+    fn events_of(&self, node: usize) -> Vec<Indexed<'a, V>> {
+        let log = self.log;
+        log.events
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.ray == Some(node))
+            .map(|(k, e)| (k, &e.event))
+            .collect()
     }
 
     /// One intersection test as a line: its roots and what was taken.
@@ -160,9 +214,15 @@ impl<'a, V: Dim> Writer<'a, V> {
         }
     }
 
-    fn node(&mut self, index: usize, indent: usize) {
+    /// The steps of ray node `index` and its subtree; `opener` is the event that spawned the ray
+    /// (its `primary_ray`, or the parent's `reflect`/`refract`).
+    fn node(&mut self, index: usize, indent: usize, opener: Option<usize>) {
         let node = &self.log.nodes[index];
         let events = self.events_of(index);
+        let opener = opener
+            .or_else(|| events.iter().find(|(_, e)| matches!(e, Event::PrimaryRay { .. })).map(|(k, _)| *k));
+        let hit_event =
+            events.iter().find(|(_, e)| matches!(e, Event::Hit { .. } | Event::Miss { .. })).map(|(k, _)| *k);
         let title = format!(
             "{} — {} {} ({} {})",
             self.kind_name(node),
@@ -176,18 +236,20 @@ impl<'a, V: Dim> Writer<'a, V> {
             vec_str(node.start.origin),
             vec_str(node.start.direction)
         );
-        self.step(indent, &title, &[ray_line]);
+        self.step(indent, &title, &[ray_line], opener.into_iter().collect());
         let mut children = node.children.iter();
         let mut lights_done = false;
+        // The events that spawned the children, for the colour step.
+        let mut spawned: Vec<usize> = Vec::new();
         // Tests after the hit belong to the shadow ray that follows them.
         let mut seen_hit = false;
-        let mut pending: Vec<&Event<V>> = Vec::new();
+        let mut pending: Vec<Indexed<'a, V>> = Vec::new();
         self.shadow_tests.clear();
-        for e in events {
+        for (k, e) in events {
             match e {
-                Event::ObjectTest { .. } if seen_hit => pending.push(e),
+                Event::ObjectTest { .. } if seen_hit => pending.push((k, e)),
                 Event::BoundTest { .. } | Event::NodeVisit { .. } | Event::VoxelStep { .. } if seen_hit => {
-                    pending.push(e);
+                    pending.push((k, e));
                 }
                 Event::ObjectTest { object, .. } => {
                     let title = format!(
@@ -196,7 +258,7 @@ impl<'a, V: Dim> Writer<'a, V> {
                         self.object(*object)
                     );
                     let line = self.test_line(e);
-                    self.step(indent + 1, &title, &[line]);
+                    self.step(indent + 1, &title, &[line], vec![k]);
                 }
                 Event::Hit { object, t, point, normal, entering } => {
                     seen_hit = true;
@@ -221,21 +283,21 @@ impl<'a, V: Dim> Writer<'a, V> {
                         ),
                         format!("D·N = {} — {side}", num(dn)),
                     ];
-                    self.step(indent + 1, &title, &lines);
+                    self.step(indent + 1, &title, &lines, vec![k]);
                 }
                 Event::Miss { color } => {
                     let title = self.t(
                         "No object is hit: the colour is the background",
                         "Niciun obiect intersectat: culoarea este fundalul",
                     );
-                    self.step(indent + 1, title, &[format!("I = {}", rgb(*color))]);
+                    self.step(indent + 1, title, &[format!("I = {}", rgb(*color))], vec![k]);
                 }
                 Event::ShadowRay { light, .. } => {
                     self.shadow_tests.push((*light, std::mem::take(&mut pending)));
                 }
                 Event::Reflect { origin, direction, offset } => {
                     if !lights_done {
-                        self.local_model(node, index, indent + 1);
+                        self.local_model(node, index, indent + 1, hit_event);
                         lights_done = true;
                     }
                     let title = self.t("Reflected ray R (ks > 0)", "Raza reflectată R (ks > 0)");
@@ -251,14 +313,16 @@ impl<'a, V: Dim> Writer<'a, V> {
                                 vec_str(*origin)
                             ),
                         ],
+                        vec![k],
                     );
+                    spawned.push(k);
                     if let Some(&c) = children.next() {
-                        self.node(c, indent + 1);
+                        self.node(c, indent + 1, Some(k));
                     }
                 }
                 Event::Refract { origin, direction, offset, n1, n2 } => {
                     if !lights_done {
-                        self.local_model(node, index, indent + 1);
+                        self.local_model(node, index, indent + 1, hit_event);
                         lights_done = true;
                     }
                     let title = self.t(
@@ -281,14 +345,16 @@ impl<'a, V: Dim> Writer<'a, V> {
                                 vec_str(*origin)
                             ),
                         ],
+                        vec![k],
                     );
+                    spawned.push(k);
                     if let Some(&c) = children.next() {
-                        self.node(c, indent + 1);
+                        self.node(c, indent + 1, Some(k));
                     }
                 }
-                Event::TotalInternalReflection { k, n1, n2 } => {
+                Event::TotalInternalReflection { k: radicand, n1, n2 } => {
                     if !lights_done {
-                        self.local_model(node, index, indent + 1);
+                        self.local_model(node, index, indent + 1, hit_event);
                         lights_done = true;
                     }
                     let title = self.t(
@@ -302,19 +368,25 @@ impl<'a, V: Dim> Writer<'a, V> {
                             "n1 = {}, n2 = {}, k = (1 − η²) + (η·c)² = {} < 0 → {}",
                             num(*n1),
                             num(*n2),
-                            num(*k),
+                            num(*radicand),
                             self.t("the kt·T term is dropped", "termenul kt·T lipsește")
                         )],
+                        vec![k],
                     );
                 }
                 Event::DepthLimit { level } => {
                     if !lights_done {
-                        self.local_model(node, index, indent + 1);
+                        self.local_model(node, index, indent + 1, hit_event);
                         lights_done = true;
                     }
                     let title =
                         self.t("Depth limit: no secondary rays", "Limita de adâncime: fără raze secundare");
-                    self.step(indent + 1, title, &[format!("n = {level} > max_depth = {}", self.max_depth)]);
+                    self.step(
+                        indent + 1,
+                        title,
+                        &[format!("n = {level} > max_depth = {}", self.max_depth)],
+                        vec![k],
+                    );
                 }
                 Event::BoundTest { volume, t_in, t_out, hit, .. } => {
                     let title = format!(
@@ -330,6 +402,7 @@ impl<'a, V: Dim> Writer<'a, V> {
                         indent + 1,
                         &title,
                         &[format!("max tᵢ = {}, min tₑ = {} → {verdict}", num(*t_in), num(*t_out))],
+                        vec![k],
                     );
                 }
                 Event::NodeVisit { structure, node, depth, t_in, t_out } => {
@@ -338,23 +411,31 @@ impl<'a, V: Dim> Writer<'a, V> {
                         self.t("Visit node", "Vizitează nodul"),
                         self.t("depth", "adâncimea")
                     );
-                    self.step(indent + 1, &title, &[format!("t ∈ [{}, {}]", num(*t_in), num(*t_out))]);
+                    self.step(
+                        indent + 1,
+                        &title,
+                        &[format!("t ∈ [{}, {}]", num(*t_in), num(*t_out))],
+                        vec![k],
+                    );
                 }
                 Event::VoxelStep { cell, t_max, .. } => {
                     let title = format!("{} {cell:?}", self.t("Grid cell", "Celula grilei"));
                     let t: Vec<String> = t_max.iter().map(|x| num(*x)).collect();
-                    self.step(indent + 1, &title, &[format!("tMax = ({})", t.join(", "))]);
+                    self.step(indent + 1, &title, &[format!("tMax = ({})", t.join(", "))], vec![k]);
                 }
                 Event::PrimaryRay { .. } | Event::Sample { .. } => {}
             }
         }
         if node.end.as_ref().is_some_and(|e| e.hit.is_some()) && !lights_done {
-            self.local_model(node, index, indent + 1);
+            self.local_model(node, index, indent + 1, hit_event);
         }
-        self.sum(node, indent + 1);
+        let colour: Vec<usize> = hit_event.into_iter().chain(spawned).collect();
+        self.sum(node, indent + 1, colour);
     }
 
-    fn local_model(&mut self, node: &RayNode<V>, index: usize, indent: usize) {
+    /// The local model's steps at the node's hit (event `hit`): its formula with the ambient
+    /// term (the hit and every shadow ray), then one step per light.
+    fn local_model(&mut self, node: &RayNode<V>, index: usize, indent: usize, hit_event: Option<usize>) {
         let Some(hit) = node.end.as_ref().and_then(|e| e.hit) else {
             return;
         };
@@ -366,15 +447,25 @@ impl<'a, V: Dim> Writer<'a, V> {
             "Modelul local: I_local = Ia·Ka + Σ Isrc·fat·s·lum·[kd·(N·L) + ks·(N·H)^n]",
         );
         let lines = vec![format!("Ia·Ka = {} · {} = {}", rgb(self.scene.ambient), rgb(ka), rgb(ambient))];
-        self.step(indent, title, &lines);
-        let shadows: Vec<&Event<V>> =
-            self.events_of(index).into_iter().filter(|e| matches!(e, Event::ShadowRay { .. })).collect();
+        let shadows: Vec<Indexed<'a, V>> =
+            self.events_of(index).into_iter().filter(|(_, e)| matches!(e, Event::ShadowRay { .. })).collect();
+        let events = hit_event.into_iter().chain(shadows.iter().map(|(k, _)| *k)).collect();
+        self.step(indent, title, &lines, events);
         for term in &node.lights {
-            self.light(term, &shadows, indent + 1, material.n);
+            self.light(term, &shadows, indent + 1, material.n, hit_event);
         }
     }
 
-    fn light(&mut self, term: &LightTerm<V>, shadows: &[&Event<V>], indent: usize, n: f64) {
+    /// One light's step: its shadow ray and that ray's tests, or the hit (`hit_event`) when the
+    /// light is behind the surface.
+    fn light(
+        &mut self,
+        term: &LightTerm<V>,
+        shadows: &[Indexed<'a, V>],
+        indent: usize,
+        n: f64,
+        hit_event: Option<usize>,
+    ) {
         let title = format!("{} {}", self.t("Light", "Sursa de lumină"), term.light);
         let mut lines = Vec::new();
         match term.l {
@@ -395,21 +486,22 @@ impl<'a, V: Dim> Writer<'a, V> {
                 )
                 .to_string(),
             );
-            self.step(indent, &title, &lines);
+            self.step(indent, &title, &lines, hit_event.into_iter().collect());
             return;
         }
         lines.push(format!("lum = 1, fat = min(1, 1/(c0 + c1·d + c2·d²)) = {}", num(term.fat)));
-        for e in shadows {
+        let mut events = Vec::new();
+        for (k, e) in shadows {
             if let Event::ShadowRay { light, origin, direction, distance, occluders, s } = e {
                 if *light != term.light {
                     continue;
                 }
-                let tests: Vec<String> = self
-                    .shadow_tests
-                    .iter()
-                    .filter(|(l, _)| *l == term.light)
-                    .flat_map(|(_, tests)| tests.iter())
-                    .map(|t| match t {
+                events.push(*k);
+                let mine =
+                    || self.shadow_tests.iter().filter(|(l, _)| *l == term.light).flat_map(|(_, t)| t.iter());
+                events.extend(mine().map(|(k, _)| *k));
+                let tests: Vec<String> = mine()
+                    .map(|(_, t)| match t {
                         Event::ObjectTest { object, .. } => {
                             format!("  · {}: {}", self.object(*object), self.test_line(t))
                         }
@@ -447,10 +539,15 @@ impl<'a, V: Dim> Writer<'a, V> {
             num(n),
             rgb(term.specular)
         ));
-        self.step(indent, &title, &lines);
+        if events.is_empty() {
+            events.extend(hit_event);
+        }
+        events.sort_unstable();
+        self.step(indent, &title, &lines, events);
     }
 
-    fn sum(&mut self, node: &RayNode<V>, indent: usize) {
+    /// The colour step of a node: the hit and the rays it sums (`events`).
+    fn sum(&mut self, node: &RayNode<V>, indent: usize, events: Vec<usize>) {
         let Some(end) = &node.end else { return };
         let Some(local) = end.local else { return };
         let Some(hit) = end.hit else { return };
@@ -469,7 +566,7 @@ impl<'a, V: Dim> Writer<'a, V> {
             "Colour of this ray: I = I_local + ks·R + kt·T",
             "Culoarea acestei raze: I = I_local + ks·R + kt·T",
         );
-        self.step(indent, title, &[formula, format!("I = {}", rgb(end.color))]);
+        self.step(indent, title, &[formula, format!("I = {}", rgb(end.color))], events);
     }
 }
 
@@ -483,7 +580,39 @@ pub fn narrate<V: Dim>(
     max_depth: u32,
     lang: Lang,
 ) -> String {
-    let mut w = Writer { scene, log, lang, out: String::new(), step: 0, max_depth, shadow_tests: Vec::new() };
+    narration(scene, log, stats, target, max_depth, lang).text
+}
+
+/// [`narrate`] with the events of each step.
+#[must_use]
+pub fn narration<V: Dim>(
+    scene: &Scene<V>,
+    log: &EventLog<V>,
+    stats: &Stats,
+    target: &TraceTarget,
+    max_depth: u32,
+    lang: Lang,
+) -> Narration {
+    let mut w = Writer {
+        scene,
+        log,
+        lang,
+        out: String::new(),
+        step: 0,
+        events: Vec::new(),
+        max_depth,
+        shadow_tests: Vec::new(),
+    };
+    let root = log.roots().next();
+    // The root's primary ray and its hit or miss: what the pixel's steps and its colour explain.
+    let root_events: Vec<usize> = root.map_or_else(Vec::new, |r| {
+        w.events_of(r)
+            .into_iter()
+            .filter(|(_, e)| matches!(e, Event::PrimaryRay { .. } | Event::Hit { .. } | Event::Miss { .. }))
+            .map(|(k, _)| k)
+            .collect()
+    });
+    let primary: Vec<usize> = root_events.first().copied().into_iter().collect();
     let cam = &scene.camera;
     if let (Some(pixel), Some(uv)) = (&target.pixel, &target.uv) {
         let win = &cam.window;
@@ -518,7 +647,7 @@ pub fn narrate<V: Dim>(
         } else {
             format!("{} i = {}", w.t("Pixel", "Pixelul"), pixel[0])
         };
-        w.step(0, &title, &lines);
+        w.step(0, &title, &lines, primary.clone());
         let s = cam.window_point(uv[0], uv.get(1).copied().unwrap_or(0.0));
         let lines = match cam.projection {
             Projection::Perspective => vec![
@@ -538,17 +667,18 @@ pub fn narrate<V: Dim>(
             0,
             w.t("Primary ray through the window point S", "Raza primară prin punctul S al ferestrei"),
             &lines,
+            primary,
         );
     }
-    if let Some(root) = log.roots().next() {
-        w.node(root, 0);
+    if let Some(root) = root {
+        w.node(root, 0, None);
         if let Some(end) = &log.nodes[root].end {
             let title = w.t(
                 "Pixel colour (linear RGB, clamped only when written)",
                 "Culoarea pixelului (RGB liniar, limitată doar la scriere)",
             );
             let bytes = end.color.0.map(crate::image::to_byte);
-            w.step(0, title, &[format!("{} → 8 bit {:?}", rgb(end.color), bytes)]);
+            w.step(0, title, &[format!("{} → 8 bit {:?}", rgb(end.color), bytes)], root_events.clone());
         }
     }
     let r = stats.rays;
@@ -567,7 +697,7 @@ pub fn narrate<V: Dim>(
         stats.tests.object,
         w.t("object tests", "teste de intersecție")
     );
-    w.out
+    Narration { text: w.out, events: w.events }
 }
 
 /// A narration cut into its numbered steps: each from its `k. title` line (k = 1, 2, … in turn,

@@ -23,8 +23,9 @@
 //!
 //! The pixel is traced alone: corners it shares with neighbouring pixels are traced here too.
 
-use super::narrate::{num, Lang};
+use super::narrate::{num, Lang, Narration};
 use super::{color, event, float, node, stats, Namer, TraceTarget};
+use crate::record::event::Event;
 use crate::record::EventLog;
 use crate::sample::{PixelTrace, Sampling};
 use crate::scene::material::Rgb;
@@ -116,6 +117,30 @@ pub fn narrate_samples(
     stats_: &Stats,
     lang: Lang,
 ) -> String {
+    sample_narration::<f64>(target, sampling, pixel, stats_, lang, &EventLog::new()).text
+}
+
+/// [`narrate_samples`] with the events of its four steps, indices into `log`'s events: the
+/// samples (step 2) their primary rays, the squares (step 3) every read of a corner (`sample`
+/// events); the pixel (1) and the mean (4) explain none.
+#[must_use]
+pub fn sample_narration<V>(
+    target: &TraceTarget,
+    sampling: Sampling,
+    pixel: &PixelTrace,
+    stats_: &Stats,
+    lang: Lang,
+    log: &EventLog<V>,
+) -> Narration {
+    let of = |test: fn(&Event<V>) -> bool| -> Vec<usize> {
+        log.events.iter().enumerate().filter(|(_, e)| test(&e.event)).map(|(k, _)| k).collect()
+    };
+    let events = vec![
+        Vec::new(),
+        of(|e| matches!(e, Event::PrimaryRay { .. })),
+        of(|e| matches!(e, Event::Sample { .. })),
+        Vec::new(),
+    ];
     let t = |en: &'static str, ro: &'static str| if lang == Lang::En { en } else { ro };
     let mut out = String::new();
     let where_ = target
@@ -210,5 +235,5 @@ pub fn narrate_samples(
         stats_.tests.object,
         t("object tests", "teste de intersecție")
     );
-    out
+    Narration { text: out, events }
 }

@@ -533,6 +533,10 @@ pub struct Item {
     pub style: Style,
     /// Geometry.
     pub shape: Shape,
+    /// The indices of the trace events it draws (into the main trace's events, which are the
+    /// trace document's): a ray its spawning event and its hit, a test its test… Empty for what
+    /// no event drew (objects, lights, axes). The SVG writes them as `data-events`.
+    pub events: Vec<usize>,
 }
 
 /// What a legend entry's sample looks like.
@@ -615,6 +619,8 @@ pub struct Drawing {
     /// Where labels placed clear ([`TextOpts::avoid_overlap`]) may go: a world rectangle, or the
     /// whole plot area when `None` ([`Drawing::keep_labels_within`]).
     pub label_area: Option<(DVec2, DVec2)>,
+    /// The events of the items added now ([`Drawing::with_events`]).
+    events: Vec<usize>,
 }
 
 /// A text line placed in canvas pixels.
@@ -733,6 +739,7 @@ impl Drawing {
             caption: None,
             title: None,
             label_area: None,
+            events: Vec::new(),
         })
     }
 
@@ -749,6 +756,7 @@ impl Drawing {
             caption: None,
             title: None,
             label_area: None,
+            events: Vec::new(),
         }
     }
 
@@ -813,10 +821,26 @@ impl Drawing {
         plot.width() / plot.height()
     }
 
-    /// Adds an item.
+    /// Adds an item (drawing the events of the enclosing [`Drawing::with_events`], if any).
     pub fn push(&mut self, tag: &str, style: Style, shape: Shape) -> &mut Self {
-        self.items.push(Item { tag: tag.to_owned(), style, shape });
+        self.items.push(Item { tag: tag.to_owned(), style, shape, events: self.events.clone() });
         self
+    }
+
+    /// Runs `draw`, every item it adds drawing `events` (indices into the main trace's events,
+    /// sorted and deduplicated here); the events in force before are restored after.
+    pub fn with_events<R>(
+        &mut self,
+        events: impl IntoIterator<Item = usize>,
+        draw: impl FnOnce(&mut Self) -> R,
+    ) -> R {
+        let mut now: Vec<usize> = events.into_iter().collect();
+        now.sort_unstable();
+        now.dedup();
+        let before = std::mem::replace(&mut self.events, now);
+        let out = draw(self);
+        self.events = before;
+        out
     }
 
     /// Adds a polyline.

@@ -577,6 +577,14 @@ pub fn search_events<V>(log: &EventLog<V>, root: usize) -> impl Iterator<Item = 
     node_events(log, root).take_while(|e| !matches!(e, Event::Hit { .. } | Event::Miss { .. }))
 }
 
+/// [`search_events`] with each event's index in `log.events` (the trace document's index).
+pub fn search_indexed<V>(log: &EventLog<V>, root: usize) -> impl Iterator<Item = (usize, &Event<V>)> {
+    (log.events.iter().enumerate())
+        .filter(move |(_, l)| l.ray == Some(root))
+        .map(|(k, l)| (k, &l.event))
+        .take_while(|(_, e)| !matches!(e, Event::Hit { .. } | Event::Miss { .. }))
+}
+
 /// Whether a recorded box interval counts as met, by the structures' own closed rule.
 #[must_use]
 pub fn met(t_in: f64, t_out: f64) -> bool {
@@ -592,6 +600,14 @@ pub fn bound_test_of<V>(log: &EventLog<V>, object: usize) -> Option<(&[[f64; 2]]
         }
         _ => None,
     })
+}
+
+/// The index in `log.events` of [`bound_test_of`]'s event.
+#[must_use]
+pub fn bound_test_index<V>(log: &EventLog<V>, object: usize) -> Option<usize> {
+    search_indexed(log, 0)
+        .find(|(_, e)| matches!(e, Event::BoundTest { object: Some(o), .. } if o.index == object))
+        .map(|(k, _)| k)
 }
 
 /// `slab-test` and `kay-kajiya`: a pixel whose primary ray meets an object's volume and one whose

@@ -2,8 +2,9 @@
 //!
 //! It reads the same display list through the same [`Frame`] (transform, plot area, title,
 //! caption, legend) as the raster back end, so the two agree. Each display-list item becomes
-//! exactly one `<g data-tag="…">` group; the title, caption and legend are groups with a `class`
-//! and no `data-tag`. Text stays text: `<text>` in the embedded font's family (the reader's copy of
+//! exactly one `<g data-tag="…" data-events="…">` group (`data-events`: the indices of the trace
+//! events the item draws, space-separated, possibly empty); the title, caption and legend are
+//! groups with a `class` and no `data-tag`. Text stays text: `<text>` in the embedded font's family (the reader's copy of
 //! Noto Sans, or a sans-serif fallback), with sub- and superscripts as
 //! `<tspan baseline-shift="sub" font-size="…">` and the halo as a white stroke painted first.
 
@@ -52,7 +53,9 @@ pub fn to_svg(drawing: &Drawing) -> String {
         } else {
             format!(" clip-path=\"url(#{CLIP_ID})\"")
         };
-        let _ = write!(out, "<g data-tag=\"{}\"{clip}>", escape(&item.tag));
+        let events: Vec<String> = item.events.iter().map(ToString::to_string).collect();
+        let _ =
+            write!(out, "<g data-tag=\"{}\" data-events=\"{}\"{clip}>", escape(&item.tag), events.join(" "));
         shape(&mut out, &tf, &item.style, &item.shape);
         out.push_str("</g>\n");
     }

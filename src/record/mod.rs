@@ -144,6 +144,49 @@ impl<V> EventLog<V> {
     }
 }
 
+/// Which events of a log draw what (the figures' `data-events`): indices into
+/// [`EventLog::events`], which are the trace document's `events`.
+impl<V> EventLog<V> {
+    /// The indices of the events of node `node` that satisfy `test`.
+    pub fn indices_of(&self, node: usize, test: impl Fn(&Event<V>) -> bool) -> Vec<usize> {
+        (self.events.iter().enumerate())
+            .filter(|(_, l)| l.ray == Some(node) && test(&l.event))
+            .map(|(k, _)| k)
+            .collect()
+    }
+
+    /// The event that made node `node`: its `primary_ray`, or the parent's `reflect`/`refract`
+    /// (a parent's children and its spawning events come in the same order, R then T).
+    #[must_use]
+    pub fn spawned_by(&self, node: usize) -> Option<usize> {
+        let n = self.nodes.get(node)?;
+        let Some(parent) = n.parent else {
+            return self.indices_of(node, |e| matches!(e, Event::PrimaryRay { .. })).first().copied();
+        };
+        let position = self.nodes[parent].children.iter().position(|c| *c == node)?;
+        let spawns = self.indices_of(parent, |e| matches!(e, Event::Reflect { .. } | Event::Refract { .. }));
+        spawns.get(position).copied()
+    }
+
+    /// The event that ended node `node`'s search: its `hit` or `miss`.
+    #[must_use]
+    pub fn ended_by(&self, node: usize) -> Option<usize> {
+        self.indices_of(node, |e| matches!(e, Event::Hit { .. } | Event::Miss { .. })).first().copied()
+    }
+
+    /// The events a drawn ray stands for: the one that made it and its hit or miss.
+    #[must_use]
+    pub fn ray_events(&self, node: usize) -> Vec<usize> {
+        self.spawned_by(node).into_iter().chain(self.ended_by(node)).collect()
+    }
+
+    /// The `shadow_ray` events of node `node` towards light `light` (one at most).
+    #[must_use]
+    pub fn shadow_events(&self, node: usize, light: usize) -> Vec<usize> {
+        self.indices_of(node, |e| matches!(e, Event::ShadowRay { light: l, .. } if *l == light))
+    }
+}
+
 impl<V> Recorder<V> for EventLog<V> {
     const ENABLED: bool = true;
     fn event(&mut self, make: impl FnOnce() -> Event<V>) {

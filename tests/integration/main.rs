@@ -10,3 +10,4 @@ mod sampling;
 mod support;
 mod tidy;
 mod traces;
+mod web;

@@ -14,6 +14,7 @@ use crate::figure::parts::{self, num, rgb_text, swatch, text_column};
 use crate::figure::plane::Planar;
 use crate::figure::style::{self, TextSize};
 use crate::figure::FigureError;
+use crate::record::event::Event;
 use crate::sample::{PixelTrace, SquareRecord};
 
 /// The shade of a square of `level`: grey, darker with each level.
@@ -76,49 +77,71 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     if flat {
         d.rect("pixel", DVec2::ZERO, DVec2::new(1.0, BAR), style::object(), None);
     }
+    // The events each item draws: a sample its primary ray and every read of it (`sample`
+    // events), a square (and its leaf colour) its corners'.
+    let log = &traced.log;
+    let sample_events: Vec<Vec<usize>> = (pixel.samples.iter().enumerate())
+        .map(|(k, sample)| {
+            let reads = (log.events.iter().enumerate())
+                .filter(|(_, l)| l.sample == Some(k) && matches!(l.event, Event::Sample { .. }))
+                .map(|(index, _)| index);
+            log.spawned_by(sample.root).into_iter().chain(reads).collect()
+        })
+        .collect();
+    let square_events = |s: &SquareRecord| -> Vec<usize> {
+        s.corners.iter().filter_map(|c| sample_events.get(*c)).flatten().copied().collect()
+    };
     for s in &pixel.squares {
         let (lo, hi) = rect_of(s);
-        d.rect(
-            &format!("square:{}", s.level),
-            lo,
-            hi,
-            Style::solid(style::DARK_GREY, style::GRID_WIDTH),
-            Some(shade(s.level)),
-        );
+        d.with_events(square_events(s), |d| {
+            d.rect(
+                &format!("square:{}", s.level),
+                lo,
+                hi,
+                Style::solid(style::DARK_GREY, style::GRID_WIDTH),
+                Some(shade(s.level)),
+            );
+        });
     }
     if !flat {
         d.rect("pixel", DVec2::ZERO, DVec2::ONE, style::object(), None);
     }
     for s in pixel.squares.iter().filter(|s| !s.split) {
         let (lo, hi) = rect_of(s);
-        d.marker("leaf-colour", (lo + hi) / 2.0, 16.0, swatch(s.color), style::outline(style::BLACK));
+        d.with_events(square_events(s), |d| {
+            d.marker("leaf-colour", (lo + hi) / 2.0, 16.0, swatch(s.color), style::outline(style::BLACK));
+        });
     }
-    for sample in &pixel.samples {
+    for (sample, events) in pixel.samples.iter().zip(&sample_events) {
         let at = local(&sample.lattice);
-        if sample.reused {
-            d.marker("sample:reused", at, RING_RADIUS, style::WHITE.with_alpha(0.0), reused_ring());
-        }
-        d.marker("sample", at, 8.0, style::BLACK, Style::NONE);
+        d.with_events(events.iter().copied(), |d| {
+            if sample.reused {
+                d.marker("sample:reused", at, RING_RADIUS, style::WHITE.with_alpha(0.0), reused_ring());
+            }
+            d.marker("sample", at, 8.0, style::BLACK, Style::NONE);
+        });
     }
-    for sample in &pixel.samples {
+    for (sample, events) in pixel.samples.iter().zip(&sample_events) {
         let at = local(&sample.lattice);
-        let small = TextOpts::NOTE.size(TextSize::Small);
-        if flat {
-            // Centred above the pixel's bar (whose bottom edge holds the points), clear of it.
-            let above = Align { h: HAlign::Center, v: VAlign::Bottom };
-            d.text(
-                "sample-name",
-                at + DVec2::new(0.0, BAR),
-                &sample.label,
-                small.align(above).offset(0.0, 6.0),
-            );
-        } else {
-            // Up and to the right of its point, as the lecture's figure writes them; a ringed
-            // one's corner outside its ring (|(14, 12)| = 18.4 > RING_RADIUS).
-            let up_right = Align { h: HAlign::Left, v: VAlign::Bottom };
-            let (dx, dy) = if sample.reused { (14.0, 12.0) } else { (8.0, 6.0) };
-            d.text("sample-name", at, &sample.label, small.align(up_right).offset(dx, dy));
-        }
+        d.with_events(events.iter().copied(), |d| {
+            let small = TextOpts::NOTE.size(TextSize::Small);
+            if flat {
+                // Centred above the pixel's bar (whose bottom edge holds the points), clear of it.
+                let above = Align { h: HAlign::Center, v: VAlign::Bottom };
+                d.text(
+                    "sample-name",
+                    at + DVec2::new(0.0, BAR),
+                    &sample.label,
+                    small.align(above).offset(0.0, 6.0),
+                );
+            } else {
+                // Up and to the right of its point, as the lecture's figure writes them; a ringed
+                // one's corner outside its ring (|(14, 12)| = 18.4 > RING_RADIUS).
+                let up_right = Align { h: HAlign::Left, v: VAlign::Bottom };
+                let (dx, dy) = if sample.reused { (14.0, 12.0) } else { (8.0, 6.0) };
+                d.text("sample-name", at, &sample.label, small.align(up_right).offset(dx, dy));
+            }
+        });
     }
 
     text_column(d, column + DVec2::new(0.04, -0.02), &numbers(input, pixel), TextSize::Body, 50.0);

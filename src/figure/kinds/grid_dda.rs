@@ -13,7 +13,7 @@ use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VA
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, num, text_column};
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{first_hit, grid_pitfall, search_events};
+use crate::figure::source::{first_hit, grid_pitfall, search_indexed};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
 use crate::record::event::Event;
@@ -23,6 +23,8 @@ const LISTED: usize = 7;
 
 /// One recorded step of the walk.
 struct Step<'a> {
+    /// The index of its `voxel_step` event.
+    event: usize,
     cell: &'a [i64],
     t_max: &'a [f64],
     objects: Vec<usize>,
@@ -42,10 +44,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     let (scene, log) = (input.scene, &traced.log);
     let root = log.nodes.first().ok_or_else(|| FigureError("no ray was traced".into()))?;
-    let steps: Vec<Step<'_>> = search_events(log, 0)
-        .filter_map(|e| match e {
+    let steps: Vec<Step<'_>> = search_indexed(log, 0)
+        .filter_map(|(event, e)| match e {
             Event::VoxelStep { cell, t_max, objects, .. } => {
-                Some(Step { cell, t_max, objects: objects.iter().map(|o| o.index).collect() })
+                Some(Step { event, cell, t_max, objects: objects.iter().map(|o| o.index).collect() })
             }
             _ => None,
         })
@@ -114,7 +116,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     // Visited cells, the grid, the objects.
     for s in &steps {
         let (a, b) = cell_rect(s.cell);
-        d.rect("cell:visited", a, b, Style::NONE, Some(visited_fill()));
+        d.with_events([s.event], |d| {
+            d.rect("cell:visited", a, b, Style::NONE, Some(visited_fill()));
+        });
     }
     for k in 0..=n[0] {
         let x = lo.x + k as f64 * size.x;
@@ -131,19 +135,23 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let start = parts::entry_point(from, plane.dir(dir), &scene_part);
     let end =
         hit.map_or_else(|| parts::exit_point(start, plane.dir(dir), &scene_part), |h| plane.point(h.point));
-    draw_ray(d, RayRole::Primary, start, end);
+    d.with_events(log.ray_events(0), |d| draw_ray(d, RayRole::Primary, start, end));
     // Where the ray leaves each visited cell: its smallest tMax.
     for s in &steps {
         let exit = s.t_max.iter().copied().fold(f64::INFINITY, f64::min);
         if exit.is_finite() {
-            d.marker("cell-exit", ray_at(exit), style::DOT_RADIUS * 0.8, style::ORANGE, Style::NONE);
+            d.with_events([s.event], |d| {
+                d.marker("cell-exit", ray_at(exit), style::DOT_RADIUS * 0.8, style::ORANGE, Style::NONE);
+            });
         }
     }
     if let Some((_, _, t, _)) = pitfall {
         d.marker("pitfall", ray_at(t), 22.0, style::WHITE.with_alpha(0.0), pitfall_ring());
     }
     if let Some(h) = hit {
-        d.dot("hit", plane.point(h.point), style::HIT);
+        d.with_events(log.ended_by(0), |d| {
+            d.dot("hit", plane.point(h.point), style::HIT);
+        });
     }
     for (k, s) in steps.iter().enumerate() {
         let (a, b) = cell_rect(s.cell);
@@ -152,7 +160,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             .align(Align { h: HAlign::Left, v: VAlign::Top })
             .offset(5.0, -3.0)
             .bold();
-        d.text("step", DVec2::new(a.x, b.y), &(k + 1).to_string(), opts);
+        d.with_events([s.event], |d| {
+            d.text("step", DVec2::new(a.x, b.y), &(k + 1).to_string(), opts);
+        });
     }
     label_objects(d, scene, &anchors);
 

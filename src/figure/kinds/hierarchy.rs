@@ -14,7 +14,7 @@ use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VA
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{first_hit, met, search_events};
+use crate::figure::source::{first_hit, met, search_events, search_indexed};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
 use crate::record::event::Event;
@@ -125,6 +125,15 @@ pub fn draw<V: Planar>(
         }
     }
     let object_tests = search_events(log, 0).filter(|e| matches!(e, Event::ObjectTest { .. })).count();
+    // The `node_visit` events of each node in the primary ray's search: what its box draws.
+    let mut visits: Vec<Vec<usize>> = vec![Vec::new(); nodes.len()];
+    for (index, e) in search_indexed(log, 0) {
+        if let Event::NodeVisit { node, .. } = *e {
+            if let Some(v) = visits.get_mut(node) {
+                v.push(index);
+            }
+        }
+    }
     let root = log.nodes.first().ok_or_else(|| FigureError("no ray was traced".into()))?;
     let hit = first_hit(log).filter(|k| *k == 0).and_then(|k| log.nodes[k].end.as_ref()?.hit);
     let centre = (nodes[0].bounds.min + nodes[0].bounds.max) * 0.5;
@@ -189,15 +198,19 @@ pub fn draw<V: Planar>(
                 continue;
             }
             let (lo, hi) = drawn(n);
-            d.rect(&format!("node:{}", letter(k)), lo, hi, fate_style(f), None);
+            d.with_events(visits[k].iter().copied(), |d| {
+                d.rect(&format!("node:{}", letter(k)), lo, hi, fate_style(f), None);
+            });
         }
     }
     // The ray: from where it enters the picture to its hit (or out of the picture).
     let start = parts::entry_point(from, plane.dir(root.start.direction), &scene_part);
     let end = to.unwrap_or_else(|| parts::exit_point(start, plane.dir(root.start.direction), &scene_part));
-    draw_ray(d, RayRole::Primary, start, end);
+    d.with_events(log.ray_events(0), |d| draw_ray(d, RayRole::Primary, start, end));
     if let Some(p) = to {
-        d.dot("hit", p, style::HIT);
+        d.with_events(log.ended_by(0), |d| {
+            d.dot("hit", p, style::HIT);
+        });
     }
     // Node names at their boxes' upper-left corners, inside; a box sharing that corner with an
     // ancestor (named first) gets its name on the next line down.
@@ -212,10 +225,12 @@ pub fn draw<V: Planar>(
             .offset(6.0, -4.0)
             .color(fate_colour(fate[k]))
             .stack_down(lo.y);
-        d.text("node-name", DVec2::new(lo.x, hi.y), &letter(k), opts);
+        d.with_events(visits[k].iter().copied(), |d| {
+            d.text("node-name", DVec2::new(lo.x, hi.y), &letter(k), opts);
+        });
     }
     label_objects(d, scene, &anchors);
-    tree(d, &nodes, &fate, scene, column, &view);
+    tree(d, &nodes, &fate, &visits, scene, column, &view);
     Ok(())
 }
 
@@ -250,6 +265,7 @@ fn tree<V: Planar>(
     d: &mut Drawing,
     nodes: &[TreeNode<V>],
     fate: &[Fate],
+    visits: &[Vec<usize>],
     scene: &crate::scene::Scene<V>,
     column: DVec2,
     view: &View,
@@ -306,27 +322,29 @@ fn tree<V: Planar>(
             Fate::Missed => style::WHITE,
             Fate::Untested => style::WHITE,
         };
-        d.marker("tree-node", at(k), 25.0, fill, fate_style(f).with_width(style::CONSTRUCTION_WIDTH));
-        let name = TextOpts::NOTE.size(TextSize::Small).align(Align::CENTER).no_halo();
-        d.text("tree-name", at(k), &letter(k), name);
-        if let Fate::Entered(order) = f {
-            let o = TextOpts::NOTE
-                .size(TextSize::Small)
-                .align(Align { h: HAlign::Left, v: VAlign::Bottom })
-                .offset(20.0, 16.0)
-                .color(ENTERED)
-                .bold();
-            d.text("tree-order", at(k), &order.to_string(), o);
-        }
-        if n.children.is_empty() && !n.prims.is_empty() {
-            let names: Vec<String> =
-                n.prims.iter().map(|p| labels::escape(&scene.object_label(p.object()))).collect();
-            let o = TextOpts::NOTE
-                .size(TextSize::Small)
-                .align(Align::BELOW)
-                .offset(0.0, -30.0)
-                .color(style::DARK_GREY);
-            d.text("tree-objects", at(k), &names.join(", "), o);
-        }
+        d.with_events(visits[k].iter().copied(), |d| {
+            d.marker("tree-node", at(k), 25.0, fill, fate_style(f).with_width(style::CONSTRUCTION_WIDTH));
+            let name = TextOpts::NOTE.size(TextSize::Small).align(Align::CENTER).no_halo();
+            d.text("tree-name", at(k), &letter(k), name);
+            if let Fate::Entered(order) = f {
+                let o = TextOpts::NOTE
+                    .size(TextSize::Small)
+                    .align(Align { h: HAlign::Left, v: VAlign::Bottom })
+                    .offset(20.0, 16.0)
+                    .color(ENTERED)
+                    .bold();
+                d.text("tree-order", at(k), &order.to_string(), o);
+            }
+            if n.children.is_empty() && !n.prims.is_empty() {
+                let names: Vec<String> =
+                    n.prims.iter().map(|p| labels::escape(&scene.object_label(p.object()))).collect();
+                let o = TextOpts::NOTE
+                    .size(TextSize::Small)
+                    .align(Align::BELOW)
+                    .offset(0.0, -30.0)
+                    .color(style::DARK_GREY);
+                d.text("tree-objects", at(k), &names.join(", "), o);
+            }
+        });
     }
 }

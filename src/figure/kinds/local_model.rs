@@ -88,26 +88,52 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         DVec2::new(side * (1.0 - cos * cos).sqrt(), cos)
     };
     let len = 1.2;
-    d.arrow("normal", i, i + DVec2::Y * len, style::normal());
-    d.arrow(view_role.tag(), i, i + unit(view_dir) * len, view_role.style());
+    // The events drawn: N and the hit its `hit`, V the ray's events, L and H a light's shadow ray
+    // (the hit when the light sends none).
+    let hit_ev: Vec<usize> = log.ended_by(k).into_iter().collect();
+    let view_ev = log.ray_events(k);
+    let light_ev = |light: usize| {
+        let shadow = log.shadow_events(k, light);
+        if shadow.is_empty() {
+            hit_ev.clone()
+        } else {
+            shadow
+        }
+    };
+    d.with_events(hit_ev.clone(), |d| {
+        d.arrow("normal", i, i + DVec2::Y * len, style::normal());
+    });
+    d.with_events(view_ev.clone(), |d| {
+        d.arrow(view_role.tag(), i, i + unit(view_dir) * len, view_role.style());
+    });
     let many = lit.len() > 1;
     let name = |letter: &str, m: usize| if many { sub(letter, m + 1) } else { letter.to_owned() };
-    let mut tips = vec![(DVec2::Y, "N".to_owned()), (unit(view_dir), "V".to_owned())];
+    let mut tips =
+        vec![(DVec2::Y, "N".to_owned(), hit_ev.clone()), (unit(view_dir), "V".to_owned(), view_ev)];
     for (m, t) in lit.iter().enumerate() {
         let Some(l) = t.l else { continue };
         let role = if t.shadow.is_some_and(|s| s < 1.0) { RayRole::BlockedShadow } else { RayRole::Shadow };
-        d.arrow(role.tag(), i, i + unit(l) * len, role.style());
-        tips.push((unit(l), name("L", m)));
+        let events = light_ev(t.light);
+        d.with_events(events.clone(), |d| {
+            d.arrow(role.tag(), i, i + unit(l) * len, role.style());
+        });
+        tips.push((unit(l), name("L", m), events.clone()));
         if let Some(h) = (l + view_dir).try_unit() {
-            d.arrow("vector:H", i, i + unit(h) * len * 0.85, h_style());
-            tips.push((unit(h) * 0.85, name("H", m)));
+            d.with_events(events.clone(), |d| {
+                d.arrow("vector:H", i, i + unit(h) * len * 0.85, h_style());
+            });
+            tips.push((unit(h) * 0.85, name("H", m), events));
         }
     }
-    d.dot("hit", i, style::HIT);
-    for (dir, text) in &tips {
-        label_outward(d, i + *dir * len, *dir, text);
+    d.with_events(hit_ev.clone(), |d| {
+        d.dot("hit", i, style::HIT);
+    });
+    for (dir, text, events) in &tips {
+        d.with_events(events.iter().copied(), |d| label_outward(d, i + *dir * len, *dir, text));
     }
-    d.text("label", i, &hit_name, crate::figure::drawing::TextOpts::LABEL.avoid_overlap());
+    d.with_events(hit_ev, |d| {
+        d.text("label", i, &hit_name, crate::figure::drawing::TextOpts::LABEL.avoid_overlap());
+    });
 
     // The terms, with the recorded numbers.
     let material = scene.material_of(hit.object.index);

@@ -206,16 +206,27 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let opts = TextOpts::NOTE.align(Align::RIGHT_OF).color(style::DARK_GREY);
         d.text("level", DVec2::new(left, y), &format!("n = {level}"), opts);
     }
+    // What each vertex draws: a ray its spawning event and its hit (and, stopped, its depth
+    // limit), a shadow leaf its shadow ray.
+    let events_of = |v: &Vertex| match v {
+        Vertex::Ray(k) => log.ray_events(*k),
+        Vertex::Shadow { parent, light, .. } => log.shadow_events(*parent, *light),
+    };
+    let limits =
+        (0..log.nodes.len()).flat_map(|k| log.indices_of(k, |e| matches!(e, Event::DepthLimit { .. })));
+    let limits: Vec<usize> = limits.collect();
     if !stopped.is_empty() {
         let line =
             Style::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH);
-        d.segment("depth-limit", DVec2::new(left, limit_y), DVec2::new(right, limit_y), line);
         let opts = TextOpts::NOTE
             .align(Align { h: HAlign::Left, v: VAlign::Top })
             .offset(0.0, -8.0)
             .color(style::VERMILLION);
         let text = format!("{}: max\\_depth = {}", input.t(Label::DepthLimit), traced.max_depth);
-        d.text("label", DVec2::new(left, limit_y), &text, opts);
+        d.with_events(limits.iter().copied(), |d| {
+            d.segment("depth-limit", DVec2::new(left, limit_y), DVec2::new(right, limit_y), line);
+            d.text("label", DVec2::new(left, limit_y), &text, opts);
+        });
     }
     // Edges first, then the nodes over them, then the words. An edge straight down from a node
     // with its word under it starts below the word, not through it.
@@ -234,10 +245,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         } else {
             *from
         };
-        d.segment(role.tag(), start, *p, role.style());
+        d.with_events(events_of(v), |d| {
+            d.segment(role.tag(), start, *p, role.style());
+        });
     }
     for (v, p, _) in &graph {
-        match v {
+        d.with_events(events_of(v), |d| match v {
             Vertex::Ray(k) => {
                 let node = &log.nodes[*k];
                 let role = parts::role(node.start.kind);
@@ -245,7 +258,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 let ring = Style::solid(role.color(), style::RAY_WIDTH);
                 d.marker("node", *p, RAY_NODE, fill, ring);
                 if stopped.contains(k) {
-                    d.marker("stopped", *p, STOP_RADIUS, style::WHITE.with_alpha(0.0), stop_style());
+                    let limit = log.indices_of(*k, |e| matches!(e, Event::DepthLimit { .. }));
+                    d.with_events(events_of(v).into_iter().chain(limit), |d| {
+                        d.marker("stopped", *p, STOP_RADIUS, style::WHITE.with_alpha(0.0), stop_style());
+                    });
                 }
             }
             Vertex::Shadow { blocked, .. } => {
@@ -258,7 +274,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                     Style::solid(role.color(), style::RAY_WIDTH * 0.8),
                 );
             }
-        }
+        });
     }
     for (v, p, _) in &graph {
         let beside = TextOpts::LABEL.align(Align::LEFT_OF).offset(-36.0, 0.0);
@@ -268,7 +284,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         } else {
             TextOpts::NOTE.align(Align::BELOW).offset(0.0, -WORD_BELOW).size(TextSize::Small)
         };
-        match v {
+        d.with_events(events_of(v), |d| match v {
             Vertex::Ray(k) => {
                 // A stopped node's name stands outside its ring.
                 let beside = if stopped.contains(k) {
@@ -297,7 +313,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                     if below.align == Align::BELOW { below.offset(0.0, -SHADOW_WORD_BELOW) } else { below },
                 );
             }
-        }
+        });
     }
     Ok(())
 }

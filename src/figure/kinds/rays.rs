@@ -52,6 +52,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         .collect();
     // The shadow rays: origin, light, and where an occluder stops them.
     struct Shadow {
+        event: usize,
         from: DVec2,
         to: DVec2,
         block: Option<DVec2>,
@@ -62,6 +63,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         .enumerate()
         .filter_map(|(index, l)| match &l.event {
             Event::ShadowRay { light, origin, direction, occluders, .. } => Some(Shadow {
+                event: index,
                 from: plane.point(*origin),
                 to: plane.point(scene.lights[*light].position),
                 block: (!occluders.is_empty())
@@ -128,20 +130,24 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for s in &segments {
         let role = parts::role(log.nodes[s.node].start.kind);
         let to = s.to.unwrap_or_else(|| exit_point(s.from, s.dir, &view));
-        draw_ray(d, role, s.from, to);
+        d.with_events(log.ray_events(s.node), |d| draw_ray(d, role, s.from, to));
     }
     for s in &shadows {
         let role = if s.block.is_some() { RayRole::BlockedShadow } else { RayRole::Shadow };
-        d.segment(role.tag(), s.from, s.to, role.style());
+        d.with_events([s.event], |d| {
+            d.segment(role.tag(), s.from, s.to, role.style());
+        });
     }
     // The facing normal N at every hit, dashed.
     let normal_len = 0.07 * view.width().min(view.height());
-    for n in &log.nodes {
+    for (node, n) in log.nodes.iter().enumerate() {
         let Some(hit) = n.end.as_ref().and_then(|e| e.hit) else { continue };
         let facing = if hit.entering { hit.normal } else { -hit.normal };
         let at = plane.point(hit.point);
         if let Some(dir) = plane.dir(facing).try_normalize() {
-            d.segment("normal", at, at + dir * normal_len, style::normal());
+            d.with_events(log.ended_by(node), |d| {
+                d.segment("normal", at, at + dir * normal_len, style::normal());
+            });
         }
     }
     if let Some((a, b)) = window {
@@ -150,7 +156,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     for s in &shadows {
         if let Some(b) = s.block {
-            d.marker("occluder-point", b, style::DOT_RADIUS, RayRole::BlockedShadow.color(), Style::NONE);
+            d.with_events([s.event], |d| {
+                d.marker("occluder-point", b, style::DOT_RADIUS, RayRole::BlockedShadow.color(), Style::NONE);
+            });
         }
     }
     for l in &scene.lights {
@@ -158,7 +166,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     for s in &segments {
         if let Some(to) = s.to {
-            d.dot("hit", to, style::HIT);
+            d.with_events(log.ended_by(s.node), |d| {
+                d.dot("hit", to, style::HIT);
+            });
         }
     }
 
@@ -172,10 +182,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     for s in &segments {
         if let (Some(to), Some(name)) = (s.to, names.hit_name(s.node)) {
-            label(d, to, &name);
+            d.with_events(log.ended_by(s.node), |d| label(d, to, &name));
         }
         let to = s.to.unwrap_or_else(|| exit_point(s.from, s.dir, &view));
-        label(d, s.from + (to - s.from) * 0.3, &names.ray[s.node]);
+        d.with_events(log.ray_events(s.node), |d| label(d, s.from + (to - s.from) * 0.3, &names.ray[s.node]));
     }
     label_objects(d, scene, &anchors);
     Ok(())

@@ -183,14 +183,32 @@ fn panel<V: Planar>(
     let page = |v: V| plane.dir(v);
     let incident = page(c.d);
     let role = parts::role(traced.log.nodes[c.node].start.kind);
-    parts::draw_ray(d, role, i - incident * len, i);
+    // The events each item draws, when this panel shows the main trace (whose events are the
+    // trace document's): the incident ray, its hit, R, T.
+    let log = &traced.log;
+    let own = input.main().is_ok_and(|m| std::ptr::eq(m, traced));
+    let mine = |events: Vec<usize>| if own { events } else { Vec::new() };
+    let ray_ev = mine(log.ray_events(c.node));
+    let hit_ev = mine(log.ended_by(c.node).into_iter().collect());
+    let r_ev = mine(log.indices_of(c.node, |e| matches!(e, Event::Reflect { .. })));
+    let t_ev =
+        mine(log.indices_of(c.node, |e| {
+            matches!(e, Event::Refract { .. } | Event::TotalInternalReflection { .. })
+        }));
+    d.with_events(ray_ev.clone(), |d| parts::draw_ray(d, role, i - incident * len, i));
     if let Some(r) = c.r {
-        d.arrow(RayRole::Reflected.tag(), i, i + page(r) * len, RayRole::Reflected.style());
+        d.with_events(r_ev.clone(), |d| {
+            d.arrow(RayRole::Reflected.tag(), i, i + page(r) * len, RayRole::Reflected.style());
+        });
     }
     if let Some(t) = c.t {
-        d.arrow(RayRole::Transmitted.tag(), i, i + page(t) * len, RayRole::Transmitted.style());
+        d.with_events(t_ev.clone(), |d| {
+            d.arrow(RayRole::Transmitted.tag(), i, i + page(t) * len, RayRole::Transmitted.style());
+        });
     }
-    d.dot("hit", i, style::HIT);
+    d.with_events(hit_ev.clone(), |d| {
+        d.dot("hit", i, style::HIT);
+    });
 
     // θᵢ between N and −D; θₜ between −N and T.
     let arc = Style::solid(style::BLACK, style::CONSTRUCTION_WIDTH);
@@ -210,12 +228,14 @@ fn panel<V: Planar>(
     n_text(-1.45, -1.05, &below, d);
     d.text("label", at(DVec2::new(0.0, 1.3)), "N", TextOpts::LABEL.align(Align::ABOVE).offset(0.0, 4.0));
     if let Some(name) = names.hit_name(c.node) {
-        d.text(
-            "label",
-            i,
-            &name,
-            TextOpts::LABEL.align(Align { h: HAlign::Left, v: VAlign::Top }).offset(14.0, -12.0),
-        );
+        d.with_events(hit_ev, |d| {
+            d.text(
+                "label",
+                i,
+                &name,
+                TextOpts::LABEL.align(Align { h: HAlign::Left, v: VAlign::Top }).offset(14.0, -12.0),
+            );
+        });
     }
     let surface_name =
         object_name(input.scene, crate::record::event::ObjectRef { index: c.object, triangle: None });
@@ -225,9 +245,9 @@ fn panel<V: Planar>(
         &surface_name,
         TextOpts::NOTE.align(Align { h: HAlign::Right, v: VAlign::Bottom }).offset(0.0, 8.0),
     );
-    label_outward(d, i - incident * len, -incident, &names.ray[c.node]);
+    d.with_events(ray_ev, |d| label_outward(d, i - incident * len, -incident, &names.ray[c.node]));
     if let Some(r) = c.r {
-        label_outward(d, i + page(r) * len, page(r), "R");
+        d.with_events(r_ev, |d| label_outward(d, i + page(r) * len, page(r), "R"));
     }
     let eta = c.n1 / c.n2;
     let theta_t = c.t.map(|t| (-t.dot(c.n_f)).clamp(-1.0, 1.0).acos());
@@ -240,9 +260,11 @@ fn panel<V: Planar>(
     if let Some(t) = c.t {
         let cos_t = (-t.dot(c.n_f)).clamp(-1.0, 1.0);
         let theta_t = cos_t.acos();
-        let mid_t = draw_arc(d, i, 0.52, -DVec2::Y, page(t), arc);
-        d.text("label", i + (mid_t - i) * 1.4, "θ_t", TextOpts::LABEL.avoid_overlap());
-        label_outward(d, i + page(t) * len, page(t), "T");
+        d.with_events(t_ev, |d| {
+            let mid_t = draw_arc(d, i, 0.52, -DVec2::Y, page(t), arc);
+            d.text("label", i + (mid_t - i) * 1.4, "θ_t", TextOpts::LABEL.avoid_overlap());
+            label_outward(d, i + page(t) * len, page(t), "T");
+        });
         lines.push(format!(
             "n_2·sin θ_t = {} · sin {} = {}",
             num(c.n2),

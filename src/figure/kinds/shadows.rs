@@ -22,6 +22,8 @@ use crate::record::event::{Event, Occluder};
 
 /// One recorded shadow ray of the node.
 struct Shadow<'a, V> {
+    /// The index of its `shadow_ray` event.
+    event: usize,
     light: usize,
     origin: V,
     direction: V,
@@ -53,6 +55,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         .filter(|(_, l)| l.ray == Some(node_index))
         .filter_map(|(index, l)| match &l.event {
             Event::ShadowRay { light, origin, direction, occluders, s, .. } => Some(Shadow {
+                event: index,
                 light: *light,
                 origin: *origin,
                 direction: *direction,
@@ -116,33 +119,48 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         crate::figure::drawing::View::new(view.xmin(), column.x, view.ymin(), view.ymax()).unwrap_or(view);
 
     let anchors = draw_objects(d, scene, &plane, &scene_part, &occluding, RayRole::BlockedShadow.color());
-    draw_ray(d, parts::role(node.start.kind), incoming, i);
+    let hit_ev: Vec<usize> = log.ended_by(node_index).into_iter().collect();
+    d.with_events(log.ray_events(node_index), |d| draw_ray(d, parts::role(node.start.kind), incoming, i));
     for s in &shadows {
         let role = if s.occluders.is_empty() { RayRole::Shadow } else { RayRole::BlockedShadow };
-        d.segment(
-            role.tag(),
-            plane.point(s.origin),
-            plane.point(scene.lights[s.light].position),
-            role.style(),
-        );
+        d.with_events([s.event], |d| {
+            d.segment(
+                role.tag(),
+                plane.point(s.origin),
+                plane.point(scene.lights[s.light].position),
+                role.style(),
+            );
+        });
     }
     // Long enough to read beside an incoming ray that runs close to it.
     let normal_len = 0.2 * view.height();
     if let Some(dir) = plane.dir(n_f).try_normalize() {
-        d.segment("normal", i, i + dir * normal_len, style::normal());
-        label(d, i + dir * normal_len, "N");
+        d.with_events(hit_ev.clone(), |d| {
+            d.segment("normal", i, i + dir * normal_len, style::normal());
+            label(d, i + dir * normal_len, "N");
+        });
     }
     for s in &shadows {
         if let Some(t) = s.block {
             let at = plane.point(s.origin + s.direction * t);
-            d.marker("occluder-point", at, style::DOT_RADIUS, RayRole::BlockedShadow.color(), Style::NONE);
+            d.with_events([s.event], |d| {
+                d.marker(
+                    "occluder-point",
+                    at,
+                    style::DOT_RADIUS,
+                    RayRole::BlockedShadow.color(),
+                    Style::NONE,
+                );
+            });
         }
     }
     for l in &scene.lights {
         draw_light(d, plane.point(l.position));
     }
-    d.dot("hit", i, style::HIT);
-    label(d, i, &hit_name);
+    d.with_events(hit_ev, |d| {
+        d.dot("hit", i, style::HIT);
+        label(d, i, &hit_name);
+    });
     let light_name = |k: usize| if scene.lights.len() == 1 { "S".to_owned() } else { sub("S", k + 1) };
     for (k, l) in scene.lights.iter().enumerate() {
         label(d, plane.point(l.position), &light_name(k));

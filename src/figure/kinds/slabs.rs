@@ -15,7 +15,7 @@ use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VA
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, clip_line, num, object_name};
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{bound_test_of, Target, Traced};
+use crate::figure::source::{bound_test_index, bound_test_of, Target, Traced};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
 use crate::record::event::ObjectRef;
@@ -70,6 +70,8 @@ const MISS_RAY: Rgba = style::BLUE;
 /// A traced ray's test of the volume, read from its `bound_test` event.
 struct Tested<'a, V> {
     traced: &'a Traced<V>,
+    /// The events it draws, when it is the main trace: its primary ray and its `bound_test`.
+    events: Vec<usize>,
     origin: V,
     direction: V,
     intervals: Vec<[f64; 2]>,
@@ -142,8 +144,15 @@ pub fn draw<V: Planar>(
         .filter_map(|traced| {
             let (intervals, t_in, t_out, hit) = bound_test_of(&traced.log, focus)?;
             let root = traced.log.nodes.first()?;
+            let main = std::ptr::eq(traced, &input.traces.traces[0]);
+            let events = if main {
+                traced.log.spawned_by(0).into_iter().chain(bound_test_index(&traced.log, focus)).collect()
+            } else {
+                Vec::new()
+            };
             Some(Tested {
                 traced,
+                events,
                 origin: root.start.origin,
                 direction: root.start.direction,
                 intervals: intervals.to_vec(),
@@ -246,28 +255,32 @@ pub fn draw<V: Planar>(
         let role = Style::solid(colour, style::RAY_WIDTH);
         let (pa, pb) = (at(t, a), at(t, b));
         let mid = pa + (pb - pa) * 0.5;
-        d.arrow(RayRole::Primary.tag(), pa, mid, role);
-        d.segment(RayRole::Primary.tag(), mid, pb, role);
+        d.with_events(t.events.iter().copied(), |d| {
+            d.arrow(RayRole::Primary.tag(), pa, mid, role);
+            d.segment(RayRole::Primary.tag(), mid, pb, role);
+        });
     }
     for t in &tested {
         let (from, to) = span_of(t);
-        for (k, iv) in t.intervals.iter().enumerate().take(slabs.len()) {
-            for (end, letter) in iv.iter().zip(["I", "E"]) {
-                if end.is_finite() && (from..=to).contains(end) {
-                    let p = at(t, *end);
-                    d.marker("crossing", p, style::DOT_RADIUS * 0.8, slab_colour(k), Style::NONE);
-                    let opts = TextOpts::NOTE.size(TextSize::Small).color(slab_colour(k)).avoid_overlap();
-                    d.text("crossing-name", p, &sub_text(letter, &slabs[k].name), opts);
+        d.with_events(t.events.iter().copied(), |d| {
+            for (k, iv) in t.intervals.iter().enumerate().take(slabs.len()) {
+                for (end, letter) in iv.iter().zip(["I", "E"]) {
+                    if end.is_finite() && (from..=to).contains(end) {
+                        let p = at(t, *end);
+                        d.marker("crossing", p, style::DOT_RADIUS * 0.8, slab_colour(k), Style::NONE);
+                        let opts = TextOpts::NOTE.size(TextSize::Small).color(slab_colour(k)).avoid_overlap();
+                        d.text("crossing-name", p, &sub_text(letter, &slabs[k].name), opts);
+                    }
                 }
             }
-        }
-        if t.hit {
-            for (s, name) in [(t.t_in, "I"), (t.t_out, "E")] {
-                let p = at(t, s);
-                d.marker("entry-exit", p, style::DOT_RADIUS * 1.2, style::BLACK, Style::NONE);
-                d.text("label", p, name, TextOpts::LABEL.bold().avoid_overlap());
+            if t.hit {
+                for (s, name) in [(t.t_in, "I"), (t.t_out, "E")] {
+                    let p = at(t, s);
+                    d.marker("entry-exit", p, style::DOT_RADIUS * 1.2, style::BLACK, Style::NONE);
+                    d.text("label", p, name, TextOpts::LABEL.bold().avoid_overlap());
+                }
             }
-        }
+        });
     }
     parts::label_objects(d, &one, &anchors);
 
@@ -286,47 +299,53 @@ pub fn draw<V: Planar>(
     let rows = slabs.len() as f64 + 3.0;
     let row_h = view.height() / (rows * tested.len() as f64 + 0.5);
     for (k, t) in tested.iter().enumerate() {
-        let top = view.ymax() - row_h * (0.6 + rows * k as f64);
-        let colour = if t.hit { HIT_RAY } else { MISS_RAY };
-        let target = t.traced.targets.first().cloned().unwrap_or(Target::Ray);
-        let head = TextOpts::LABEL
-            .size(TextSize::Body)
-            .align(Align { h: HAlign::Left, v: VAlign::Middle })
-            .color(colour)
-            .no_halo();
-        d.text(
-            "interval-title",
-            DVec2::new(column.x + 0.02 * width, top),
-            &crate::figure::labels::target(&target, V::DIM, lang),
-            head,
-        );
-        for (s, iv) in t.intervals.iter().enumerate().take(slabs.len()) {
-            let y = top - row_h * (s as f64 + 1.0);
-            let name =
-                TextOpts::NOTE.align(Align::LEFT_OF).offset(-10.0, 0.0).color(slab_colour(s)).no_halo();
-            d.text("interval-name", DVec2::new(left, y), &slabs[s].name, name);
-            d.segment("t-axis", DVec2::new(left, y), DVec2::new(right, y), style::grid());
-            let (a, b) = (iv[0], iv[1]);
-            if a <= b {
-                let bar = Style::solid(slab_colour(s), style::RAY_WIDTH * 1.6);
-                d.segment("interval", DVec2::new(x_of(a), y), DVec2::new(x_of(b), y), bar);
+        d.with_events(t.events.iter().copied(), |d| {
+            let top = view.ymax() - row_h * (0.6 + rows * k as f64);
+            let colour = if t.hit { HIT_RAY } else { MISS_RAY };
+            let target = t.traced.targets.first().cloned().unwrap_or(Target::Ray);
+            let head = TextOpts::LABEL
+                .size(TextSize::Body)
+                .align(Align { h: HAlign::Left, v: VAlign::Middle })
+                .color(colour)
+                .no_halo();
+            d.text(
+                "interval-title",
+                DVec2::new(column.x + 0.02 * width, top),
+                &crate::figure::labels::target(&target, V::DIM, lang),
+                head,
+            );
+            for (s, iv) in t.intervals.iter().enumerate().take(slabs.len()) {
+                let y = top - row_h * (s as f64 + 1.0);
+                let name =
+                    TextOpts::NOTE.align(Align::LEFT_OF).offset(-10.0, 0.0).color(slab_colour(s)).no_halo();
+                d.text("interval-name", DVec2::new(left, y), &slabs[s].name, name);
+                d.segment("t-axis", DVec2::new(left, y), DVec2::new(right, y), style::grid());
+                let (a, b) = (iv[0], iv[1]);
+                if a <= b {
+                    let bar = Style::solid(slab_colour(s), style::RAY_WIDTH * 1.6);
+                    d.segment("interval", DVec2::new(x_of(a), y), DVec2::new(x_of(b), y), bar);
+                }
             }
-        }
-        // max t_i and min t_e: the verdict.
-        let y_top = top - row_h * 0.5;
-        let y_bot = top - row_h * (slabs.len() as f64 + 0.5);
-        for (value, tag) in [(t.t_in, "t-in"), (t.t_out, "t-out")] {
-            if value.is_finite() {
-                let line = Style::solid(colour, style::CONSTRUCTION_WIDTH);
-                d.segment(tag, DVec2::new(x_of(value), y_top), DVec2::new(x_of(value), y_bot), line);
+            // max t_i and min t_e: the verdict.
+            let y_top = top - row_h * 0.5;
+            let y_bot = top - row_h * (slabs.len() as f64 + 0.5);
+            for (value, tag) in [(t.t_in, "t-in"), (t.t_out, "t-out")] {
+                if value.is_finite() {
+                    let line = Style::solid(colour, style::CONSTRUCTION_WIDTH);
+                    d.segment(tag, DVec2::new(x_of(value), y_top), DVec2::new(x_of(value), y_bot), line);
+                }
             }
-        }
-        let relation = if t.t_in <= t.t_out { "≤" } else { ">" };
-        let verdict = if t.hit { Label::MeetsVolume } else { Label::MissesVolume };
-        let text =
-            format!("max t_i = {} {relation} min t_e = {} → {}", num(t.t_in), num(t.t_out), input.t(verdict));
-        let opts = TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Top }).no_halo();
-        d.text("verdict", DVec2::new(column.x + 0.02 * width, y_bot - row_h * 0.2), &text, opts);
+            let relation = if t.t_in <= t.t_out { "≤" } else { ">" };
+            let verdict = if t.hit { Label::MeetsVolume } else { Label::MissesVolume };
+            let text = format!(
+                "max t_i = {} {relation} min t_e = {} → {}",
+                num(t.t_in),
+                num(t.t_out),
+                input.t(verdict)
+            );
+            let opts = TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Top }).no_halo();
+            d.text("verdict", DVec2::new(column.x + 0.02 * width, y_bot - row_h * 0.2), &text, opts);
+        });
     }
     Ok(())
 }

@@ -22,6 +22,8 @@ struct Mapped {
     i: usize,
     j: usize,
     uv: Vec<f64>,
+    /// The index of the `primary_ray` event that carries `uv`.
+    event: usize,
 }
 
 /// Draws the figure.
@@ -56,11 +58,11 @@ fn mapped<V>(traced: &Traced<V>) -> Option<Mapped> {
         crate::figure::source::Target::Pixel { i, j, .. } => (*i, *j),
         crate::figure::source::Target::Ray => return None,
     };
-    let uv = traced.log.events.iter().find_map(|l| match &l.event {
-        Event::PrimaryRay { uv, .. } if !uv.is_empty() => Some(uv.clone()),
+    let (event, uv) = traced.log.events.iter().enumerate().find_map(|(k, l)| match &l.event {
+        Event::PrimaryRay { uv, .. } if !uv.is_empty() => Some((k, uv.clone())),
         _ => None,
     })?;
-    Some(Mapped { i, j, uv })
+    Some(Mapped { i, j, uv, event })
 }
 
 /// Grid lines every `step` cells: every cell up to 48 a side, else a round step.
@@ -141,19 +143,21 @@ fn two_panels<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>,
     let (i, j) = (m.i as f64, m.j as f64);
     let lo = DVec2::new(i * cell, j * cell);
     let hl = Some(style::HIGHLIGHT);
-    d.rect("pixel", lo, lo + DVec2::splat(cell), style::outline(style::BLACK), hl);
     let (u0, v0) = (cam.u_at(i), cam.v_at(j));
     let (u1, v1) = (cam.u_at(i + 1.0), cam.v_at(j + 1.0));
-    d.rect("pixel", to_window(u0, v0), to_window(u1, v1), style::outline(style::BLACK), hl);
     let centre = lo + DVec2::splat(cell / 2.0);
     let uv = to_window(m.uv[0], m.uv.get(1).copied().unwrap_or(0.0));
     // A ring keeps the pixel visible when the grid is fine.
     let ring = Style::solid(style::BLACK, style::CONSTRUCTION_WIDTH);
-    d.marker("pixel-ring", centre, 22.0, style::HIGHLIGHT.with_alpha(0.0), ring);
-    d.marker("uv-ring", uv, 22.0, style::HIGHLIGHT.with_alpha(0.0), ring);
-    d.arrow("mapping", centre, uv, style::normal());
-    d.dot("pixel-centre", centre, style::HIT);
-    d.dot("uv", uv, style::HIT);
+    d.with_events([m.event], |d| {
+        d.rect("pixel", lo, lo + DVec2::splat(cell), style::outline(style::BLACK), hl);
+        d.rect("pixel", to_window(u0, v0), to_window(u1, v1), style::outline(style::BLACK), hl);
+        d.marker("pixel-ring", centre, 22.0, style::HIGHLIGHT.with_alpha(0.0), ring);
+        d.marker("uv-ring", uv, 22.0, style::HIGHLIGHT.with_alpha(0.0), ring);
+        d.arrow("mapping", centre, uv, style::normal());
+        d.dot("pixel-centre", centre, style::HIT);
+        d.dot("uv", uv, style::HIT);
+    });
 
     // The u and v axes of the window, where they cross it.
     if w.l < 0.0 && w.r > 0.0 {
@@ -229,11 +233,13 @@ fn two_panels<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>,
         &format!("j = {}", m.j),
         note.align(Align::LEFT_OF).offset(-60.0, 0.0),
     );
-    d.text("label", centre, &format!("({}, {})", m.i, m.j), TextOpts::LABEL.avoid_overlap());
     // The numbers only, as the pixel's (i, j): the formulas under the image name them u and v,
     // and a shorter label keeps off the window's v axis.
     let uv_text = format!("({}, {})", num(m.uv[0]), num(m.uv.get(1).copied().unwrap_or(0.0)));
-    d.text("label", uv, &uv_text, TextOpts::LABEL.avoid_overlap());
+    d.with_events([m.event], |d| {
+        d.text("label", centre, &format!("({}, {})", m.i, m.j), TextOpts::LABEL.avoid_overlap());
+        d.text("label", uv, &uv_text, TextOpts::LABEL.avoid_overlap());
+    });
 
     let lines = [formula_u(cam, m), formula_v(cam, m)];
     text_column(d, DVec2::new(0.0, -0.2), &lines, TextSize::Body, 50.0);
@@ -265,14 +271,22 @@ fn one_row<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>, m:
 
     let i = m.i as f64;
     let lo = DVec2::new(i * cell, top);
-    d.rect("pixel", lo, lo + DVec2::new(cell, strip), style::outline(style::BLACK), Some(style::HIGHLIGHT));
     let (a, b) = (to_line(cam.u_at(i)), to_line(cam.u_at(i + 1.0)));
-    d.segment("pixel", a, b, Style::solid(style::HIGHLIGHT, style::OBJECT_WIDTH * 3.0));
     let centre = lo + DVec2::new(cell / 2.0, strip / 2.0);
     let u = to_line(m.uv[0]);
-    d.arrow("mapping", centre, u, style::normal());
-    d.dot("pixel-centre", centre, style::HIT);
-    d.dot("uv", u, style::HIT);
+    d.with_events([m.event], |d| {
+        d.rect(
+            "pixel",
+            lo,
+            lo + DVec2::new(cell, strip),
+            style::outline(style::BLACK),
+            Some(style::HIGHLIGHT),
+        );
+        d.segment("pixel", a, b, Style::solid(style::HIGHLIGHT, style::OBJECT_WIDTH * 3.0));
+        d.arrow("mapping", centre, u, style::normal());
+        d.dot("pixel-centre", centre, style::HIT);
+        d.dot("uv", u, style::HIT);
+    });
 
     let above = TextOpts::LABEL.align(Align::ABOVE).size(TextSize::Body).offset(0.0, 10.0);
     d.text(
@@ -284,7 +298,9 @@ fn one_row<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>, m:
     let below = TextOpts::LABEL.align(Align::BELOW).size(TextSize::Body).offset(0.0, -14.0);
     d.text("label", to_line(w.l), &format!("l = {}", num(w.l)), below);
     d.text("label", to_line(w.r), &format!("r = {}", num(w.r)), below);
-    d.text("label", u, &format!("u = {}", num(m.uv[0])), below.offset(0.0, -60.0));
+    d.with_events([m.event], |d| {
+        d.text("label", u, &format!("u = {}", num(m.uv[0])), below.offset(0.0, -60.0));
+    });
     d.text(
         "label",
         to_line(w.l),

@@ -1,5 +1,15 @@
-//! Value parsers for the command line: `--pixel I,J`, `--ray OX,OY,OZ:DX,DY,DZ`, `--size WxH`,
-//! `--threshold X`.
+//! The options' values as the command line writes them, parsed and checked: `--pixel I,J`,
+//! `--ray OX,OY,OZ:DX,DY,DZ`, `--size WxH`, `--threshold X`, `--grid NX,NY[,NZ]`, `--depth N`,
+//! `--max-level K`. The command line hands clap these parsers; the WebAssembly binding writes a
+//! request's numbers in the same form and parses them here, so both refuse a value with the same
+//! words.
+
+use crate::accel::grid::MAX_CELLS;
+use crate::sample::MAX_LEVEL;
+use crate::scene::load::MAX_DEPTH;
+
+/// The largest width or height of `--size`.
+pub const MAX_SIZE: usize = 65_536;
 
 /// `I,J` or `I` (2D) → column and optional row.
 ///
@@ -44,8 +54,9 @@ pub fn ray(text: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
 /// # Errors
 /// A message naming the expected form.
 pub fn size(text: &str) -> Result<(usize, Option<usize>), String> {
-    let bad = || format!("--size: expected WxH (or W) with whole numbers in [1, 65536], got `{text}`");
-    let check = |s: &str| s.trim().parse::<usize>().ok().filter(|n| (1..=65_536).contains(n)).ok_or_else(bad);
+    let bad = || format!("--size: expected WxH (or W) with whole numbers in [1, {MAX_SIZE}], got `{text}`");
+    let check =
+        |s: &str| s.trim().parse::<usize>().ok().filter(|n| (1..=MAX_SIZE).contains(n)).ok_or_else(bad);
     match text.split_once(['x', 'X']) {
         Some((w, h)) => Ok((check(w)?, Some(check(h)?))),
         None => Ok((check(text)?, None)),
@@ -62,8 +73,54 @@ pub fn threshold(text: &str) -> Result<f64, String> {
         .trim()
         .parse()
         .map_err(|_| format!("--threshold: expected a number ≥ 0 or inf, got `{text}`"))?;
-    whitted::sample::Sampling::adaptive(x, 0).map_err(|e| e.to_string())?;
+    crate::sample::Sampling::adaptive(x, 0).map_err(|e| e.to_string())?;
     Ok(x)
+}
+
+/// `NX,NY[,NZ]`: the grid's cells per axis, each at least 1, at most [`MAX_CELLS`] in all.
+///
+/// # Errors
+/// A message naming `--grid`'s form or limit.
+pub fn grid(text: &str) -> Result<Vec<usize>, String> {
+    let n: Vec<usize> = text
+        .split(',')
+        .map(|x| x.trim().parse::<usize>().map_err(|_| format!("`{x}` is not a cell count")))
+        .collect::<Result<_, _>>()?;
+    if !(2..=3).contains(&n.len()) {
+        return Err(format!("expected NX,NY,NZ (or NX,NY in 2D), got {} numbers", n.len()));
+    }
+    if n.contains(&0) {
+        return Err("every cell count must be at least 1".into());
+    }
+    let total = n.iter().try_fold(1usize, |a, &b| a.checked_mul(b));
+    if total.is_none_or(|t| t > MAX_CELLS) {
+        return Err(format!("at most {MAX_CELLS} cells in all"));
+    }
+    Ok(n)
+}
+
+/// `N`: a depth in `[0, 64]` (the binding's; the command line lets clap check the range).
+///
+/// # Errors
+/// A message naming `--depth`.
+pub fn depth(text: &str) -> Result<u32, String> {
+    text.trim()
+        .parse::<u32>()
+        .ok()
+        .filter(|d| u64::from(*d) <= MAX_DEPTH)
+        .ok_or_else(|| format!("--depth: expected a whole number in [0, {MAX_DEPTH}], got `{text}`"))
+}
+
+/// `K`: a subdivision level in `[0, 8]` (the binding's; the command line lets clap check it).
+///
+/// # Errors
+/// A message naming `--max-level`.
+pub fn max_level(text: &str) -> Result<u32, String> {
+    text.trim()
+        .parse::<u32>()
+        .ok()
+        .filter(|k| *k <= MAX_LEVEL)
+        .ok_or_else(|| format!("--max-level: expected a whole number in [0, {MAX_LEVEL}], got `{text}`"))
 }
 
 #[cfg(test)]
@@ -99,6 +156,24 @@ mod tests {
             let e = threshold(bad).unwrap_err();
             assert!(e.starts_with("--threshold"), "{e}");
         }
+    }
+
+    #[test]
+    fn grid_cells() {
+        assert_eq!(grid("4,4,4"), Ok(vec![4, 4, 4]));
+        assert_eq!(grid("8,2"), Ok(vec![8, 2]));
+        assert!(grid("0,1,1").is_err());
+        assert!(grid("4").is_err());
+        assert!(grid("4096,4096,4096").is_err());
+    }
+
+    #[test]
+    fn depths_and_levels() {
+        assert_eq!(depth("64"), Ok(64));
+        assert_eq!(depth("65").unwrap_err(), "--depth: expected a whole number in [0, 64], got `65`");
+        assert!(depth("-1").is_err() && depth("1.5").is_err());
+        assert_eq!(max_level("8"), Ok(8));
+        assert!(max_level("9").unwrap_err().starts_with("--max-level"));
     }
 
     #[test]

@@ -1,0 +1,146 @@
+//! One pixel or ray traced with the `EventLog` (`whitted trace`): the trace document (`--json`)
+//! or the numbered narration with each step's events. With `--aa corners|adaptive` the pixel's
+//! samples are traced instead of its centre (`sample::trace_pixel`, `doc::samples`).
+
+use super::options::AccelChoice;
+use super::target::Target;
+use super::Failure;
+use crate::accel::Accel;
+use crate::doc::narrate::{narration, Lang, Narration};
+use crate::doc::samples::{sample_narration, sampled_document};
+use crate::doc::{trace_document, TraceTarget};
+use crate::record::EventLog;
+use crate::sample::{trace_pixel, PixelTrace, Sampling};
+use crate::scene::material::Rgb;
+use crate::scene::{AnyScene, Scene};
+use crate::shape::Dim;
+use crate::trace::stats::Stats;
+use crate::trace::Tracer;
+use serde_json::Value;
+
+/// What to trace and how.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trace {
+    /// `--pixel` or `--ray`.
+    pub target: Target,
+    /// `--depth`: overrides the scene's `max_depth`.
+    pub depth: Option<u32>,
+    /// `--aa` (already chosen): corners and adaptive trace a pixel's samples.
+    pub sampling: Sampling,
+    /// `--accel`, `--bounds`, `--grid`.
+    pub accel: AccelChoice,
+}
+
+/// A narration and what was traced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Narrated {
+    /// The text and each step's events.
+    pub narration: Narration,
+    /// The pixel and `(u, v)` (None for a ray).
+    pub target: TraceTarget,
+}
+
+/// A finished trace: the log and what it was asked as.
+struct Done<V> {
+    log: EventLog<V>,
+    stats: Stats,
+    target: TraceTarget,
+    max_depth: u32,
+    /// The root's colour (centre sampling) or the pixel's samples.
+    outcome: Outcome,
+}
+
+enum Outcome {
+    Center(Rgb),
+    Samples(PixelTrace),
+}
+
+impl Trace {
+    fn run<V: Dim>(&self, scene: &Scene<V>) -> Result<Done<V>, Failure> {
+        let (ray, target) = self.target.primary(scene)?;
+        let options = self.accel.options(V::DIM)?;
+        let accel = Accel::build_with(scene, &options);
+        let mut tracer = Tracer::new(scene, &accel, EventLog::new());
+        if let Some(d) = self.depth {
+            tracer.max_depth = d;
+        }
+        let outcome = if self.sampling == Sampling::Center {
+            let uv = target.uv.clone().unwrap_or_default();
+            Outcome::Center(tracer.trace_primary(&ray, &uv))
+        } else {
+            let Some(pixel) = target.pixel.clone() else {
+                return Err(Failure::input("--aa corners|adaptive samples a pixel: give --pixel, not --ray"));
+            };
+            Outcome::Samples(trace_pixel(
+                &mut tracer,
+                self.sampling,
+                pixel[0],
+                pixel.get(1).copied().unwrap_or(0),
+            ))
+        };
+        let max_depth = tracer.max_depth;
+        Ok(Done { stats: tracer.stats, log: tracer.recorder, target, max_depth, outcome })
+    }
+
+    /// The trace document (`whitted trace --json`) of a scene of known dimension.
+    ///
+    /// # Errors
+    /// Bad input: the target, the grid, or samples asked of a ray.
+    pub fn document_in<V: Dim>(&self, scene: &Scene<V>) -> Result<Value, Failure> {
+        let done = self.run(scene)?;
+        Ok(match &done.outcome {
+            Outcome::Center(color) => trace_document(scene, &done.log, &done.stats, &done.target, *color),
+            Outcome::Samples(traced) => {
+                sampled_document(scene, &done.log, &done.stats, &done.target, self.sampling, traced)
+            }
+        })
+    }
+
+    /// The narration (`whitted trace`) of a scene of known dimension, with each step's events,
+    /// and what was traced (the document's `pixel` and `uv`).
+    ///
+    /// # Errors
+    /// As [`Trace::document_in`].
+    pub fn narration_in<V: Dim>(&self, scene: &Scene<V>, lang: Lang) -> Result<Narrated, Failure> {
+        let done = self.run(scene)?;
+        let narration = match &done.outcome {
+            Outcome::Center(_) => {
+                narration(scene, &done.log, &done.stats, &done.target, done.max_depth, lang)
+            }
+            Outcome::Samples(traced) => {
+                sample_narration(&done.target, self.sampling, traced, &done.stats, lang, &done.log)
+            }
+        };
+        Ok(Narrated { narration, target: done.target })
+    }
+
+    /// [`Trace::document_in`] of a scene of either dimension.
+    ///
+    /// # Errors
+    /// As [`Trace::document_in`].
+    pub fn document(&self, scene: &AnyScene) -> Result<Value, Failure> {
+        match scene {
+            AnyScene::Flat(s) => self.document_in(s),
+            AnyScene::Space(s) => self.document_in(s),
+        }
+    }
+
+    /// [`Trace::narration_in`] of a scene of either dimension.
+    ///
+    /// # Errors
+    /// As [`Trace::document_in`].
+    pub fn narration(&self, scene: &AnyScene, lang: Lang) -> Result<Narrated, Failure> {
+        match scene {
+            AnyScene::Flat(s) => self.narration_in(s, lang),
+            AnyScene::Space(s) => self.narration_in(s, lang),
+        }
+    }
+}
+
+/// The document as `whitted trace --json` prints it: pretty JSON and a newline.
+///
+/// # Errors
+/// A serialisation failure (not bad input).
+pub fn document_text(doc: &Value) -> Result<String, Failure> {
+    serde_json::to_string_pretty(doc).map(|t| t + "\n").map_err(|e| Failure::other(e.to_string()))
+}

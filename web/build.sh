@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Builds the WebAssembly module of web/ (package whitted-web) for wasm32-unknown-unknown and copies
+# it to target/wasm/whitted_web.wasm, whose path it prints on stdout.
+#
+# rustup cannot add the wasm32 target on every machine; Debian's toolchain can (see web/README.md):
+#   apt-get update && apt-get install -y rustc-web cargo-web rust-web-src lld
+# gives /usr/bin/rustc, /usr/bin/cargo (1.96), the standard library's sources and wasm-ld; the
+# standard library is then compiled for wasm32 with the module (-Zbuild-std, allowed by
+# RUSTC_BOOTSTRAP=1). When something is missing this script says what on stderr, with the command
+# that installs it, and exits 3; with --install it runs that command itself (as root).
+#
+# Its target folder is target/wasm-build: another rustc's artefacts must not share the native one
+# (mixing them gives E0514).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+install=no
+for arg in "$@"; do
+  case "$arg" in
+    --install) install=yes ;;
+    *) echo "web/build.sh: unknown argument \`$arg\` (only --install)" >&2; exit 2 ;;
+  esac
+done
+
+packages="rustc-web cargo-web rust-web-src lld"
+install_cmd="apt-get update && apt-get install -y $packages"
+rustc=/usr/bin/rustc
+cargo=/usr/bin/cargo
+
+# What is missing, one line each (empty when the toolchain is complete).
+missing() {
+  [ -x "$rustc" ] || echo "  $rustc (Debian package rustc-web)"
+  [ -x "$cargo" ] || echo "  $cargo (Debian package cargo-web)"
+  command -v wasm-ld > /dev/null || echo "  wasm-ld (Debian package lld)"
+  if [ -x "$rustc" ]; then
+    local sysroot
+    sysroot=$("$rustc" --print sysroot)
+    [ -f "$sysroot/lib/rustlib/src/rust/library/Cargo.lock" ] \
+      || echo "  the standard library's sources under $sysroot/lib/rustlib/src (Debian package rust-web-src)"
+    # image 0.25 needs rustc 1.88; without `apt-get update` Debian offers rustc-web 1.85.
+    local minor
+    minor=$("$rustc" --version | sed -E 's/^rustc 1\.([0-9]+).*/\1/')
+    [ "$minor" -ge 88 ] 2>/dev/null \
+      || echo "  rustc ≥ 1.88 at $rustc (it is $("$rustc" --version); run apt-get update first)"
+  fi
+}
+
+gaps=$(missing)
+if [ -n "$gaps" ] && [ "$install" = yes ]; then
+  echo "web/build.sh: installing the WebAssembly toolchain: $install_cmd" >&2
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "web/build.sh: --install needs root" >&2
+    exit 3
+  fi
+  DEBIAN_FRONTEND=noninteractive sh -c "$install_cmd" >&2
+  gaps=$(missing)
+fi
+if [ -n "$gaps" ]; then
+  {
+    echo "web/build.sh: the WebAssembly toolchain is incomplete; missing:"
+    echo "$gaps"
+    echo "install it with (as root): $install_cmd"
+    echo "or run: web/build.sh --install"
+  } >&2
+  exit 3
+fi
+
+cd "$root"
+build_dir="$root/target/wasm-build"
+RUSTC="$rustc" RUSTC_BOOTSTRAP=1 RUSTFLAGS="-C linker=wasm-ld" CARGO_TARGET_DIR="$build_dir" \
+  nice -n 10 "$cargo" build --quiet --profile wasm --target wasm32-unknown-unknown \
+  -Zbuild-std=std,panic_abort -p whitted-web >&2
+mkdir -p "$root/target/wasm"
+out="$root/target/wasm/whitted_web.wasm"
+cp "$build_dir/wasm32-unknown-unknown/wasm/whitted_web.wasm" "$out"
+echo "$out"
