@@ -60,7 +60,7 @@ const WORDS: &[(&str, &str, &str)] = &[
     ("example", "Example scene", "Scenă de exemplu"),
     ("loading", "Loading the WebAssembly module…", "Se încarcă modulul WebAssembly…"),
     ("ready", "WebAssembly module ready ({ms} ms).", "Modulul WebAssembly este gata ({ms} ms)."),
-    ("rendering", "Rendering… {p} %", "Se randează… {p} %"),
+    ("rendering", "Rendering in the background…", "Se randează în fundal…"),
     ("rendered", "{w}×{h} pixels, {rays} rays, {ms} ms in the page",
      "{w}×{h} pixeli, {rays} raze, {ms} ms în pagină"),
     ("missing",
@@ -285,7 +285,7 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
          <div class=\"panes\">\n<div class=\"pane image-pane\">\n\
          <div class=\"imagebox\" aria-label=\"{image}\"><canvas data-whitted=\"image\" width=\"1\" height=\"1\"></canvas>\
          <div class=\"mark\" data-whitted=\"mark\" hidden></div></div>\n\
-         <progress data-whitted=\"progress\" max=\"100\" value=\"0\" hidden></progress>\n\
+         <progress data-whitted=\"progress\" hidden></progress>\n\
          <p class=\"stats\" data-whitted=\"stats\"></p>\n\
          <form class=\"pixel-form\" data-whitted=\"pixel-form\"><label>{pixel} <input data-whitted=\"pixel\" size=\"9\" inputmode=\"numeric\" autocomplete=\"off\"></label> \
          <button type=\"submit\">{show}</button></form>\n\

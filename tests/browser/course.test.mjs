@@ -12,6 +12,8 @@ import { ROOT, cutSteps, launch, open, settled, shot, whitted } from './support.
 /** Whitted's scene as the secondary-rays lesson names it, and as the CLI reaches it. */
 const LESSON = 'secondary-rays';
 const SCENE = 'lessons/../scenes/whitted.json';
+/** The first view's image and figure, scrolled to the top for a screenshot. */
+const PANES = '[data-whitted="view"] .panes';
 /** A pixel inside the glass sphere's image: a click near it lands on the glass. */
 const GLASS = [430, 280];
 
@@ -93,7 +95,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   const pixel = await clickPixel(page, GLASS);
   assert.ok(Math.abs(pixel[0] - GLASS[0]) <= 1 && Math.abs(pixel[1] - GLASS[1]) <= 1, `${pixel}`);
   s = await state(page);
-  await shot(page, '02-clicked-glass');
+  await shot(page, '02-clicked-glass', PANES);
   assert.match(s.hash, new RegExp(`^#pixel=${pixel.join(',')}&step=1&`));
   const narration = cutSteps(whitted(['trace', SCENE, '--pixel', pixel.join(',')]));
   assert.ok(narration.some((t) => t.includes('Nearest hit I on “glass”')), 'the pixel is on the glass sphere');
@@ -119,17 +121,26 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
     assert.equal(s.current.step, 1 + k);
     assert.deepEqual(s.lit, expectedLit(s.items, s.current.events));
     assert.equal(s.currentText, narration[k].replace(/^\s+/, ''));
-    await shot(page, `03-step-${1 + k}`);
+    await shot(page, `03-step-${1 + k}`, PANES);
   }
-  assert.ok(s.lit.length > 0, 'step 4 lights something');
   assert.match(s.position, /Step 4 of \d+/);
   assert.match(s.hash, /step=4/);
+  // The step of the nearest hit, chosen in the list, lights the hit in the refraction figure.
+  const hit = 1 + narration.findIndex((t) => t.includes('Nearest hit I on “glass”'));
+  await page.locator(`[data-whitted="steps"] [data-step="${hit}"]`).first().click();
+  s = await state(page);
+  await shot(page, '03-nearest-hit', PANES);
+  assert.equal(s.current.step, hit);
+  assert.ok(s.lit.length > 0, `step ${hit} lights the hit`);
+  assert.deepEqual(s.lit, expectedLit(s.items, s.current.events));
+  for (let k = hit; k > 4; k--) await page.keyboard.press('ArrowLeft');
+  assert.equal((await state(page)).current.step, 4);
 
   // Romanian: the same place, Romanian words and narration.
   await Promise.all([page.waitForURL(new RegExp(`/ro/secondary-rays\\.html#pixel=${pixel.join(',')}&step=4`)), page.click('[data-whitted="lang"]')]);
   await settled(page);
   s = await state(page);
-  await shot(page, '04-romanian');
+  await shot(page, '04-romanian', PANES);
   assert.equal(s.current.step, 4);
   const ro = cutSteps(whitted(['trace', SCENE, '--pixel', pixel.join(','), '--lang', 'ro']));
   assert.equal(s.currentText, ro[3].replace(/^\s+/, ''));
@@ -144,12 +155,12 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   writeFileSync(file, bad);
   let checkErr = '';
   try { whitted(['check', file]); } catch (e) { checkErr = e.stderr.toString(); }
+  await page.locator('.editor summary').first().click();
   await page.locator('[data-whitted="scene"]').first().fill(bad);
   await page.waitForFunction(() => document.querySelector('[data-whitted="errors"]').children.length > 0);
   await settled(page);
   s = await state(page);
-  await page.locator('[data-whitted="view"]').first().locator('[data-whitted="errors"]').scrollIntoViewIfNeeded();
-  await shot(page, '05-bad-radius');
+  await shot(page, '05-bad-radius', '[data-whitted="view"] .editor');
   assert.ok(s.errors.some((e) => e.startsWith('objects[2].radius')), s.errors.join('\n'));
   for (const e of s.errors) assert.ok(checkErr.includes(e), `${e} is what check says: ${checkErr}`);
   assert.deepEqual(s.canvas, [640, 480]);
@@ -163,8 +174,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   await page.locator('[data-whitted="depth"]').first().dispatchEvent('change');
   await settled(page);
   s = await state(page);
-  await page.locator('[data-whitted="view"]').first().scrollIntoViewIfNeeded();
-  await shot(page, '06-depth-1');
+  await shot(page, '06-depth-1', PANES);
   assert.ok(s.steps.length < before, `${s.steps.length} < ${before}`);
   assert.match(s.hash, /depth=1/);
   const depth1 = cutSteps(whitted(['trace', SCENE, '--pixel', pixel.join(','), '--depth', '1', '--lang', 'ro']));
@@ -184,7 +194,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   await page.locator('[data-whitted="pixel"]').first().press('Enter');
   await settled(page);
   s = await state(page);
-  await shot(page, '07-outside');
+  await shot(page, '07-outside', PANES);
   assert.match(s.message, /900/);
   assert.equal(s.steps.length, depth1.length, 'the last good trace stays');
   assert.deepEqual(page.problems, []);
@@ -194,7 +204,7 @@ test('a page opened with a fragment shows that state', async () => {
   let page = await open(browser, `en/${LESSON}.html#pixel=400,200&step=7&depth=2&aa=center`);
   await settled(page);
   let s = await state(page);
-  await shot(page, '08-fragment');
+  await shot(page, '08-fragment', PANES);
   assert.equal(s.current.step, 7);
   assert.equal(s.depth, '2');
   let cli = cutSteps(whitted(['trace', SCENE, '--pixel', '400,200', '--depth', '2']));
@@ -205,7 +215,7 @@ test('a page opened with a fragment shows that state', async () => {
   page = await open(browser, `ro/${LESSON}.html#pixel=400,200&step=2&aa=corners`);
   await settled(page);
   s = await state(page);
-  await shot(page, '08-fragment-corners');
+  await shot(page, '08-fragment-corners', PANES);
   assert.equal(s.aa, 'corners');
   assert.equal(s.current.step, 2);
   cli = cutSteps(whitted(['trace', SCENE, '--pixel', '400,200', '--aa', 'corners', '--lang', 'ro']));
@@ -239,7 +249,7 @@ test('every lesson and playground page opens live in both languages, also at pho
   await settled(phone);
   await clickPixel(phone, GLASS);
   await phone.keyboard.press('ArrowRight');
-  await shot(phone, '10-phone');
+  await shot(phone, '10-phone', PANES);
   const overflow = await phone.evaluate(() => document.scrollingElement.scrollWidth - innerWidth);
   assert.ok(overflow <= 0, `no sideways scrolling at phone width (${overflow} px too wide)`);
   assert.deepEqual(phone.problems, []);
@@ -253,7 +263,7 @@ test('the playground: an example picked, a pixel clicked', async () => {
   await settled(page);
   const pixel = await clickPixel(page, [30]);
   const s = await state(page);
-  await shot(page, '11-playground-flat');
+  await shot(page, '11-playground-flat', PANES);
   const cli = cutSteps(whitted(['trace', 'scenes/flat.json', '--pixel', String(pixel[0])]));
   assert.deepEqual(s.steps.map((x) => x.text), cli);
   assert.deepEqual(page.problems, []);

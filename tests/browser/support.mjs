@@ -45,9 +45,11 @@ export async function settled(page, timeout = 20000) {
     null, { timeout });
 }
 
-/** Saves a screenshot of the page as SHOTS/NAME.png. */
-export async function shot(page, name) {
+/** Saves a screenshot of the page as SHOTS/NAME.png, with `selector`'s first element (if given)
+ *  scrolled to the top of the window. */
+export async function shot(page, name, selector) {
   mkdirSync(SHOTS, { recursive: true });
+  if (selector) await page.locator(selector).first().evaluate((e) => e.scrollIntoView({ block: 'start' }));
   const path = join(SHOTS, name + '.png');
   await page.screenshot({ path, fullPage: false });
   return path;
@@ -55,7 +57,7 @@ export async function shot(page, name) {
 
 /** Runs the native CLI; returns stdout. */
 export function whitted(args) {
-  return execFileSync(BIN, args, { cwd: ROOT, encoding: 'utf8', maxBuffer: 1 << 28 });
+  return execFileSync(BIN, args, { cwd: ROOT, encoding: 'utf8', maxBuffer: 1 << 28, stdio: ['ignore', 'pipe', 'pipe'] });
 }
 
 /** The narration cut at its numbered steps, as `doc::narrate::steps` cuts it. */

@@ -5,15 +5,13 @@
 //
 // The module arrives as base64 in whitted-wasm.js (a page opened from file:// may not fetch), is
 // compiled once, and runs in two workers made from a Blob URL: one for quick calls (check, info,
-// trace, narrate, figure), one for renders, which the page asks for in bands of rows to show
-// progress. Where a worker cannot start, the same engine runs in the page.
+// trace, narrate, figure), one for renders, so that a long render never holds up a click nor the
+// page. Where a worker cannot start, the same engine runs in the page.
 'use strict';
 
 (function () {
   const WORDS = JSON.parse(document.getElementById('whitted-words').textContent);
   const LANG = document.documentElement.lang === 'ro' ? 'ro' : 'en';
-  /** Rows per render band: small enough for a progress bar, large enough to cost little. */
-  const BAND_ROWS = 32;
   /** Delay after the last keystroke in the scene editor before it is checked (ms). */
   const EDIT_DELAY_MS = 300;
 
@@ -24,22 +22,33 @@
 
   // ---- The engine: the module's ABI, written once, run in a worker or in the page -------------
 
-  /** Makes `call(request) → {status, text, bytes}` over an instantiated module. */
+  /** Makes `call(request) → {status, text, bytes}` over an instance of the module. A trap (a
+   *  panic, which would be a bug) aborts the instance: the next call gets a new one. */
   function makeEngine(module) {
-    const exports = new WebAssembly.Instance(module, {}).exports;
+    let exports = null;
     const encoder = new TextEncoder();
     const decoder = new TextDecoder();
     return function call(request) {
+      exports = exports || new WebAssembly.Instance(module, {}).exports;
+      try {
+        return once(request);
+      } catch (error) {
+        exports = null;
+        throw error;
+      }
+    };
+    function once(request) {
       const input = encoder.encode(JSON.stringify(request));
       const at = exports.whitted_inbox(input.length);
-      new Uint8Array(exports.memory.buffer, at, input.length).set(input);
+      // 0: the request is too large; nothing is written and the call says so.
+      if (at !== 0) new Uint8Array(exports.memory.buffer, at, input.length).set(input);
       const status = exports.whitted_call();
       const text = decoder.decode(
         new Uint8Array(exports.memory.buffer, exports.whitted_outbox(), exports.whitted_outbox_len()));
       const length = exports.whitted_bytes_len();
       const bytes = length ? new Uint8Array(exports.memory.buffer, exports.whitted_bytes(), length).slice() : null;
       return { status, text, bytes };
-    };
+    }
   }
 
   /** The worker's body: the first message is the compiled module, then one answer per request. */
@@ -316,7 +325,7 @@
       await this.rerender();
     }
 
-    /** The options changed: size the image, render it in bands, then trace. */
+    /** The options changed: size the image, render it, and trace again. */
     async rerender() {
       const info = await this.engines.quick.call({ op: 'info', ...this.base() });
       if (info.status !== 0) {
@@ -335,53 +344,31 @@
       return pixel[0] < width && (dimension === 2 || (pixel.length === 2 && pixel[1] < height));
     }
 
-    /** Renders the whole image in bands of rows, top first, showing progress; a newer render
-     *  stops an older one between bands. */
+    /** Renders the whole image in the render worker (the module renders a whole image per call),
+     *  the progress bar running meanwhile; a newer render's image replaces an older one's. */
     async render() {
       const gen = ++this.renderGen;
       const { width, height } = this.info;
       const progress = this.part('progress');
       const started = performance.now();
-      const pixels = new Uint8ClampedArray(width * height * 4);
-      let rays = 0;
-      let banded = this.engines.banded !== false;
       progress.hidden = false;
-      progress.value = 0;
-      for (let top = height; top > 0; top -= BAND_ROWS) {
-        const rows = [Math.max(0, top - BAND_ROWS), top];
-        const request = { op: 'render', ...this.base() };
-        if (banded) request.rows = rows;
-        const answer = await this.engines.render.call(request);
-        if (gen !== this.renderGen) return;
-        if (answer.status !== 0 && banded && /\brows\b/.test(answer.text)) {
-          // A module without bands: the whole image in one call, from the top again.
-          banded = this.engines.banded = false;
-          top = height + BAND_ROWS;
-          continue;
-        }
-        if (answer.status !== 0) {
-          progress.hidden = true;
-          this.complain(answer);
-          return;
-        }
-        // `rays` is by kind (primary, reflected, transmitted, shadow), as `render --json` gives it.
-        rays += Object.values(answer.json.rays || {}).reduce((a, b) => a + b, 0);
-        const band = answer.bytes;
-        if (band.length === width * height * 4) {
-          // The whole image came at once (a module without bands).
-          pixels.set(band);
-          banded = false;
-          break;
-        }
-        pixels.set(band, (height - rows[1]) * width * 4);
-        progress.value = Math.round((100 * (height - rows[0])) / height);
-        this.part('stats').textContent = say('rendering', { p: progress.value });
+      progress.removeAttribute('value'); // indeterminate: the module reports no partial progress
+      this.part('stats').textContent = say('rendering');
+      const answer = await this.engines.render.call({ op: 'render', ...this.base() });
+      if (gen !== this.renderGen) return;
+      progress.hidden = true;
+      if (answer.status !== 0) {
+        this.part('stats').textContent = '';
+        this.complain(answer);
+        return;
       }
       this.canvas.width = width;
       this.canvas.height = height;
+      const pixels = new Uint8ClampedArray(answer.bytes.buffer, answer.bytes.byteOffset, answer.bytes.length);
       this.canvas.getContext('2d').putImageData(new ImageData(pixels, width, height), 0, 0);
       this.root.classList.toggle('strip', this.info.dimension === 2);
-      progress.hidden = true;
+      // `rays` is by kind (primary, reflected, transmitted, shadow), as `render --json` gives it.
+      const rays = Object.values(answer.json.rays || {}).reduce((a, b) => a + b, 0);
       const ms = Math.round(performance.now() - started);
       this.part('stats').textContent = say('rendered', { w: width, h: height, rays: rays.toLocaleString(LANG), ms });
       this.mark();
