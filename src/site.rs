@@ -107,6 +107,8 @@ pub const fn code(lang: Lang) -> &'static str {
 pub struct View<'a> {
     /// The scene file as the lesson names it (`data-scene`).
     pub scene: &'a str,
+    /// The scene file from where `whitted` runs (`data-path`): the name in the commands shown.
+    pub path: Option<String>,
     /// The scene's JSON text, the editor's content.
     pub text: &'a str,
     /// The lesson's figure: kind, pixel or ray, depth, sampling, grid; none in the playground.
@@ -172,7 +174,7 @@ pub fn play_page(examples: &[(String, String)], lang: Lang, nav: &Nav, module: b
     }
     picker.push_str("</select></label></div>\n");
     let (name, text) = examples.first().map_or(("scene.json", ""), |(n, t)| (n.as_str(), t.as_str()));
-    let view = View { scene: name, text, spec: None, png: None, caption: "" };
+    let view = View { scene: name, path: None, text, spec: None, png: None, caption: "" };
     body.push_str(&view_html(&view, lang, Some(&picker)));
     page(word("play_title", lang), &body, lang, nav, module)
 }
@@ -230,6 +232,9 @@ fn select(name: &str, options: &[(&str, String)], chosen: &str) -> String {
 fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
     let w = |key| esc(word(key, lang));
     let mut attrs = format!(" data-scene=\"{}\"", esc(view.scene));
+    if let Some(path) = &view.path {
+        attrs.push_str(&format!(" data-path=\"{}\"", esc(path)));
+    }
     let spec = view.spec;
     let kind = spec.map_or(FigureKind::Rays, |s| s.kind);
     attrs.push_str(&format!(" data-kind=\"{}\"", kind.name()));
@@ -377,6 +382,7 @@ mod tests {
         let lesson = parse(LESSON).unwrap();
         let views = [View {
             scene: "s.json",
+            path: Some("lessons/s.json".into()),
             text: r#"{"a": "<x>"}"#,
             spec: Some(&lesson.figures[0]),
             png: Some("glass-1-refraction.png".into()),
@@ -385,7 +391,7 @@ mod tests {
         let page = lesson_page(&lesson, &views, Lang::En, &nav(), true);
         for expected in [
             "<html lang=\"en\">",
-            "data-whitted=\"view\" data-scene=\"s.json\" data-kind=\"refraction\" data-pixel=\"4,2\" data-depth=\"3\"",
+            "data-whitted=\"view\" data-scene=\"s.json\" data-path=\"lessons/s.json\" data-kind=\"refraction\" data-pixel=\"4,2\" data-depth=\"3\"",
             "<option value=\"adaptive\" selected>",
             "value=\"0.3\"",
             "data-whitted=\"max_level\" min=\"0\" max=\"8\" value=\"1\"",

@@ -321,6 +321,7 @@ fn write_site(args: &LessonsArgs, read: &[Read], langs: &[Lang], results: &[Draw
                     let png = format!("{}.png", lesson.file_stem(f));
                     View {
                         scene: &spec.scene,
+                        path: Some(tidy(&r.dir.join(&spec.scene))),
                         text: text_of(&r.dir.join(&spec.scene)),
                         spec: Some(spec),
                         png: (drawn || dir.join(&png).exists()).then_some(png),
@@ -359,4 +360,34 @@ fn write_site(args: &LessonsArgs, read: &[Read], langs: &[Lang], results: &[Draw
         write_file(&dir.join("play.html"), site::play_page(&examples, *lang, &nav, module).as_bytes())?;
     }
     Ok(())
+}
+
+/// A path with `.` and `name/..` taken out, written with `/` (`lessons/../scenes/whitted.json` →
+/// `scenes/whitted.json`): how a reader would type it. Lexical, as a shown command needs no more.
+fn tidy(path: &Path) -> String {
+    use std::path::Component;
+    let mut parts: Vec<String> = Vec::new();
+    for part in path.components() {
+        match part {
+            Component::CurDir => {}
+            Component::ParentDir if parts.last().is_some_and(|p| p != "..") => {
+                parts.pop();
+            }
+            other => parts.push(other.as_os_str().to_string_lossy().into_owned()),
+        }
+    }
+    parts.join("/")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tidy;
+    use std::path::Path;
+
+    #[test]
+    fn tidy_takes_out_dots() {
+        assert_eq!(tidy(Path::new("lessons/../scenes/whitted.json")), "scenes/whitted.json");
+        assert_eq!(tidy(Path::new("./lessons/scenes/a.json")), "lessons/scenes/a.json");
+        assert_eq!(tidy(Path::new("../../x.json")), "../../x.json");
+    }
 }

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { mkdtempSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { ROOT, cutSteps, launch, open, settled, shot, whitted } from './support.mjs';
+import { ROOT, cutSteps, dedent, launch, open, settled, shot, whitted } from './support.mjs';
 
 /** Whitted's scene as the secondary-rays lesson names it, and as the CLI reaches it. */
 const LESSON = 'secondary-rays';
@@ -101,7 +101,9 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   assert.ok(narration.some((t) => t.includes('Nearest hit I on “glass”')), 'the pixel is on the glass sphere');
   assert.deepEqual(s.steps.map((x) => x.step), narration.map((_, k) => k + 1));
   s.steps.forEach((x, k) => assert.equal(x.text, narration[k], `step ${k + 1}`));
-  assert.match(s.command, new RegExp(`^whitted trace .*--pixel ${pixel.join(',')}`));
+  assert.match(s.command, new RegExp(`^whitted trace scenes/whitted.json --pixel ${pixel.join(',')}`));
+  // The command shown, run from the repository, tells the same steps.
+  assert.deepEqual(cutSteps(whitted(s.command.split(' ').slice(1))), s.steps.map((x) => x.text));
   // The events each step names are the module's narrate answer, indices into `trace --json`.
   const doc = whitted(['trace', SCENE, '--pixel', pixel.join(','), '--json']);
   const events = JSON.parse(doc).events.length;
@@ -120,7 +122,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
     s = await state(page);
     assert.equal(s.current.step, 1 + k);
     assert.deepEqual(s.lit, expectedLit(s.items, s.current.events));
-    assert.equal(s.currentText, narration[k].replace(/^\s+/, ''));
+    assert.equal(s.currentText, dedent(narration[k]));
     await shot(page, `03-step-${1 + k}`, PANES);
   }
   assert.match(s.position, /Step 4 of \d+/);
@@ -143,7 +145,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   await shot(page, '04-romanian', PANES);
   assert.equal(s.current.step, 4);
   const ro = cutSteps(whitted(['trace', SCENE, '--pixel', pixel.join(','), '--lang', 'ro']));
-  assert.equal(s.currentText, ro[3].replace(/^\s+/, ''));
+  assert.equal(s.currentText, dedent(ro[3]));
   assert.equal(await page.locator('[data-whitted="view"] label', { hasText: 'Adâncimea' }).count(), 3);
   assert.match(await page.textContent('[data-whitted="position"]'), /^Pasul 4 din/);
 
@@ -197,6 +199,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   await shot(page, '07-outside', PANES);
   assert.match(s.message, /900/);
   assert.equal(s.steps.length, depth1.length, 'the last good trace stays');
+  assert.match(s.hash, new RegExp(`pixel=${pixel.join(',')}&`), 'with its pixel');
   assert.deepEqual(page.problems, []);
 });
 
@@ -209,7 +212,7 @@ test('a page opened with a fragment shows that state', async () => {
   assert.equal(s.depth, '2');
   let cli = cutSteps(whitted(['trace', SCENE, '--pixel', '400,200', '--depth', '2']));
   assert.deepEqual(s.steps.map((x) => x.text), cli);
-  assert.equal(s.currentText, cli[6].replace(/^\s+/, ''));
+  assert.equal(s.currentText, dedent(cli[6]));
   assert.deepEqual(page.problems, []);
   // Sampled: the narration of the pixel's samples, as `whitted trace --aa corners` tells it.
   page = await open(browser, `ro/${LESSON}.html#pixel=400,200&step=2&aa=corners`);

@@ -72,3 +72,10 @@ export function cutSteps(narration) {
   }
   return out;
 }
+
+/** A step's text without its nesting, as the page shows the current step beside the figure: its
+ *  first line's indent taken off every line. */
+export function dedent(text) {
+  const indent = text.length - text.trimStart().length;
+  return text.split('\n').map((line) => line.slice(Math.min(indent, line.length - line.trimStart().length))).join('\n');
+}

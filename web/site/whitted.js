@@ -190,7 +190,7 @@
       this.step = 0; // index into steps
       this.traceGen = 0;
       this.renderGen = 0;
-      this.lastOptions = null;
+      this.good = null; // the last target traced without a refusal
       const d = root.dataset;
       if (d.pixel) this.target = { pixel: d.pixel.split(',').map(Number) };
       else if (d.ray) this.target = { ray: parseRay(d.ray) };
@@ -290,7 +290,7 @@
     }
 
     base() {
-      const name = this.root.dataset.scene;
+      const name = this.root.dataset.path || this.root.dataset.scene;
       return { scene: this.scene, name, objs: this.objs, options: this.options(), lang: LANG };
     }
 
@@ -307,7 +307,7 @@
     /** The scene changed (or the page opened): check it; if good, render and trace again. */
     async rescene() {
       const quick = this.engines.quick;
-      const checked = await quick.call({ op: 'check', scene: this.scene, name: this.root.dataset.scene, objs: this.objs });
+      const checked = await quick.call({ op: 'check', scene: this.scene, name: this.base().name, objs: this.objs });
       const list = this.part('errors');
       list.replaceChildren();
       if (!checked.json.ok) {
@@ -334,6 +334,7 @@
       }
       this.message('');
       this.info = info.json;
+      this.part('depth').placeholder = String(this.info.max_depth);
       if (this.target && this.target.pixel && !this.inside(this.target.pixel)) this.target = null;
       const tracing = this.retrace();
       await Promise.all([this.render(), tracing]);
@@ -414,14 +415,16 @@
         }
       }
       if (gen !== this.traceGen) return;
-      if (figure.status !== 0) {
-        this.complain(figure);
+      const failed = figure.status !== 0 ? figure : narration && narration.status !== 0 ? narration : null;
+      if (failed) {
+        // Refused (a pixel outside the image, an option beyond its limits): the message says why,
+        // and the last good trace stays, with its pixel.
+        this.complain(failed);
+        this.target = this.good;
+        this.saveState();
         return;
       }
-      if (narration && narration.status !== 0) {
-        this.complain(narration);
-        return;
-      }
+      this.good = this.target;
       this.message('');
       this.part('pick').textContent = figure.json.pick || '';
       this.shown = figure.json.pixel || null;
@@ -485,7 +488,10 @@
         }
       }
       this.part('position').textContent = say('step_of', { k: current.step, n: this.steps[n - 1].step });
-      this.part('current').textContent = current.text.replace(/^\s+/, '');
+      // The step without its nesting: its first line's indent taken off every line.
+      const indent = current.text.length - current.text.trimStart().length;
+      this.part('current').textContent = current.text.split('\n')
+        .map((line) => line.slice(Math.min(indent, line.length - line.trimStart().length))).join('\n');
       this.part('back').disabled = k === 0;
       this.part('next').disabled = k === n - 1;
       this.saveState();
@@ -548,6 +554,7 @@
     if (!example || !file) return;
     const load = (name, text, objs) => {
       view.root.dataset.scene = name;
+      delete view.root.dataset.path;
       view.editor.value = text;
       view.scene = text;
       view.objs = objs;
