@@ -588,6 +588,7 @@
     if (views.length === 1) playground(views[0]);
     self.whitted = { engines, views }; // for tests and the benchmark
     status.textContent = say('ready', { ms: Math.round(performance.now() - started) });
+    status.classList.add('ready');
     performance.mark('whitted-module');
     // The first view alone first (the one a reader looks at, and the URL's), then the others.
     if (views.length) await views[0].start();
