@@ -285,6 +285,7 @@ pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &
             ("whitted — figurile cursului, desenate din trasee", "English", "Regenerare", "SVG pentru tipar")
         }
     };
+    let (figures, play) = (crate::site::word("figures", lang), crate::site::word("play", lang));
     let code = match lang {
         Lang::En => "en",
         Lang::Ro => "ro",
@@ -300,10 +301,20 @@ pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &
          </style>\n</head>\n<body>\n<h1>{title}</h1>\n<nav><a href=\"{}\">{other_name}</a></nav>\n<ol>\n",
         esc(other)
     );
+    // The lesson pages and the playground live in the language's folder (`en/`, `ro/`); the
+    // English index is one folder up from its pages.
+    let pages = match lang {
+        Lang::En => "en/",
+        Lang::Ro => "",
+    };
     for lesson in lessons {
-        out.push_str(&format!("<li><a href=\"#{}\">{}</a></li>\n", lesson.name, esc(lesson.title.get(lang))));
+        out.push_str(&format!(
+            "<li><a href=\"{pages}{name}.html\">{}</a> (<a href=\"#{name}\">{figures}</a>)</li>\n",
+            esc(lesson.title.get(lang)),
+            name = lesson.name,
+        ));
     }
-    out.push_str("</ol>\n");
+    out.push_str(&format!("</ol>\n<p><a href=\"{pages}play.html\">{play}</a></p>\n"));
     for (lesson, figures) in lessons.iter().zip(shown) {
         out.push_str(&format!(
             "<section id=\"{}\">\n<h2>{}</h2>\n",
@@ -337,8 +348,8 @@ pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &
     out
 }
 
-/// Escapes text for HTML.
-fn esc(s: &str) -> String {
+/// Escapes text for HTML (element content and quoted attribute values).
+pub(crate) fn esc(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
@@ -394,5 +405,7 @@ mod tests {
         assert!(page.contains("src=\"1.png\""));
         assert!(page.contains("-o &lt;x&gt;"));
         assert!(page.contains("href=\"../index.html\""));
+        assert!(page.contains("<a href=\"rays.html\">Raze</a> (<a href=\"#rays\">figurile</a>)"), "{page}");
+        assert!(page.contains("href=\"play.html\""));
     }
 }

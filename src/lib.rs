@@ -5,7 +5,8 @@
 //! `I = I_local + ks·R + kt·T` (`trace`) while reporting every step to a recorder chosen at compile
 //! time (`record`), and what was recorded becomes the trace document (`doc`), a narration, an image
 //! (`render`, `image`) or a diagram (`figure`), and the lessons (`lesson`) gather the diagrams of
-//! the lecture; `tradeoff` measures what accuracy costs. `request` is what a command does between
+//! the lecture, with the interactive pages of the course (`site`); `tradeoff` measures what
+//! accuracy costs. `request` is what a command does between
 //! its arguments and its answer, shared by the command line and the WebAssembly binding; `clock`
 //! times where the platform has a clock. The mathematics is written once for 2D
 //! and 3D (`geom`, `shape`).
@@ -27,5 +28,6 @@ pub mod request;
 pub mod sample;
 pub mod scene;
 pub mod shape;
+pub mod site;
 pub mod trace;
 pub mod tradeoff;

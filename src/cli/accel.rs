@@ -1,14 +1,15 @@
 //! The acceleration options shared by `render`, `trace` and `figure`: `--accel`, `--bounds`,
 //! `--grid` (algorithm.md §9), turned into `request::options::AccelChoice` (checked there).
 
+use super::{print_notes, Failure};
 use clap::{Args, ValueEnum};
-use whitted::accel::AccelKind;
+use whitted::accel::{AccelKind, AccelOptions};
 use whitted::bounds::VolumeKind;
 use whitted::request::options::AccelChoice;
 use whitted::request::parse;
 
 /// Which structure finds hits.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum AccelArg {
     /// Brute force: every object (§7, O(n) per ray).
     None,
@@ -38,7 +39,7 @@ pub enum BoundsArg {
 pub struct AccelArgs {
     /// The acceleration structure.
     #[arg(long, value_enum, default_value = "bvh")]
-    pub accel: AccelArg,
+    accel: AccelArg,
     /// The per-object bounding volume of --accel bounds [default: aabb].
     #[arg(long, value_enum)]
     bounds: Option<BoundsArg>,
@@ -58,22 +59,8 @@ fn cells(s: &str) -> Result<Cells, String> {
 }
 
 impl AccelArgs {
-    /// The choice for a command that traces with `--accel`'s structure.
+    /// The choice, for `request::options::AccelChoice`.
     pub fn choice(&self) -> AccelChoice {
-        self.choice_for(self.accel)
-    }
-
-    /// The choice, for `request::options::AccelChoice::options`, of a command that traces with
-    /// `used` whatever `--accel` says (a figure of a structure). As `--threshold` without adaptive
-    /// sampling, `--bounds` and `--grid` are said ignored on stderr unless `used` reads them.
-    pub fn choice_for(&self, used: AccelArg) -> AccelChoice {
-        let name = used.to_possible_value().map(|v| v.get_name().to_owned()).unwrap_or_default();
-        if self.bounds.is_some() && used != AccelArg::Bounds {
-            eprintln!("whitted: --bounds applies to --accel bounds only; ignored with --accel {name}");
-        }
-        if self.grid.is_some() && used != AccelArg::Grid {
-            eprintln!("whitted: --grid applies to --accel grid only; ignored with --accel {name}");
-        }
         let kind = match self.accel {
             AccelArg::None => AccelKind::None,
             AccelArg::Bounds => AccelKind::Bounds,
@@ -81,11 +68,24 @@ impl AccelArgs {
             AccelArg::Grid => AccelKind::Grid,
             AccelArg::Octree => AccelKind::Octree,
         };
-        let volume = match self.bounds.unwrap_or(BoundsArg::Aabb) {
+        let volume = self.bounds.map(|b| match b {
             BoundsArg::Sphere => VolumeKind::Sphere,
             BoundsArg::Aabb => VolumeKind::Aabb,
             BoundsArg::Kdop => VolumeKind::Kdop,
-        };
+        });
         AccelChoice { kind, volume, grid: self.grid.clone().map(|Cells(g)| g) }
+    }
+
+    /// The options, checked against the scene's dimension, for a command that traces with `used`
+    /// (a figure of a structure uses its own): `--bounds` and `--grid` are said ignored on stderr
+    /// unless `used` reads them.
+    ///
+    /// # Errors
+    /// Bad input when `--grid` has the wrong number of axes.
+    pub fn options_for(&self, dim: usize, used: AccelKind) -> Result<AccelOptions, Failure> {
+        let choice = self.choice();
+        let options = choice.options(dim)?;
+        print_notes(&choice.notes(used));
+        Ok(options)
     }
 }

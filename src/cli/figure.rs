@@ -2,7 +2,7 @@
 //! (`figure::draw`) and write a PNG or an SVG, chosen by the file extension; `--list` names every
 //! kind with one line.
 
-use super::accel::{AccelArg, AccelArgs};
+use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
 use super::trace::LangArg;
 use super::{load_scene, output, print_out, write_file, Failure};
@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use whitted::figure::drawing::Drawing;
 use whitted::figure::source::Tracing;
 use whitted::figure::{skia, svg, FigureKind, Options};
-use whitted::request::figure::{default_aa, figure, Request};
+use whitted::request::figure::{default_aa, figure, structure, Request};
 use whitted::request::options::canvas;
 use whitted::request::parse::{self, PixelArg};
 use whitted::request::target::Target;
@@ -87,23 +87,12 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         tracing: Tracing {
             depth: args.depth,
             sampling: args.sampling.sampling_or(default_aa(kind))?,
-            accel: args.accel.choice_for(structure_of(kind, args.accel.accel)).options(dim_of(&scene))?,
+            accel: args.accel.options_for(dim_of(&scene), structure(kind, args.accel.choice().kind))?,
         },
         opts: Options { lang: args.lang.lang(), width, height },
     };
     let made = figure(&scene, &scene_name(scene_path), &request)?;
     write_file(&output, &format.encode(&made.drawing)?)
-}
-
-/// The structure a figure of `kind` traces with: its own for the structure kinds, else `--accel`'s.
-fn structure_of(kind: FigureKind, asked: AccelArg) -> AccelArg {
-    match kind {
-        FigureKind::SlabTest | FigureKind::KayKajiya => AccelArg::Bounds,
-        FigureKind::Bvh => AccelArg::Bvh,
-        FigureKind::GridDda => AccelArg::Grid,
-        FigureKind::Octree => AccelArg::Octree,
-        _ => asked,
-    }
 }
 
 /// The dimension of a loaded scene.

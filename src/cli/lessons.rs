@@ -1,7 +1,10 @@
 //! `whitted lessons`: read every lesson file of `lessons/` (`whitted::lesson`), draw each figure in
 //! each language as PNG and SVG into `out/en/` and `out/ro/`, and write the pages `out/index.html`
 //! (English) and `out/ro/index.html` (Romanian) that show them with their captions and the
-//! command that regenerates each.
+//! command that regenerates each; then the interactive course (`whitted::site`): a page per lesson
+//! and language (`out/en/NAME.html`, `out/ro/NAME.html`), the playgrounds (`play.html`), the
+//! scripts and style of `web/site/`, and the WebAssembly module as `out/whitted-wasm.js` when
+//! `web/build.sh` has built it (otherwise stderr says what is missing and how to get it).
 
 use super::figure::{scene_name, Format};
 use super::trace::LangArg;
@@ -21,6 +24,7 @@ use whitted::request::target::Target;
 use whitted::sample::Sampling;
 use whitted::scene::load::MAX_SCENE_BYTES;
 use whitted::scene::AnyScene;
+use whitted::site::{self, Nav, View};
 
 /// Options of `whitted lessons`.
 #[derive(Args, Debug)]
@@ -41,12 +45,29 @@ pub struct LessonsArgs {
     /// Canvas size WxH in pixels (default 1920x1080).
     #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
+    /// The WebAssembly module that makes the pages live (built by web/build.sh).
+    #[arg(long, default_value = DEFAULT_WASM)]
+    wasm: PathBuf,
 }
 
 /// The lock file a run holds in its output folder: a second run into the same folder is refused
 /// (exit 2) rather than made to wait, since it would redraw the same files and its user is better
 /// told at once than kept behind a long run.
 const LOCK_FILE: &str = ".whitted-lessons.lock";
+/// The playground's first scene.
+const FIRST_EXAMPLE: &str = "whitted.json";
+
+/// Where `web/build.sh` writes the module.
+const DEFAULT_WASM: &str = "target/wasm/whitted_web.wasm";
+
+/// The page script and style, written beside the pages (`out/whitted.js`, `out/whitted.css`).
+const SITE_FILES: [(&str, &str); 2] = [
+    ("whitted.js", include_str!("../../web/site/whitted.js")),
+    ("whitted.css", include_str!("../../web/site/whitted.css")),
+];
+
+/// One figure drawn: (lesson, figure, language) and why it failed, if it did.
+type Drawn = ((usize, usize, Lang), Option<String>);
 
 /// A lesson file read, with the folder its scene paths are relative to.
 struct Read {
@@ -182,7 +203,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             jobs.extend(langs.iter().map(|g| (l, f, *g)));
         }
     }
-    let results: Vec<((usize, usize, Lang), Option<String>)> = jobs
+    let results: Vec<Drawn> = jobs
         .par_iter()
         .map(|&(l, f, lang)| {
             let r = &read[l];
@@ -261,6 +282,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
         };
         write_file(&page, lesson::index_html(&lessons, &shown, *lang, other).as_bytes())?;
     }
+    write_site(args, &read, &langs, &results)?;
     let figures: usize =
         read.iter().zip(&drawn).filter(|(_, d)| **d).map(|(r, _)| r.lesson.figures.len()).sum();
     print_out(&format!(
@@ -281,9 +303,126 @@ fn signed(k: usize) -> i64 {
     i64::try_from(k).unwrap_or(i64::MAX)
 }
 
+/// The interactive course: a page per lesson and language, the playgrounds, the scripts, and the
+/// module if it was built. `results` says which static figures were drawn (the pages show them
+/// until the module replaces them with live ones).
+fn write_site(args: &LessonsArgs, read: &[Read], langs: &[Lang], results: &[Drawn]) -> Result<(), Failure> {
+    let module = match std::fs::read(&args.wasm) {
+        Ok(wasm) => {
+            write_file(&args.out.join(site::MODULE_SCRIPT), site::module_script(&wasm).as_bytes())?;
+            true
+        }
+        Err(e) => {
+            eprintln!(
+                "whitted lessons: {}: {e}; the pages are written without their live part. \
+                 Build the module with `web/build.sh` (`web/build.sh --install` first installs its \
+                 toolchain), then run `whitted lessons` again, or run ./run.sh, which does both.",
+                args.wasm.display()
+            );
+            false
+        }
+    };
+    for (name, text) in SITE_FILES {
+        write_file(&args.out.join(name), text.as_bytes())?;
+    }
+    // Every scene a lesson names, read once, in the lessons' order: the views' editors and the
+    // playground's examples.
+    let mut texts: Vec<(PathBuf, String)> = Vec::new();
+    for r in read {
+        for spec in &r.lesson.figures {
+            let path = r.dir.join(&spec.scene);
+            if !texts.iter().any(|(p, _)| *p == path) {
+                let text = read_text(&path, MAX_SCENE_BYTES)
+                    .map_err(|e| Failure::input(format!("{}: cannot read: {e}", path.display())))?;
+                texts.push((path, text));
+            }
+        }
+    }
+    let text_of = |path: &Path| texts.iter().find(|(p, _)| p == path).map_or("", |(_, t)| t.as_str());
+    for lang in langs {
+        let code = site::code(*lang);
+        let other = match lang {
+            Lang::En => "ro",
+            Lang::Ro => "en",
+        };
+        let index = match lang {
+            Lang::En => "../index.html",
+            Lang::Ro => "index.html",
+        };
+        let dir = args.out.join(code);
+        for (l, r) in read.iter().enumerate() {
+            let lesson = &r.lesson;
+            let views: Vec<View> = lesson
+                .figures
+                .iter()
+                .enumerate()
+                .map(|(f, spec)| {
+                    let drawn = results.iter().any(|(key, error)| *key == (l, f, *lang) && error.is_none());
+                    let png = format!("{}.png", lesson.file_stem(f));
+                    View {
+                        scene: &spec.scene,
+                        path: Some(tidy(&r.dir.join(&spec.scene))),
+                        text: text_of(&r.dir.join(&spec.scene)),
+                        spec: Some(spec),
+                        png: (drawn || dir.join(&png).exists()).then_some(png),
+                        caption: spec.caption.get(*lang),
+                    }
+                })
+                .collect();
+            let page_of = |k: usize| read.get(k).map(|n| format!("{}.html", n.lesson.name));
+            let nav = Nav {
+                index: index.to_owned(),
+                other: format!("../{other}/{}.html", lesson.name),
+                prev: l.checked_sub(1).and_then(page_of),
+                next: page_of(l + 1),
+                play: "play.html".to_owned(),
+            };
+            let page = site::lesson_page(lesson, &views, *lang, &nav, module);
+            write_file(&dir.join(format!("{}.html", lesson.name)), page.as_bytes())?;
+        }
+        // Whitted's scene first, then the others in the lessons' order.
+        let mut examples: Vec<(String, String)> = texts
+            .iter()
+            .map(|(path, text)| {
+                (
+                    path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+                    text.clone(),
+                )
+            })
+            .collect();
+        examples.sort_by_key(|(name, _)| name != FIRST_EXAMPLE);
+        let nav = Nav {
+            index: index.to_owned(),
+            other: format!("../{other}/play.html"),
+            play: "play.html".to_owned(),
+            ..Nav::default()
+        };
+        write_file(&dir.join("play.html"), site::play_page(&examples, *lang, &nav, module).as_bytes())?;
+    }
+    Ok(())
+}
+
+/// A path with `.` and `name/..` taken out, written with `/` (`lessons/../scenes/whitted.json` →
+/// `scenes/whitted.json`): how a reader would type it. Lexical, as a shown command needs no more.
+fn tidy(path: &Path) -> String {
+    use std::path::Component;
+    let mut parts: Vec<String> = Vec::new();
+    for part in path.components() {
+        match part {
+            Component::CurDir => {}
+            Component::ParentDir if parts.last().is_some_and(|p| p != "..") => {
+                parts.pop();
+            }
+            other => parts.push(other.as_os_str().to_string_lossy().into_owned()),
+        }
+    }
+    parts.join("/")
+}
+
 #[cfg(test)]
 mod tests {
-    use super::shell_quote;
+    use super::{shell_quote, tidy};
+    use std::path::Path;
 
     #[test]
     fn quotes_only_what_a_shell_would_read_otherwise() {
@@ -292,5 +431,12 @@ mod tests {
         assert_eq!(shell_quote("a$(rm -rf x);b"), "'a$(rm -rf x);b'");
         assert_eq!(shell_quote("it's"), "'it'\\''s'");
         assert_eq!(shell_quote(""), "''");
+    }
+
+    #[test]
+    fn tidy_takes_out_dots() {
+        assert_eq!(tidy(Path::new("lessons/../scenes/whitted.json")), "scenes/whitted.json");
+        assert_eq!(tidy(Path::new("./lessons/scenes/a.json")), "lessons/scenes/a.json");
+        assert_eq!(tidy(Path::new("../../x.json")), "../../x.json");
     }
 }

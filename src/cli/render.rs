@@ -60,7 +60,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         AnyScene::Flat(_) => 2,
         AnyScene::Space(_) => 3,
     };
-    let options = args.accel.choice().options(dim)?;
+    let options = args.accel.options_for(dim, args.accel.choice().kind)?;
     let outcome = match scene {
         AnyScene::Flat(mut s) => {
             let rows = resize(&mut s, args.size);
@@ -145,9 +145,9 @@ fn render_scene<V: Dim>(
             strip_rows,
             progress: bar.is_some().then_some(&tick as &(dyn Fn(u64) + Sync)),
         },
-    );
+    )?;
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    outcome
+    Ok(outcome)
 }

@@ -4,7 +4,7 @@
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::{load_scene, print_out, Failure};
+use super::{load_scene, print_notes, print_out, Failure};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 use whitted::doc::narrate::Lang;
@@ -100,6 +100,8 @@ fn traced(what: &TraceWhat, json: bool) -> Result<String, Failure> {
         accel: what.accel.choice(),
         max_events: what.max_events,
     };
+    // The target and the structure are checked first, and what the structure ignores is said.
+    print_notes(&trace.check(&scene)?);
     if json {
         document_text(&trace.document(&scene)?)
     } else {

@@ -1,15 +1,11 @@
 //! The options' values as the command line writes them, parsed and checked: `--pixel I,J`,
 //! `--ray OX,OY,OZ:DX,DY,DZ`, `--size WxH`, `--threshold X`, `--grid NX,NY[,NZ]`, `--depth N`,
-//! `--max-level K`. The command line hands clap these parsers; the WebAssembly binding writes a
+//! `--max-level K`, `--threads N`, `--runs N`, `--max-events N`. The command line hands clap these parsers; the WebAssembly binding writes a
 //! request's numbers in the same form and parses them here, so both refuse a value with the same
 //! words.
 
 use crate::accel::grid::MAX_CELLS;
 use crate::sample::MAX_LEVEL;
-use crate::scene::load::MAX_DEPTH;
-
-/// The largest width or height of `--size`.
-pub const MAX_SIZE: usize = 65_536;
 
 /// A pixel as typed: column and optional row, signed so that `--pixel -1,2` reaches the check
 /// against the image and is told it lies outside, instead of being taken for a flag.
@@ -70,7 +66,7 @@ fn whole(name: &str, text: &str, min: u64, max: u64) -> Result<u64, String> {
 /// # Errors
 /// A message naming `--depth` and its range.
 pub fn depth(text: &str) -> Result<u32, String> {
-    let n = whole("--depth", text, 0, MAX_DEPTH)?;
+    let n = whole("--depth", text, 0, crate::scene::load::MAX_DEPTH)?;
     u32::try_from(n).map_err(|e| e.to_string())
 }
 
@@ -106,9 +102,16 @@ pub fn max_events(text: &str) -> Result<usize, String> {
 /// # Errors
 /// A message naming the expected form.
 pub fn size(text: &str) -> Result<(usize, Option<usize>), String> {
-    let bad = || format!("--size: expected WxH (or W) with whole numbers in [1, {MAX_SIZE}], got `{text}`");
-    let check =
-        |s: &str| s.trim().parse::<usize>().ok().filter(|n| (1..=MAX_SIZE).contains(n)).ok_or_else(bad);
+    let most = crate::scene::load::MAX_RESOLUTION;
+    let bad = || format!("--size: expected WxH (or W) with whole numbers in [1, {most}], got `{text}`");
+    let check = |s: &str| {
+        s.trim()
+            .parse::<u64>()
+            .ok()
+            .filter(|n| (1..=most).contains(n))
+            .and_then(|n| usize::try_from(n).ok())
+            .ok_or_else(bad)
+    };
     match text.split_once(['x', 'X']) {
         Some((w, h)) => Ok((check(w)?, Some(check(h)?))),
         None => Ok((check(text)?, None)),
@@ -151,16 +154,13 @@ pub fn grid(text: &str) -> Result<Vec<usize>, String> {
     Ok(n)
 }
 
-/// `K`: a subdivision level in `[0, 8]` (the binding's; the command line lets clap check it).
+/// `--max-level K`: `[0, MAX_LEVEL]` (the binding's; the command line lets clap check it).
 ///
 /// # Errors
-/// A message naming `--max-level`.
+/// A message naming `--max-level` and its range.
 pub fn max_level(text: &str) -> Result<u32, String> {
-    text.trim()
-        .parse::<u32>()
-        .ok()
-        .filter(|k| *k <= MAX_LEVEL)
-        .ok_or_else(|| format!("--max-level: expected a whole number in [0, {MAX_LEVEL}], got `{text}`"))
+    let n = whole("--max-level", text, 0, u64::from(MAX_LEVEL))?;
+    u32::try_from(n).map_err(|e| e.to_string())
 }
 
 #[cfg(test)]

@@ -42,11 +42,11 @@ pub struct Job<'a> {
     pub progress: Option<&'a (dyn Fn(u64) + Sync)>,
 }
 
-/// Builds the structure and renders the scene (in the current rayon pool), after refusing one
-/// that cannot fit (`render::check_fits`).
+/// Builds the structure and renders the scene (in the current rayon pool), after checking that
+/// the image fits (`render::check_fits`).
 ///
 /// # Errors
-/// Bad input: more pixels or memory than a render may take, with the size and the option.
+/// Bad input: an image too large, naming `--size`.
 pub fn run<V: Dim>(scene: &Scene<V>, job: &Job<'_>) -> Result<Outcome, Failure> {
     let config = RenderConfig {
         sampling: job.sampling,

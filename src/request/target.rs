@@ -13,8 +13,8 @@ use crate::shape::Dim;
 /// `--pixel` and `--ray` as given (at most one; a figure takes neither).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Target {
-    /// `--pixel I,J` (`I` in 2D): column and optional row, signed so that a negative one is told
-    /// it lies outside the image.
+    /// `--pixel I,J` (`I` in 2D): column and optional row, as typed (signed: a negative one is
+    /// told it lies outside the image).
     pub pixel: Option<PixelArg>,
     /// `--ray O:D`: the origin's and the direction's components, already parsed.
     pub ray: Option<(Vec<f64>, Vec<f64>)>,

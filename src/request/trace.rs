@@ -29,7 +29,7 @@ pub struct Trace {
     pub sampling: Sampling,
     /// `--accel`, `--bounds`, `--grid`.
     pub accel: AccelChoice,
-    /// `--max-events`: the most events and ray nodes recorded ([`crate::record::DEFAULT_LIMIT`]).
+    /// `--max-events`: the most events and ray nodes recorded; a trace that needs more is refused.
     pub max_events: usize,
 }
 
@@ -118,6 +118,24 @@ impl Trace {
             }
         };
         Ok(Narrated { narration, target: done.target })
+    }
+
+    /// Checks the target and the structure as the trace will, without tracing, and returns the
+    /// notes on the options the structure does not read (the command line says them before the
+    /// trace, as it says the sampling's).
+    ///
+    /// # Errors
+    /// As [`Trace::document_in`], but for a trace too large.
+    pub fn check(&self, scene: &AnyScene) -> Result<Vec<String>, Failure> {
+        fn checked<V: Dim>(t: &Trace, scene: &Scene<V>) -> Result<Vec<String>, Failure> {
+            t.target.primary(scene)?;
+            t.accel.options(V::DIM)?;
+            Ok(t.accel.notes(t.accel.kind))
+        }
+        match scene {
+            AnyScene::Flat(s) => checked(self, s),
+            AnyScene::Space(s) => checked(self, s),
+        }
     }
 
     /// [`Trace::document_in`] of a scene of either dimension.

@@ -117,7 +117,7 @@ pub fn options(value: Option<&Value>) -> Result<Options, Failure> {
     }
     if let Some(v) = f.get("bounds") {
         let kinds = [VolumeKind::Sphere, VolumeKind::Aabb, VolumeKind::Kdop].map(|k| (k.name(), k));
-        out.accel.volume = named("--bounds", v, &kinds)?;
+        out.accel.volume = Some(named("--bounds", v, &kinds)?);
     }
     if let Some(v) = f.get("grid") {
         out.accel.grid = Some(parse::grid(&joined(v, ",")).map_err(|e| input(format!("--grid: {e}")))?);
@@ -197,7 +197,7 @@ mod tests {
         assert_eq!(t.pixel, Some((400, Some(200))));
         let t = target(Some(&json!({"ray": [[0, 0, 5], [0, 0, -1]]}))).unwrap();
         assert_eq!(t.ray, Some((vec![0.0, 0.0, 5.0], vec![0.0, 0.0, -1.0])));
-        // A negative pixel is a pixel: the image's check says it lies outside (request::target).
+        // A negative pixel parses, to be told it lies outside the image; a fraction does not.
         assert_eq!(target(Some(&json!({"pixel": [-1, 2]}))).unwrap().pixel, Some((-1, Some(2))));
         let err = target(Some(&json!({"pixel": [1.5, 2]}))).unwrap_err().message;
         assert!(err.starts_with("--pixel: expected I,J"), "{err}");

@@ -1,0 +1,450 @@
+//! The interactive course's pages (`docs/course.md`): one HTML page per lesson and language, and
+//! the playground, each made of live views. A view is a scene with its image, its figure and the
+//! narration of one pixel, all computed in the page by the WebAssembly build of this library
+//! (`web/`), driven by `web/site/whitted.js`. This module only writes the markup: every word of
+//! it in both languages, the view's starting state as `data-` attributes, the scene's JSON in its
+//! editor. Reads values and returns text; `cli::lessons` writes the files.
+
+use serde_json::{Map, Value};
+
+use crate::accel::AccelKind;
+use crate::figure::{FigureKind, Lang};
+use crate::lesson::{esc, FigureSpec, Lesson};
+use crate::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD, MAX_LEVEL};
+
+/// The file the page scripts read the module from (`whitted-wasm.js`, beside `whitted.js`).
+pub const MODULE_SCRIPT: &str = "whitted-wasm.js";
+
+/// Every word of the pages: key, English, Romanian. The keys whose text the script shows at run
+/// time reach it as JSON (`words_json`); `{name}` marks a value the script fills in.
+const WORDS: &[(&str, &str, &str)] = &[
+    ("lessons", "Lessons", "Lecțiile"),
+    ("figures", "the figures", "figurile"),
+    ("other", "Română", "English"),
+    ("play", "Playground: any scene", "Laborator: orice scenă"),
+    ("play_title", "whitted — playground", "whitted — laborator"),
+    ("play_intro",
+     "Paste a scene's JSON below, open a scene file (with the OBJ files of its meshes) or pick an example: the image, the figures and the narration of any pixel are computed in this page by the same Rust code as the command line.",
+     "Lipiți mai jos textul JSON al unei scene, deschideți un fișier de scenă (împreună cu fișierele OBJ ale rețelelor ei) sau alegeți un exemplu: imaginea, figurile și explicația oricărui pixel sunt calculate în această pagină de același cod Rust ca în linia de comandă."),
+    ("prev", "← Previous lesson", "← Lecția anterioară"),
+    ("next_lesson", "Next lesson →", "Lecția următoare →"),
+    ("hint",
+     "Click a pixel of an image, or type i, j, to follow its computation; ← and → (or the buttons) walk the steps, and the figure lights up what each step talks about.",
+     "Dați clic pe un pixel al imaginii sau scrieți i, j ca să-i urmăriți calculul; tastele ← și → (sau butoanele) parcurg pașii, iar figura evidențiază ce explică fiecare pas."),
+    ("image", "The rendered image", "Imaginea randată"),
+    ("pixel", "Pixel i, j", "Pixelul i, j"),
+    ("show", "Trace", "Urmărește"),
+    ("back", "← Back", "← Înapoi"),
+    ("next", "Next →", "Înainte →"),
+    ("step_of", "Step {k} of {n}", "Pasul {k} din {n}"),
+    ("controls", "What is traced", "Ce se calculează"),
+    ("depth", "Depth", "Adâncimea"),
+    ("aa", "Sampling", "Eșantionarea"),
+    ("aa_center", "pixel centre", "centrul pixelului"),
+    ("aa_corners", "the 4 corners", "cele 4 colțuri"),
+    ("aa_adaptive", "adaptive", "adaptivă"),
+    ("threshold", "Threshold", "Pragul"),
+    ("max_level", "Max level", "Nivelul maxim"),
+    ("accel", "Acceleration", "Structura de accelerare"),
+    ("accel_none", "none: every object", "niciuna: toate obiectele"),
+    ("accel_bounds", "a bounding volume per object", "câte un volum încadrator"),
+    ("accel_bvh", "BVH", "ierarhie de volume (BVH)"),
+    ("accel_grid", "regular grid", "grilă regulată"),
+    ("accel_octree", "octree", "arbore octal (octree)"),
+    ("kind", "Figure", "Figura"),
+    ("steps", "The computation, step by step", "Calculul, pas cu pas"),
+    ("command", "The same computation from the command line:", "Același calcul din linia de comandă:"),
+    ("scene", "The scene (JSON): edit it and the page re-checks and re-renders it",
+     "Scena (JSON): modificați-o, iar pagina o verifică și o randează din nou"),
+    ("open", "Open a scene file (and its OBJ meshes)", "Deschideți un fișier de scenă (și rețelele OBJ)"),
+    ("example", "Example scene", "Scenă de exemplu"),
+    ("loading", "Loading the WebAssembly module…", "Se încarcă modulul WebAssembly…"),
+    ("ready", "WebAssembly module ready ({ms} ms).", "Modulul WebAssembly este gata ({ms} ms)."),
+    ("rendering", "Rendering in the background…", "Se randează în fundal…"),
+    ("rendered", "{w}×{h} pixels, {rays} rays, {ms} ms in the page",
+     "{w}×{h} pixeli, {rays} raze, {ms} ms în pagină"),
+    ("missing",
+     "The interactive part needs the WebAssembly module, which was not built: run ./run.sh (web/build.sh --install installs its toolchain). The figures below are the static ones.",
+     "Partea interactivă are nevoie de modulul WebAssembly, care nu a fost construit: rulați ./run.sh (web/build.sh --install instalează uneltele necesare). Figurile de mai jos sunt cele statice."),
+    ("failed", "The WebAssembly module failed: {e}", "Modulul WebAssembly a eșuat: {e}"),
+    ("pixel_format", "Write the pixel as i, j (or i in a 2D scene), whole numbers.",
+     "Scrieți pixelul ca i, j (sau i într-o scenă 2D), numere întregi."),
+    ("stale", "The scene has errors; the image is the last good one.",
+     "Scena are erori; imaginea este ultima corectă."),
+    ("no_steps", "This figure follows no single pixel: click one to see its computation.",
+     "Figura nu urmărește un singur pixel: dați clic pe unul ca să-i vedeți calculul."),
+    ("ray", "a ray given by hand", "o rază dată explicit"),
+    ("empty", "This scene has no errors.", "Scena nu are erori."),
+];
+
+/// The word `key` in `lang` (the key itself if there is none: a page never loses a label).
+#[must_use]
+pub fn word(key: &str, lang: Lang) -> &str {
+    WORDS.iter().find(|(k, _, _)| *k == key).map_or(key, |(_, en, ro)| match lang {
+        Lang::En => en,
+        Lang::Ro => ro,
+    })
+}
+
+/// Every word in `lang` as a JSON object, safe inside a `<script>` element.
+fn words_json(lang: Lang) -> String {
+    let map: Map<String, Value> =
+        WORDS.iter().map(|(k, _, _)| ((*k).to_owned(), Value::from(word(k, lang)))).collect();
+    Value::Object(map).to_string().replace("</", "<\\/")
+}
+
+/// The language's code, also its folder under `out/`.
+#[must_use]
+pub const fn code(lang: Lang) -> &'static str {
+    match lang {
+        Lang::En => "en",
+        Lang::Ro => "ro",
+    }
+}
+
+/// One live view: a scene, its starting state and what the page shows before the module runs.
+#[derive(Clone, Debug)]
+pub struct View<'a> {
+    /// The scene file as the lesson names it (`data-scene`).
+    pub scene: &'a str,
+    /// The scene file from where `whitted` runs (`data-path`): the name in the commands shown.
+    pub path: Option<String>,
+    /// The scene's JSON text, the editor's content.
+    pub text: &'a str,
+    /// The lesson's figure: kind, pixel or ray, depth, sampling, grid; none in the playground.
+    pub spec: Option<&'a FigureSpec>,
+    /// The static figure (PNG, relative to the page), shown until the live one replaces it.
+    pub png: Option<String>,
+    /// What the view shows, in the page's language.
+    pub caption: &'a str,
+}
+
+/// Links of a page: to the index, the same page in the other language, neighbours.
+#[derive(Clone, Debug, Default)]
+pub struct Nav {
+    /// The index page of this language.
+    pub index: String,
+    /// This page in the other language (the script appends the state to it).
+    pub other: String,
+    /// The previous and the next lesson's pages.
+    pub prev: Option<String>,
+    /// See `prev`.
+    pub next: Option<String>,
+    /// The playground of this language.
+    pub play: String,
+}
+
+/// The page of `lesson` in `lang`: its title and text, then one live view per figure.
+/// `module` says whether `whitted-wasm.js` was written beside the scripts.
+#[must_use]
+pub fn lesson_page(lesson: &Lesson, views: &[View], lang: Lang, nav: &Nav, module: bool) -> String {
+    let mut body = format!("<h1>{}</h1>\n", esc(lesson.title.get(lang)));
+    if !lesson.text.get(lang).is_empty() {
+        body.push_str(&format!("<p class=\"intro\">{}</p>\n", esc(lesson.text.get(lang))));
+    }
+    body.push_str(&format!("<p class=\"hint\">{}</p>\n", esc(word("hint", lang))));
+    for view in views {
+        body.push_str(&view_html(view, lang, None));
+    }
+    page(lesson.title.get(lang), &body, lang, nav, module)
+}
+
+/// The playground in `lang`: one view over a scene pasted, opened from disk or picked among
+/// `examples` (name, JSON text; the first is shown first).
+#[must_use]
+pub fn play_page(examples: &[(String, String)], lang: Lang, nav: &Nav, module: bool) -> String {
+    let mut body = format!(
+        "<h1>{}</h1>\n<p class=\"intro\">{}</p>\n<p class=\"hint\">{}</p>\n",
+        esc(word("play_title", lang)),
+        esc(word("play_intro", lang)),
+        esc(word("hint", lang))
+    );
+    let mut picker = format!(
+        "<div class=\"picker\"><label>{} <input type=\"file\" data-whitted=\"file\" accept=\".json,.obj\" multiple></label>\n\
+         <label>{} <select data-whitted=\"example\">",
+        esc(word("open", lang)),
+        esc(word("example", lang))
+    );
+    for (name, text) in examples {
+        picker.push_str(&format!(
+            "<option value=\"{n}\" data-text=\"{t}\">{n}</option>",
+            n = esc(name),
+            t = esc(text)
+        ));
+    }
+    picker.push_str("</select></label></div>\n");
+    let (name, text) = examples.first().map_or(("scene.json", ""), |(n, t)| (n.as_str(), t.as_str()));
+    let view = View { scene: name, path: None, text, spec: None, png: None, caption: "" };
+    body.push_str(&view_html(&view, lang, Some(&picker)));
+    page(word("play_title", lang), &body, lang, nav, module)
+}
+
+/// The whole document around `body`.
+fn page(title: &str, body: &str, lang: Lang, nav: &Nav, module: bool) -> String {
+    let mut links = format!("<a href=\"{}\">{}</a>", esc(&nav.index), esc(word("lessons", lang)));
+    if let Some(prev) = &nav.prev {
+        links.push_str(&format!("<a href=\"{}\">{}</a>", esc(prev), esc(word("prev", lang))));
+    }
+    if let Some(next) = &nav.next {
+        links.push_str(&format!("<a href=\"{}\">{}</a>", esc(next), esc(word("next_lesson", lang))));
+    }
+    links.push_str(&format!("<a href=\"{}\">{}</a>", esc(&nav.play), esc(word("play", lang))));
+    let other_code = match lang {
+        Lang::En => "ro",
+        Lang::Ro => "en",
+    };
+    links.push_str(&format!(
+        "<a data-whitted=\"lang\" hreflang=\"{other_code}\" lang=\"{other_code}\" href=\"{}\">{}</a>",
+        esc(&nav.other),
+        esc(word("other", lang))
+    ));
+    let module_script =
+        if module { format!("<script src=\"../{MODULE_SCRIPT}\"></script>\n") } else { String::new() };
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"{code}\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{title}</title>\n\
+         <link rel=\"stylesheet\" href=\"../whitted.css\">\n\
+         <script type=\"application/json\" id=\"whitted-words\">{words}</script>\n\
+         {module_script}<script src=\"../whitted.js\" defer></script>\n</head>\n<body class=\"{class}\">\n\
+         <nav class=\"bar\">{links}</nav>\n<main>\n\
+         <p class=\"module\" data-whitted=\"module\" role=\"status\">{status}</p>\n{body}</main>\n</body>\n</html>\n",
+        code = code(lang),
+        title = esc(title),
+        words = words_json(lang),
+        status = esc(word(if module { "loading" } else { "missing" }, lang)),
+        class = if module { "live" } else { "static" },
+    )
+}
+
+/// A `<select>` named `name` of `(value, label)` options with `chosen` selected.
+fn select(name: &str, options: &[(&str, String)], chosen: &str) -> String {
+    let mut out = format!("<select data-whitted=\"{name}\">");
+    for (value, label) in options {
+        let selected = if *value == chosen { " selected" } else { "" };
+        out.push_str(&format!("<option value=\"{value}\"{selected}>{}</option>", esc(label)));
+    }
+    out.push_str("</select>");
+    out
+}
+
+/// One view's markup: the state attributes, image, figure, step controls, options, command,
+/// steps, editor and errors list (the contract of `docs/course.md`).
+fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
+    let w = |key| esc(word(key, lang));
+    let mut attrs = format!(" data-scene=\"{}\"", esc(view.scene));
+    if let Some(path) = &view.path {
+        attrs.push_str(&format!(" data-path=\"{}\"", esc(path)));
+    }
+    let spec = view.spec;
+    let kind = spec.map_or(FigureKind::Rays, |s| s.kind);
+    attrs.push_str(&format!(" data-kind=\"{}\"", kind.name()));
+    if let Some(s) = spec {
+        match (s.pixel, &s.ray) {
+            (Some((i, Some(j))), _) => attrs.push_str(&format!(" data-pixel=\"{i},{j}\"")),
+            (Some((i, None)), _) => attrs.push_str(&format!(" data-pixel=\"{i}\"")),
+            (None, Some((o, d))) => {
+                let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+                attrs.push_str(&format!(" data-ray=\"{}:{}\"", join(o), join(d)));
+            }
+            (None, None) => {}
+        }
+        if let Some(depth) = s.depth {
+            attrs.push_str(&format!(" data-depth=\"{depth}\""));
+        }
+        if let Some(cells) = &s.grid {
+            let cells: Vec<String> = cells.iter().map(ToString::to_string).collect();
+            attrs.push_str(&format!(" data-grid=\"{}\"", cells.join(",")));
+        }
+    }
+    let sampling = spec.and_then(|s| s.sampling).unwrap_or(Sampling::Center);
+    let (threshold, max_level) = match sampling {
+        Sampling::Adaptive { threshold, max_level } => (threshold, max_level),
+        Sampling::Center | Sampling::Corners => (DEFAULT_THRESHOLD, DEFAULT_MAX_LEVEL),
+    };
+    let threshold = if threshold.is_finite() { threshold.to_string() } else { "inf".to_owned() };
+    let aa = select(
+        "aa",
+        &["center", "corners", "adaptive"].map(|m| (m, word(&format!("aa_{m}"), lang).to_owned())),
+        sampling.name(),
+    );
+    let accels: Vec<(&str, String)> =
+        [AccelKind::None, AccelKind::Bounds, AccelKind::Bvh, AccelKind::Grid, AccelKind::Octree]
+            .iter()
+            .map(|a| (a.name(), word(&format!("accel_{}", a.name()), lang).to_owned()))
+            .collect();
+    let accel = select("accel", &accels, AccelKind::Bvh.name());
+    let kinds: Vec<(&str, String)> =
+        FigureKind::ALL.iter().map(|k| (k.name(), k.name().to_owned())).collect();
+    let kinds = select("kind", &kinds, kind.name());
+    let figure = view
+        .png
+        .as_ref()
+        .map_or(String::new(), |png| format!("<img src=\"{}\" alt=\"{}\">", esc(png), esc(view.caption)));
+    let caption = if view.caption.is_empty() {
+        String::new()
+    } else {
+        format!("<p class=\"caption\">{}</p>\n", esc(view.caption))
+    };
+    format!(
+        "<section class=\"view\" data-whitted=\"view\"{attrs} tabindex=\"-1\">\n{caption}{picker}\
+         <div class=\"panes\">\n<div class=\"pane image-pane\">\n\
+         <div class=\"imagebox\" aria-label=\"{image}\"><canvas data-whitted=\"image\" width=\"1\" height=\"1\"></canvas>\
+         <div class=\"mark\" data-whitted=\"mark\" hidden></div></div>\n\
+         <progress data-whitted=\"progress\" hidden></progress>\n\
+         <p class=\"stats\" data-whitted=\"stats\"></p>\n\
+         <form class=\"pixel-form\" data-whitted=\"pixel-form\"><label>{pixel} <input data-whitted=\"pixel\" size=\"9\" inputmode=\"numeric\" autocomplete=\"off\"></label> \
+         <button type=\"submit\">{show}</button></form>\n\
+         <p class=\"message\" data-whitted=\"message\" role=\"alert\"></p>\n\
+         <p class=\"pick\" data-whitted=\"pick\"></p>\n</div>\n\
+         <div class=\"pane figure-pane\">\n<div class=\"figure\" data-whitted=\"figure\">{figure}</div>\n\
+         <div class=\"stepnav\"><button type=\"button\" data-whitted=\"back\">{back}</button>\
+         <span data-whitted=\"position\" aria-live=\"polite\"></span>\
+         <button type=\"button\" data-whitted=\"next\">{next}</button></div>\n\
+         <pre class=\"current\" data-whitted=\"current\"></pre>\n</div>\n</div>\n\
+         <fieldset class=\"controls\"><legend>{controls}</legend>\
+         <label>{depth} <input type=\"number\" data-whitted=\"depth\" min=\"0\" max=\"64\" step=\"1\"></label>\
+         <label>{aa_label} {aa}</label>\
+         <label class=\"adaptive-only\">{thr_label} <input data-whitted=\"threshold\" size=\"5\" value=\"{threshold}\"></label>\
+         <label class=\"adaptive-only\">{ml_label} <input type=\"number\" data-whitted=\"max_level\" min=\"0\" max=\"{MAX_LEVEL}\" value=\"{max_level}\"></label>\
+         <label>{accel_label} {accel}</label><label>{kind_label} {kinds}</label></fieldset>\n\
+         <p class=\"command\">{command} <code data-whitted=\"command\"></code></p>\n\
+         <details class=\"steps-box\" open><summary>{steps}</summary><ol class=\"steps\" data-whitted=\"steps\"></ol></details>\n\
+         <details class=\"editor\"><summary>{scene}</summary>\
+         <textarea data-whitted=\"scene\" spellcheck=\"false\" rows=\"16\">{text}</textarea></details>\n\
+         <ul class=\"errors\" data-whitted=\"errors\"></ul>\n</section>\n",
+        picker = picker.unwrap_or(""),
+        image = w("image"),
+        pixel = w("pixel"),
+        show = w("show"),
+        back = w("back"),
+        next = w("next"),
+        controls = w("controls"),
+        depth = w("depth"),
+        aa_label = w("aa"),
+        thr_label = w("threshold"),
+        ml_label = w("max_level"),
+        accel_label = w("accel"),
+        kind_label = w("kind"),
+        command = w("command"),
+        steps = w("steps"),
+        scene = w("scene"),
+        text = esc(view.text),
+    )
+}
+
+/// The script that hands the page the WebAssembly module without `fetch` (which `file://` pages
+/// may not use): `self.WHITTED_WASM = "<the module in base64>";`, read by `whitted.js`.
+#[must_use]
+pub fn module_script(wasm: &[u8]) -> String {
+    format!("self.WHITTED_WASM = \"{}\";\n", base64(wasm))
+}
+
+/// Standard base64 (RFC 4648 §4, with `=` padding): every 3 bytes become 4 symbols of 6 bits.
+fn base64(bytes: &[u8]) -> String {
+    const SYMBOLS: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [chunk[0], chunk.get(1).copied().unwrap_or(0), chunk.get(2).copied().unwrap_or(0)];
+        let n = u32::from(b[0]) << 16 | u32::from(b[1]) << 8 | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(char::from(SYMBOLS[(n >> (18 - 6 * k) & 63) as usize]));
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lesson::parse;
+
+    const LESSON: &str = r#"{ "name": "glass", "title": { "en": "Glass", "ro": "Sticlă" },
+        "text": { "en": "R and T", "ro": "R și T" },
+        "figures": [ { "kind": "refraction", "scene": "s.json", "pixel": [4, 2], "depth": 3,
+                       "aa": "adaptive", "threshold": 0.3, "max_level": 1,
+                       "caption": { "en": "a <b>", "ro": "ă" } } ] }"#;
+
+    fn nav() -> Nav {
+        Nav {
+            index: "../index.html".into(),
+            other: "../ro/glass.html".into(),
+            play: "play.html".into(),
+            ..Nav::default()
+        }
+    }
+
+    #[test]
+    fn a_lesson_page_carries_its_views_state_and_the_scene() {
+        let lesson = parse(LESSON).unwrap();
+        let views = [View {
+            scene: "s.json",
+            path: Some("lessons/s.json".into()),
+            text: r#"{"a": "<x>"}"#,
+            spec: Some(&lesson.figures[0]),
+            png: Some("glass-1-refraction.png".into()),
+            caption: lesson.figures[0].caption.get(Lang::En),
+        }];
+        let page = lesson_page(&lesson, &views, Lang::En, &nav(), true);
+        for expected in [
+            "<html lang=\"en\">",
+            "data-whitted=\"view\" data-scene=\"s.json\" data-path=\"lessons/s.json\" data-kind=\"refraction\" data-pixel=\"4,2\" data-depth=\"3\"",
+            "<option value=\"adaptive\" selected>",
+            "value=\"0.3\"",
+            "data-whitted=\"max_level\" min=\"0\" max=\"8\" value=\"1\"",
+            "{&quot;a&quot;: &quot;&lt;x&gt;&quot;}</textarea>",
+            "a &lt;b&gt;",
+            "<script src=\"../whitted-wasm.js\">",
+            "href=\"../ro/glass.html\"",
+        ] {
+            assert!(page.contains(expected), "{expected} in {page}");
+        }
+        let ro = lesson_page(&lesson, &views, Lang::Ro, &nav(), false);
+        assert!(!ro.contains("whitted-wasm.js"), "no module, no script that would fail to load");
+        assert!(ro.contains("Adâncimea") && ro.contains("nu a fost construit"));
+    }
+
+    #[test]
+    fn every_word_exists_in_both_languages_and_romanian_uses_comma_below() {
+        let mut keys: Vec<&str> = WORDS.iter().map(|(k, _, _)| *k).collect();
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), WORDS.len(), "keys are unique");
+        for (key, en, ro) in WORDS {
+            assert!(!en.is_empty() && !ro.is_empty(), "{key}");
+            // ş and ţ (cedilla) are the wrong letters in Romanian: ș and ț have a comma below.
+            assert!(!ro.contains(['ş', 'ţ', 'Ş', 'Ţ']), "{key}: {ro}");
+        }
+        let json: Value = serde_json::from_str(&words_json(Lang::Ro)).unwrap();
+        assert_eq!(json["depth"], "Adâncimea");
+    }
+
+    #[test]
+    fn base64_is_rfc_4648() {
+        // RFC 4648 §10's test vectors.
+        for (plain, coded) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(plain.as_bytes()), coded);
+        }
+        assert_eq!(base64(&[0xff, 0xfe, 0x00]), "//4A");
+        assert_eq!(module_script(b"f"), "self.WHITTED_WASM = \"Zg==\";\n");
+    }
+
+    #[test]
+    fn the_playground_lists_its_examples() {
+        let examples = [("whitted.json".to_owned(), "{\"x\": 1}".to_owned())];
+        let page = play_page(&examples, Lang::Ro, &nav(), true);
+        assert!(page.contains("data-whitted=\"example\""));
+        assert!(page.contains("data-text=\"{&quot;x&quot;: 1}\""));
+        assert!(page.contains("data-scene=\"whitted.json\""));
+    }
+}
