@@ -20,7 +20,7 @@
 //! (cells per axis) for `grid-dda`; `text`, `pixel`, `ray`, `depth`, `aa` and `grid` may be left
 //! out. An unknown field is an error.
 
-use serde_json::{Map, Value};
+use crate::json::{self, Map, Value};
 
 use crate::figure::{FigureKind, Lang};
 use crate::sample::Sampling;
@@ -92,7 +92,8 @@ impl Lesson {
 /// # Errors
 /// The list of problems: invalid JSON, a missing or unknown field, a wrong type, an unknown kind.
 pub fn parse(text: &str) -> Result<Lesson, Vec<String>> {
-    let value: Value = serde_json::from_str(text).map_err(|e| vec![format!("invalid JSON: {e}")])?;
+    let value = json::parse(text)
+        .map_err(|e| vec![format!("invalid JSON at line {}, column {}: {}", e.line, e.column, e.message)])?;
     let mut errors = Vec::new();
     let Some(root) = value.as_object() else {
         return Err(vec!["a lesson is a JSON object".into()]);
@@ -130,9 +131,12 @@ pub fn parse(text: &str) -> Result<Lesson, Vec<String>> {
     }
 }
 
-/// Reports every field of `map` not in `known`.
-fn unknown(map: &Map<String, Value>, path: &str, known: &[&str], errors: &mut Vec<String>) {
-    for key in map.keys().filter(|k| !known.contains(&k.as_str())) {
+/// Reports every field of `map` not in `known`, and every field written twice.
+fn unknown(map: &Map<'_>, path: &str, known: &[&str], errors: &mut Vec<String>) {
+    for key in map.duplicates() {
+        errors.push(format!("{path}{key}: written more than once in this object; keep one"));
+    }
+    for key in map.keys().filter(|k| !known.contains(k)) {
         errors.push(format!("{path}{key}: unknown field; the fields are {}", known.join(", ")));
     }
 }
@@ -236,7 +240,7 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
 }
 
 /// `aa` (`center`, `corners`, `adaptive`) with `threshold` (default 0.1) and `max_level` (default 2).
-fn sampling(map: &Map<String, Value>, path: &str, errors: &mut Vec<String>) -> Option<Sampling> {
+fn sampling(map: &Map<'_>, path: &str, errors: &mut Vec<String>) -> Option<Sampling> {
     let aa = map.get("aa")?;
     let threshold = match map.get("threshold") {
         None => 0.1,

@@ -20,6 +20,7 @@ pub mod doc;
 pub mod figure;
 pub mod geom;
 pub mod image;
+pub mod json;
 pub mod lesson;
 pub mod record;
 pub mod render;

@@ -77,6 +77,82 @@ impl RenderConfig<'_> {
     }
 }
 
+/// The most worker threads `--threads` may ask for.
+pub const MAX_THREADS: u32 = 1024;
+/// The most pixels an image may have (16 384² = 2^28), whatever each axis allows.
+pub const MAX_PIXELS: u64 = 1 << 28;
+/// The most memory a render may need ([`memory_needed`]), 8 GiB: refused above, before any work.
+pub const MAX_MEMORY: u64 = 8 << 30;
+/// Bytes a written pixel costs beside its linear colour: the 8-bit RGB copy and, at worst, as
+/// many bytes again of PNG stream.
+const PNG_BYTES_PER_PIXEL: u64 = 6;
+
+/// About how many bytes a render of `scene` (its camera already resized) needs with `config` on
+/// `threads` threads: the linear image and its PNG, the per-pixel counts if asked, and for corners
+/// or adaptive sampling the lattice's u, v tables and the edge rows (two per thread in progress,
+/// plus `edge_memory` of rows waiting between jobs).
+#[must_use]
+pub fn memory_needed<V: Dim>(scene: &Scene<V>, config: &RenderConfig<'_>, threads: usize) -> u64 {
+    let cam = &scene.camera;
+    let pixels = cam.nx as u64 * image_height(scene, config) as u64;
+    let rgb = std::mem::size_of::<Rgb>() as u64;
+    let mut bytes = pixels.saturating_mul(rgb + PNG_BYTES_PER_PIXEL);
+    if config.rays_per_pixel {
+        bytes = bytes.saturating_add(pixels.saturating_mul(std::mem::size_of::<u32>() as u64));
+    }
+    if let Some((_, max_level)) = config.sampling.rule() {
+        let lattice = Lattice::new(cam, max_level);
+        let scale = 1u64 << max_level;
+        let axes = (cam.nx as u64 * scale + 1).saturating_add(cam.ny as u64 * scale + 1);
+        let in_flight = 2 * (threads as u64 + 1);
+        bytes = bytes
+            .saturating_add(axes.saturating_mul(std::mem::size_of::<f64>() as u64))
+            .saturating_add(in_flight.saturating_mul(EdgeRow::bytes(lattice) as u64))
+            .saturating_add(config.edge_memory as u64);
+    }
+    bytes
+}
+
+/// Refuses, before any work, a render that cannot fit: more than [`MAX_PIXELS`] pixels, or more
+/// than [`MAX_MEMORY`] bytes by [`memory_needed`].
+///
+/// # Errors
+/// The size asked, what it needs and the limit, worded for a person who will change `--size`.
+pub fn check_fits<V: Dim>(scene: &Scene<V>, config: &RenderConfig<'_>, threads: usize) -> Result<(), String> {
+    let cam = &scene.camera;
+    let height = image_height(scene, config);
+    let pixels = cam.nx as u64 * height as u64;
+    if pixels > MAX_PIXELS {
+        return Err(format!(
+            "{}x{height} is {pixels} pixels, more than the limit of {MAX_PIXELS}: choose a smaller --size",
+            cam.nx
+        ));
+    }
+    let needed = memory_needed(scene, config, threads);
+    if needed > MAX_MEMORY {
+        let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
+        return Err(format!(
+            "{}x{height} with {} sampling needs about {:.1} GiB, more than the limit of {:.0} GiB: choose a \
+             smaller --size (or --max-level)",
+            cam.nx,
+            config.sampling.name(),
+            gib(needed),
+            gib(MAX_MEMORY)
+        ));
+    }
+    Ok(())
+}
+
+/// The rows of the image a render writes: the camera's Ny, or a 2D scene's strip.
+fn image_height<V: Dim>(scene: &Scene<V>, config: &RenderConfig<'_>) -> usize {
+    let nx = scene.camera.nx;
+    if V::DIM == 2 {
+        config.strip_rows.unwrap_or_else(|| strip_height(nx))
+    } else {
+        scene.camera.ny
+    }
+}
+
 /// Height of the strip a 2D scene renders to: `max(1, Nx/8)` (product.md).
 #[must_use]
 pub fn strip_height(nx: usize) -> usize {
@@ -99,7 +175,7 @@ pub fn render_centers<V: Dim>(
 #[must_use]
 pub fn render<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<'_>) -> Rendered {
     let cam = &scene.camera;
-    let height = if V::DIM == 2 { config.strip_rows.unwrap_or_else(|| strip_height(cam.nx)) } else { cam.ny };
+    let height = image_height(scene, config);
     let mut image = Image::new(cam.nx, height);
     // Rows are written in place: the computed rows are the first Ny of the image.
     let computed = &mut image.pixels[..cam.nx * cam.ny];

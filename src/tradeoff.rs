@@ -19,6 +19,8 @@ use crate::scene::Scene;
 use crate::shape::Dim;
 use crate::trace::stats::Stats;
 
+/// The most renders of one setting `--runs` may ask for: medians steady well before this.
+pub const MAX_RUNS: u32 = 100;
 /// The reference: adaptive, threshold 0, K = 3 (81 shared samples per pixel area).
 pub const REFERENCE_SAMPLING: Sampling = Sampling::Adaptive { threshold: 0.0, max_level: 3 };
 /// The reference's `max_depth`.

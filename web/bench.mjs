@@ -16,7 +16,9 @@ import { gzipSync } from "node:zlib";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { performance } from "node:perf_hooks";
-import { load, root, wasmPath } from "./test/module.mjs";
+import { load, root, wasmPath as builtPath } from "./test/module.mjs";
+
+const wasmPath = process.env.WHITTED_WASM ?? builtPath;
 
 const binary = process.argv[2] ?? join(root, "target", "release", "whitted");
 const bytes = readFileSync(wasmPath);
@@ -25,7 +27,7 @@ console.log(`module: ${wasmPath}`);
 console.log(`size: ${mb(bytes.length)} MB raw, ${mb(gzipSync(bytes, { level: 9 }).length)} MB gzip -9`);
 
 let t0 = performance.now();
-const { call } = load();
+const { call } = load(wasmPath);
 console.log(`compile + instantiate: ${(performance.now() - t0).toFixed(1)} ms`);
 
 const scene = readFileSync(join(root, "scenes", "whitted.json"), "utf8");

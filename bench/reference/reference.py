@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Independent reference implementation of the Whitted ray tracer described in
-shared/docs/algorithm.md (conventions + section 11) and shared/docs/product.md
+the project's algorithm.md (conventions + section 11) and product.md, now docs/
 (scene format, defaults, image writing).  Python 3 standard library only.
 
 Scope: 3D and 2D scenes (the camera's eye and center decide: 3 or 2 numbers);

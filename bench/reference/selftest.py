@@ -1,4 +1,4 @@
-# Checks of ref.py against the worked values of shared/docs/numerics.md
+# Checks of ref.py against the worked values of numerics.md (the project's specification, now docs/)
 import sys, json, math, os, tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import reference as ref

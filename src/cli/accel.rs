@@ -1,8 +1,9 @@
 //! The acceleration options shared by `render`, `trace` and `figure`: `--accel`, `--bounds`,
 //! `--grid` (algorithm.md §9), turned into `request::options::AccelChoice` (checked there).
 
+use super::{print_notes, Failure};
 use clap::{Args, ValueEnum};
-use whitted::accel::AccelKind;
+use whitted::accel::{AccelKind, AccelOptions};
 use whitted::bounds::VolumeKind;
 use whitted::request::options::AccelChoice;
 use whitted::request::parse;
@@ -39,12 +40,12 @@ pub struct AccelArgs {
     /// The acceleration structure.
     #[arg(long, value_enum, default_value = "bvh")]
     accel: AccelArg,
-    /// The per-object bounding volume of --accel bounds.
-    #[arg(long, value_enum, default_value = "aabb")]
-    bounds: BoundsArg,
+    /// The per-object bounding volume of --accel bounds [default: aabb].
+    #[arg(long, value_enum)]
+    bounds: Option<BoundsArg>,
     /// The grid's cells per axis, NX,NY,NZ (NX,NY in 2D), for --accel grid (default: about 4
     /// cells per object).
-    #[arg(long, value_parser = cells)]
+    #[arg(long, value_parser = cells, allow_hyphen_values = true)]
     grid: Option<Cells>,
 }
 
@@ -58,7 +59,7 @@ fn cells(s: &str) -> Result<Cells, String> {
 }
 
 impl AccelArgs {
-    /// The choice, for `request::options::AccelChoice::options`.
+    /// The choice, for `request::options::AccelChoice`.
     pub fn choice(&self) -> AccelChoice {
         let kind = match self.accel {
             AccelArg::None => AccelKind::None,
@@ -67,11 +68,24 @@ impl AccelArgs {
             AccelArg::Grid => AccelKind::Grid,
             AccelArg::Octree => AccelKind::Octree,
         };
-        let volume = match self.bounds {
+        let volume = self.bounds.map(|b| match b {
             BoundsArg::Sphere => VolumeKind::Sphere,
             BoundsArg::Aabb => VolumeKind::Aabb,
             BoundsArg::Kdop => VolumeKind::Kdop,
-        };
+        });
         AccelChoice { kind, volume, grid: self.grid.clone().map(|Cells(g)| g) }
+    }
+
+    /// The options, checked against the scene's dimension, for a command that traces with `used`
+    /// (a figure of a structure uses its own): `--bounds` and `--grid` are said ignored on stderr
+    /// unless `used` reads them.
+    ///
+    /// # Errors
+    /// Bad input when `--grid` has the wrong number of axes.
+    pub fn options_for(&self, dim: usize, used: AccelKind) -> Result<AccelOptions, Failure> {
+        let choice = self.choice();
+        let options = choice.options(dim)?;
+        print_notes(&choice.notes(used));
+        Ok(options)
     }
 }

@@ -5,15 +5,15 @@
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
 use super::trace::LangArg;
-use super::{load_scene, print_out, write_file, Failure};
+use super::{load_scene, output, print_out, write_file, Failure};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use whitted::figure::drawing::Drawing;
 use whitted::figure::source::Tracing;
 use whitted::figure::{skia, svg, FigureKind, Options};
-use whitted::request::figure::{default_aa, figure, Request};
+use whitted::request::figure::{default_aa, figure, structure, Request};
 use whitted::request::options::canvas;
-use whitted::request::parse;
+use whitted::request::parse::{self, PixelArg};
 use whitted::request::target::Target;
 use whitted::scene::AnyScene;
 
@@ -28,10 +28,10 @@ pub struct FigureArgs {
     scene: Option<PathBuf>,
     /// The pixel: I,J (column from the left, row from the BOTTOM); in 2D, I. Without it (and
     /// without --ray) the figure picks a telling pixel and says which in its caption.
-    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray")]
-    pixel: Option<(usize, Option<usize>)>,
+    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray", allow_hyphen_values = true)]
+    pixel: Option<PixelArg>,
     /// A ray given by hand: OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D); traced as a primary ray.
-    #[arg(long, value_parser = parse::ray)]
+    #[arg(long, value_parser = parse::ray, allow_hyphen_values = true)]
     ray: Option<(Vec<f64>, Vec<f64>)>,
     /// The file to write: .png or .svg (default: KIND.png in the current folder).
     #[arg(short = 'o', long = "output")]
@@ -40,10 +40,10 @@ pub struct FigureArgs {
     #[arg(long, value_enum, default_value = "en")]
     lang: LangArg,
     /// Canvas size WxH in pixels (default 1920x1080; W alone keeps 16:9).
-    #[arg(long, value_parser = parse::size)]
+    #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
     /// Override the scene's max_depth (0 = ray casting).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    #[arg(long, value_parser = parse::depth, allow_hyphen_values = true)]
     depth: Option<u32>,
     /// Sampling, for `adaptive` and `heat-map` (default: adaptive, threshold 0.1, K = 2); the
     /// other kinds trace the pixel's centre.
@@ -78,8 +78,8 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         return Err(Failure::input("give KIND and SCENE, or --list"));
     };
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", kind.name())));
-    let format = Format::of(&output)?;
-    let (width, height) = canvas(args.size);
+    let format = Format::of(&output, scene_path)?;
+    let (width, height) = canvas(args.size)?;
     let scene = load_scene(scene_path)?;
     let request = Request {
         kind,
@@ -87,7 +87,7 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         tracing: Tracing {
             depth: args.depth,
             sampling: args.sampling.sampling_or(default_aa(kind))?,
-            accel: args.accel.choice().options(dim_of(&scene))?,
+            accel: args.accel.options_for(dim_of(&scene), structure(kind, args.accel.choice().kind))?,
         },
         opts: Options { lang: args.lang.lang(), width, height },
     };
@@ -118,13 +118,10 @@ pub enum Format {
 }
 
 impl Format {
-    /// The format a file name asks for by its extension.
-    pub fn of(path: &Path) -> Result<Self, Failure> {
-        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-            Some("png") => Ok(Self::Png),
-            Some("svg") => Ok(Self::Svg),
-            _ => Err(Failure::input(format!("{}: the output must end in .png or .svg", path.display()))),
-        }
+    /// The format a file name asks for by its extension, the file checked before the work as an
+    /// output of `scene` (`output::check`: not the scene, a folder that can be written).
+    pub fn of(path: &Path, scene: &Path) -> Result<Self, Failure> {
+        Ok([Self::Png, Self::Svg][output::check(path, &["png", "svg"], &[scene])?])
     }
     /// The file's bytes.
     pub fn encode(self, drawing: &Drawing) -> Result<Vec<u8>, Failure> {

@@ -8,7 +8,7 @@
 
 use super::figure::{scene_name, Format};
 use super::trace::LangArg;
-use super::{load_scene, print_out, write_file, Failure};
+use super::{load_scene, output, print_out, read_text, write_file, Failure};
 use clap::Args;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -22,6 +22,7 @@ use whitted::request::options::canvas;
 use whitted::request::parse;
 use whitted::request::target::Target;
 use whitted::sample::Sampling;
+use whitted::scene::load::MAX_SCENE_BYTES;
 use whitted::scene::AnyScene;
 use whitted::site::{self, Nav, View};
 
@@ -31,7 +32,8 @@ pub struct LessonsArgs {
     /// Draw only the lesson with this name (its "name" field); the pages still list every lesson.
     #[arg(long)]
     only: Option<String>,
-    /// The folder to write into: DIR/en/, DIR/ro/, DIR/index.html, DIR/ro/index.html.
+    /// The folder to write into: DIR/en/, DIR/ro/, DIR/index.html, DIR/ro/index.html. One run
+    /// at a time: another run into the same folder is refused (the lock file .whitted-lessons.lock).
     #[arg(long, default_value = "out")]
     out: PathBuf,
     /// Only this language (default: both).
@@ -41,7 +43,7 @@ pub struct LessonsArgs {
     #[arg(long, default_value = "lessons")]
     lessons: PathBuf,
     /// Canvas size WxH in pixels (default 1920x1080).
-    #[arg(long, value_parser = parse::size)]
+    #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
     /// The WebAssembly module that makes the pages live (built by web/build.sh).
     #[arg(long, default_value = DEFAULT_WASM)]
@@ -63,6 +65,11 @@ const SITE_FILES: [(&str, &str); 2] = [
 /// One figure drawn: (lesson, figure, language) and why it failed, if it did.
 type Drawn = ((usize, usize, Lang), Option<String>);
 
+/// The lock file a run holds in its output folder: a second run into the same folder is refused
+/// (exit 2) rather than made to wait, since it would redraw the same files and its user is better
+/// told at once than kept behind a long run.
+const LOCK_FILE: &str = ".whitted-lessons.lock";
+
 /// A lesson file read, with the folder its scene paths are relative to.
 struct Read {
     lesson: Lesson,
@@ -81,11 +88,24 @@ fn read_lessons(dir: &Path) -> Result<Vec<Read>, Failure> {
     files.sort();
     let mut problems = Vec::new();
     let mut lessons = Vec::new();
+    // The file that first used each lesson name: a second one would overwrite its figures.
+    let mut named: Vec<(String, PathBuf)> = Vec::new();
     for file in files {
-        let text = std::fs::read_to_string(&file)
+        let text = read_text(&file, MAX_SCENE_BYTES)
             .map_err(|e| Failure::input(format!("{}: cannot read: {e}", file.display())))?;
         match lesson::parse(&text) {
-            Ok(lesson) => lessons.push(Read { lesson, dir: dir.to_path_buf() }),
+            Ok(lesson) => {
+                if let Some((_, first)) = named.iter().find(|(name, _)| *name == lesson.name) {
+                    problems.push(format!(
+                        "{}: name: `{}` is already the name of {}; each lesson needs its own",
+                        file.display(),
+                        lesson.name,
+                        first.display()
+                    ));
+                }
+                named.push((lesson.name.clone(), file.clone()));
+                lessons.push(Read { lesson, dir: dir.to_path_buf() });
+            }
             Err(errors) => problems.extend(errors.into_iter().map(|e| format!("{}: {e}", file.display()))),
         }
     }
@@ -106,7 +126,8 @@ fn lang_dir(lang: Lang) -> &'static str {
 
 /// The command that regenerates one figure's PNG.
 fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
-    let mut cmd = format!("whitted figure {} {}", spec.kind.name(), scene.display());
+    let mut cmd =
+        format!("whitted figure {} {}", spec.kind.name(), shell_quote(&scene.display().to_string()));
     match (spec.pixel, &spec.ray) {
         (Some((i, Some(j))), _) => cmd.push_str(&format!(" --pixel {i},{j}")),
         (Some((i, None)), _) => cmd.push_str(&format!(" --pixel {i}")),
@@ -130,8 +151,19 @@ fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
         let cells: Vec<String> = cells.iter().map(ToString::to_string).collect();
         cmd.push_str(&format!(" --grid {}", cells.join(",")));
     }
-    cmd.push_str(&format!(" --lang {} -o {}", lang_dir(lang), png.display()));
+    cmd.push_str(&format!(" --lang {} -o {}", lang_dir(lang), shell_quote(&png.display().to_string())));
     cmd
+}
+
+/// A word as a POSIX shell reads it back unchanged: as it is when made only of characters no shell
+/// treats specially, else in single quotes, a quote inside written `'\''`.
+fn shell_quote(word: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "/._-+,:=@%".contains(c);
+    if !word.is_empty() && word.chars().all(plain) {
+        word.to_owned()
+    } else {
+        format!("'{}'", word.replace('\'', "'\\''"))
+    }
 }
 
 /// Runs `whitted lessons`.
@@ -150,10 +182,11 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
         Some(l) => vec![l.lang()],
         None => vec![Lang::En, Lang::Ro],
     };
+    // The folder is checked and locked before the work; the lock is held until the run ends.
+    output::create_folder(&args.out)?;
+    let _lock = output::lock_folder(&args.out, LOCK_FILE)?;
     for lang in &langs {
-        let dir = args.out.join(lang_dir(*lang));
-        std::fs::create_dir_all(&dir)
-            .map_err(|e| Failure::other(format!("{}: cannot create: {e}", dir.display())))?;
+        output::create_folder(&args.out.join(lang_dir(*lang)))?;
     }
     // Each scene is read once.
     let mut scenes: HashMap<PathBuf, Result<AnyScene, String>> = HashMap::new();
@@ -163,7 +196,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             scenes.entry(path.clone()).or_insert_with(|| load_scene(&path).map_err(|f| f.message));
         }
     }
-    let (width, height) = canvas(args.size);
+    let (width, height) = canvas(args.size)?;
     // One job per figure and language, drawn in parallel.
     let mut jobs: Vec<(usize, usize, Lang)> = Vec::new();
     for (l, r) in read.iter().enumerate().filter(|(l, _)| drawn[*l]) {
@@ -182,7 +215,10 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             let (png, svg) = (dir.join(format!("{stem}.png")), dir.join(format!("{stem}.svg")));
             let request = Request {
                 kind: spec.kind,
-                target: Target { pixel: spec.pixel, ray: spec.ray.clone() },
+                target: Target {
+                    pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))),
+                    ray: spec.ray.clone(),
+                },
                 tracing: Tracing {
                     depth: spec.depth,
                     sampling: spec.sampling.unwrap_or(Sampling::Center),
@@ -379,9 +415,14 @@ fn tidy(path: &Path) -> String {
     parts.join("/")
 }
 
+/// A lesson's pixel coordinate as the figure request takes it (past `i64::MAX` is outside anyway).
+fn signed(k: usize) -> i64 {
+    i64::try_from(k).unwrap_or(i64::MAX)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::tidy;
+    use super::{shell_quote, tidy};
     use std::path::Path;
 
     #[test]
@@ -389,5 +430,14 @@ mod tests {
         assert_eq!(tidy(Path::new("lessons/../scenes/whitted.json")), "scenes/whitted.json");
         assert_eq!(tidy(Path::new("./lessons/scenes/a.json")), "lessons/scenes/a.json");
         assert_eq!(tidy(Path::new("../../x.json")), "../../x.json");
+    }
+
+    #[test]
+    fn quotes_only_what_a_shell_would_read_otherwise() {
+        assert_eq!(shell_quote("lessons/scenes/spheres.json"), "lessons/scenes/spheres.json");
+        assert_eq!(shell_quote("my scenes/a.json"), "'my scenes/a.json'");
+        assert_eq!(shell_quote("a$(rm -rf x);b"), "'a$(rm -rf x);b'");
+        assert_eq!(shell_quote("it's"), "'it'\\''s'");
+        assert_eq!(shell_quote(""), "''");
     }
 }

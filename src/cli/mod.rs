@@ -6,6 +6,7 @@ mod accel;
 mod check;
 mod figure;
 mod lessons;
+mod output;
 mod render;
 mod sampling;
 mod step;
@@ -14,7 +15,7 @@ mod tradeoff;
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
-use whitted::scene::load::load_str_with;
+use whitted::scene::load::{load_str_with, MAX_OBJ_BYTES, MAX_SCENE_BYTES};
 use whitted::scene::AnyScene;
 
 /// Recursive (Whitted) ray tracing, taught in the open.
@@ -52,20 +53,44 @@ pub use whitted::request::Failure;
 /// Reads and validates a scene file; every problem becomes one line of the failure. A mesh's
 /// OBJ file is read relative to the scene file's folder.
 pub fn load_scene(path: &Path) -> Result<AnyScene, Failure> {
-    let text = std::fs::read_to_string(path)
+    let text = read_text(path, MAX_SCENE_BYTES)
         .map_err(|e| Failure::input(format!("{}: cannot read the scene: {e}", path.display())))?;
     let folder = path.parent().unwrap_or_else(|| Path::new("."));
-    let read_obj = |name: &str| std::fs::read_to_string(folder.join(name)).map_err(|e| e.to_string());
+    let read_obj = |name: &str| read_text(&folder.join(name), MAX_OBJ_BYTES);
     load_str_with(&text, &read_obj).map_err(|errors| {
         let lines: Vec<String> = errors.iter().map(|e| format!("{}: {e}", path.display())).collect();
         Failure::input(lines.join("\n"))
     })
 }
 
-/// Writes bytes to a file.
-pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    std::fs::write(path, bytes).map_err(|e| Failure::other(format!("{}: cannot write: {e}", path.display())))
+/// Reads a regular file of at most `limit` bytes as UTF-8 text. A device, a folder or a named
+/// pipe is refused before it is opened (`/dev/zero` never ends, a pipe blocks until written), and
+/// the read stops one byte past the limit, so a file that grows meanwhile cannot exhaust memory.
+///
+/// # Errors
+/// The reason, naming the limit when the file is too large.
+pub fn read_text(path: &Path, limit: u64) -> Result<String, String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err("not a regular file".into());
+    }
+    let too_big = || format!("larger than the limit of {limit} bytes");
+    if meta.len() > limit {
+        return Err(too_big());
+    }
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::new();
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes).map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > limit {
+        return Err(too_big());
+    }
+    String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text ({e})"))
 }
+
+/// Every file the tool writes goes through this one function: whole or untouched (a temporary
+/// file renamed over the destination, `output`).
+pub use output::write_file;
 
 /// The worker threads of `--threads` (default: rayon's, one per core).
 pub fn thread_pool(threads: Option<u32>) -> Result<rayon::ThreadPool, Failure> {
@@ -126,4 +151,23 @@ fn prefix_lines(message: &str) -> String {
 pub fn default_output(scene: &Path, ext: &str) -> PathBuf {
     let stem = scene.file_stem().map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
     PathBuf::from(format!("{stem}.{ext}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::read_text;
+
+    /// The limit is a parameter, so a small one shows the refusal without a large file.
+    #[test]
+    fn read_text_refuses_past_its_limit_and_non_files() {
+        let dir = std::env::temp_dir().join(format!("whitted-read-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("ten.json");
+        super::write_file(&file, b"0123456789").unwrap();
+        assert_eq!(read_text(&file, 10).as_deref(), Ok("0123456789"));
+        assert_eq!(read_text(&file, 9), Err("larger than the limit of 9 bytes".to_string()));
+        assert_eq!(read_text(&dir, 10), Err("not a regular file".to_string()));
+        assert_eq!(read_text(std::path::Path::new("/dev/zero"), 10), Err("not a regular file".to_string()));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -4,7 +4,7 @@
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::{default_output, load_scene, print_out, thread_pool, write_file, Failure};
+use super::{default_output, load_scene, output, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -23,17 +23,18 @@ use whitted::shape::Dim;
 pub struct RenderArgs {
     /// The scene file (JSON).
     scene: PathBuf,
-    /// The PNG to write (default: the scene's name with .png, in the current folder).
+    /// The PNG to write (default: the scene's name with .png, in the current folder); it is
+    /// replaced only by a complete image, never left torn.
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
     /// Override the scene's max_depth (0 = ray casting).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    #[arg(long, value_parser = parse::depth, allow_hyphen_values = true)]
     depth: Option<u32>,
     /// Resolution WxH (keeps the window); in 2D, W or WxH (H = the strip's rows).
-    #[arg(long, value_parser = parse::size)]
+    #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, value_parser = parse::threads, allow_hyphen_values = true)]
     threads: Option<u32>,
     /// Print the run's statistics as one JSON object on stdout.
     #[arg(long)]
@@ -47,6 +48,9 @@ pub struct RenderArgs {
 /// Runs `whitted render`.
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let sampling = args.sampling.sampling()?;
+    // The output is checked before the work: not the scene, a PNG, in a folder that can be written.
+    let output = args.output.clone().unwrap_or_else(|| default_output(&args.scene, "png"));
+    output::check(&output, &["png"], &[&args.scene])?;
     let start = Instant::now();
     let scene = load_scene(&args.scene)?;
     let load_seconds = start.elapsed().as_secs_f64();
@@ -56,7 +60,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         AnyScene::Flat(_) => 2,
         AnyScene::Space(_) => 3,
     };
-    let options = args.accel.choice().options(dim)?;
+    let options = args.accel.options_for(dim, args.accel.choice().kind)?;
     let outcome = match scene {
         AnyScene::Flat(mut s) => {
             let rows = resize(&mut s, args.size);
@@ -66,8 +70,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             let rows = resize(&mut s, args.size);
             pool.install(|| render_scene(&s, args, sampling, &options, rows))
         }
-    };
-    let output = args.output.clone().unwrap_or_else(|| default_output(&args.scene, "png"));
+    }?;
     let png = outcome.rendered.image.to_png().map_err(Failure::other)?;
     write_file(&output, &png)?;
     let stats = &outcome.rendered.stats;
@@ -117,7 +120,7 @@ fn render_scene<V: Dim>(
     sampling: Sampling,
     options: &AccelOptions,
     strip_rows: Option<usize>,
-) -> Outcome {
+) -> Result<Outcome, Failure> {
     // A progress bar over pixel rows, only for a person watching a terminal.
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = ProgressBar::new(scene.camera.ny as u64);
@@ -142,9 +145,9 @@ fn render_scene<V: Dim>(
             strip_rows,
             progress: bar.is_some().then_some(&tick as &(dyn Fn(u64) + Sync)),
         },
-    );
+    )?;
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    outcome
+    Ok(outcome)
 }

@@ -4,11 +4,11 @@
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::{load_scene, print_out, Failure};
+use super::{load_scene, print_notes, print_out, Failure};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 use whitted::doc::narrate::Lang;
-use whitted::request::parse;
+use whitted::request::parse::{self, PixelArg};
 use whitted::request::target::Target;
 use whitted::request::trace::{document_text, Trace};
 
@@ -38,13 +38,14 @@ pub struct TraceWhat {
     /// The scene file (JSON).
     scene: PathBuf,
     /// The pixel: I,J (column from the left, row from the BOTTOM); in 2D, I (or I,0).
-    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray", required_unless_present = "ray")]
-    pixel: Option<(usize, Option<usize>)>,
+    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray", required_unless_present = "ray",
+          allow_hyphen_values = true)]
+    pixel: Option<PixelArg>,
     /// A ray given by hand: OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D); traced as a primary ray.
-    #[arg(long, value_parser = parse::ray)]
+    #[arg(long, value_parser = parse::ray, allow_hyphen_values = true)]
     ray: Option<(Vec<f64>, Vec<f64>)>,
     /// Override the scene's max_depth (0 = ray casting).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    #[arg(long, value_parser = parse::depth, allow_hyphen_values = true)]
     depth: Option<u32>,
     /// The narration's language.
     #[arg(long, value_enum, default_value = "en")]
@@ -54,6 +55,11 @@ pub struct TraceWhat {
     sampling: SamplingArgs,
     #[command(flatten)]
     accel: AccelArgs,
+    /// The most events and ray nodes recorded; a trace that needs more is refused (a ray tree grows
+    /// as 2^depth where objects both reflect and transmit).
+    #[arg(long, value_name = "N", value_parser = parse::max_events, allow_hyphen_values = true,
+          default_value_t = whitted::record::DEFAULT_LIMIT)]
+    max_events: usize,
 }
 
 impl TraceWhat {
@@ -92,7 +98,10 @@ fn traced(what: &TraceWhat, json: bool) -> Result<String, Failure> {
         depth: what.depth,
         sampling: what.sampling.sampling()?,
         accel: what.accel.choice(),
+        max_events: what.max_events,
     };
+    // The target and the structure are checked first, and what the structure ignores is said.
+    print_notes(&trace.check(&scene)?);
     if json {
         document_text(&trace.document(&scene)?)
     } else {

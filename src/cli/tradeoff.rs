@@ -6,13 +6,13 @@
 
 use super::figure::{scene_name, Format};
 use super::trace::LangArg;
-use super::{load_scene, print_out, thread_pool, write_file, Failure};
+use super::{load_scene, output, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
 use std::fmt::Write;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use whitted::accel::{AccelKind, AccelOptions};
 use whitted::doc::{float, stats};
 use whitted::figure::labels::Label;
@@ -20,6 +20,7 @@ use whitted::figure::plane::Planar;
 use whitted::figure::source::Tracing;
 use whitted::figure::tradeoff as tradeoff_plot;
 use whitted::figure::{FigureKind, Options};
+use whitted::render::{check_fits, RenderConfig};
 use whitted::request::figure::{figure_in, Request};
 use whitted::request::options::{canvas, resize};
 use whitted::request::parse;
@@ -41,21 +42,41 @@ pub struct TradeoffArgs {
     #[arg(long)]
     json: bool,
     /// Renders per setting; the time is their median.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, default_value_t = 3, value_parser = parse::runs, allow_hyphen_values = true)]
     runs: u32,
     /// Worker threads (default: one per core).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_parser = parse::threads, allow_hyphen_values = true)]
     threads: Option<u32>,
     /// Render at WxH instead of the scene's resolution (the window stays); W alone for a 2D scene.
-    #[arg(long, value_parser = parse::size)]
+    #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
     /// The language of the plots' labels.
     #[arg(long, value_enum, default_value = "en")]
     lang: LangArg,
 }
 
+/// The plots of `--out`, each written as PNG and SVG.
+const PLOTS: [&str; 2] = ["tradeoff", "heat-map"];
+/// The plots' formats, by extension.
+const PLOT_FORMATS: [(&str, Format); 2] = [("png", Format::Png), ("svg", Format::Svg)];
+
+/// The file of one plot in the folder of `--out`.
+fn plot_file(dir: &Path, stem: &str, ext: &str) -> PathBuf {
+    dir.join(format!("{stem}.{ext}"))
+}
+
 /// Runs `whitted tradeoff`.
 pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
+    // The plots' folder and files are checked before the measurements: created, writable, and
+    // none of them the scene.
+    if let Some(dir) = &args.out {
+        output::create_folder(dir)?;
+        for stem in PLOTS {
+            for (ext, _) in PLOT_FORMATS {
+                output::check(&plot_file(dir, stem, ext), &[ext], &[&args.scene])?;
+            }
+        }
+    }
     let pool = thread_pool(args.threads)?;
     let threads = pool.current_num_threads();
     match load_scene(&args.scene)? {
@@ -71,6 +92,9 @@ pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
 }
 
 fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> Result<(), Failure> {
+    // The reference render is the most demanding one, and its image is kept beside each other.
+    let reference = RenderConfig { sampling: REFERENCE_SAMPLING, ..RenderConfig::centers(REFERENCE_DEPTH) };
+    check_fits(scene, &reference, threads).map_err(|e| Failure::input(format!("tradeoff: {e}")))?;
     let settings = tradeoff::settings(scene.max_depth);
     let (total, base) = (settings.len() + 1, settings[0]);
     let lang = args.lang.lang();
@@ -208,9 +232,7 @@ fn plots<V: Planar>(
     front: &[usize],
 ) -> Result<(), Failure> {
     let Some(dir) = &args.out else { return Ok(()) };
-    std::fs::create_dir_all(dir)
-        .map_err(|e| Failure::other(format!("{}: cannot create the folder: {e}", dir.display())))?;
-    let (width, height) = canvas(None);
+    let (width, height) = canvas(None)?;
     let opts = Options { lang: args.lang.lang(), width, height };
     let name = scene_name(&args.scene);
     // A scene whose every image equals the reference (nothing but background, say) has no
@@ -237,11 +259,10 @@ fn plots<V: Planar>(
         },
     )?
     .drawing;
-    for (stem, drawing) in [("tradeoff", plot.as_ref()), ("heat-map", Some(&heat))] {
+    for (stem, drawing) in PLOTS.into_iter().zip([plot.as_ref(), Some(&heat)]) {
         let Some(drawing) = drawing else { continue };
-        for format in [Format::Png, Format::Svg] {
-            let ext = if format == Format::Png { "png" } else { "svg" };
-            write_file(&dir.join(format!("{stem}.{ext}")), &format.encode(drawing)?)?;
+        for (ext, format) in PLOT_FORMATS {
+            write_file(&plot_file(dir, stem, ext), &format.encode(drawing)?)?;
         }
     }
     Ok(())

@@ -138,6 +138,9 @@ impl std::fmt::Display for FigureError {
 
 impl std::error::Error for FigureError {}
 
+/// The most pixels a figure's canvas may have (8192² = 2^26, a 256 MiB pixmap): a slide is 2 073 600.
+pub const MAX_CANVAS_PIXELS: u64 = 1 << 26;
+
 /// How a figure is drawn: its language and canvas size.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Options {

@@ -10,8 +10,8 @@ use crate::geom::ray::Ray;
 use crate::geom::slab::culling_hit;
 use crate::geom::Vector;
 use crate::record::event::{Event, RayKind};
-use crate::record::{EventLog, RayNode};
-use crate::render::{render, RenderConfig};
+use crate::record::{overflow_message, EventLog, RayNode};
+use crate::render::{check_fits, render, RenderConfig};
 use crate::sample::{trace_pixel, PixelTrace, Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD};
 use crate::scene::camera::Projection;
 use crate::scene::material::Rgb;
@@ -240,6 +240,7 @@ pub fn record<V: Dim>(
                 rays_per_pixel: true,
                 ..RenderConfig::centers(depth)
             };
+            check_fits(scene, &config, rayon::current_num_threads()).map_err(FigureError)?;
             let rendered = render(scene, &accel, &config);
             let per_pixel = rendered.rays_per_pixel.unwrap_or_default();
             counts =
@@ -254,6 +255,10 @@ pub fn record<V: Dim>(
         FigureKind::Bvh | FigureKind::Octree => vec![tracer.aimed(aim, Pick::Walk, tree_score)],
         FigureKind::GridDda => vec![tracer.aimed(aim, Pick::Walk, grid_score)],
     };
+    if let Some(full) = traces.iter().find(|t| t.log.overflowed()) {
+        let why = overflow_message(full.log.limit(), depth, scene.worst_tree_rays(depth));
+        return Err(FigureError(why));
+    }
     Ok(Traces { scene_name: scene_name.to_owned(), traces, counts, accel, focus })
 }
 

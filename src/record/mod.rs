@@ -1,4 +1,4 @@
-//! Watching the tracer at no cost when off (design.md "Observation is pushed to a recorder"):
+//! Watching the tracer at no cost when off (the tracer pushes each step to a recorder):
 //! the [`Recorder`] trait, the zero-sized [`NoRecorder`] that compiles away, the [`CountingRecorder`]
 //! that only counts (the benchmark's middle point) and the [`EventLog`] that keeps everything:
 //! the events in order and the ray tree.
@@ -45,7 +45,20 @@ pub trait Recorder<V> {
     fn light(&mut self, make: impl FnOnce() -> LightTerm<V>);
     /// Closes the currently open node.
     fn close_ray(&mut self, make: impl FnOnce() -> RayEnd<V>);
+    /// True once the recorder holds all it may: the tracer then spawns no more secondary rays,
+    /// so that a tree that grows as 2^depth stops at the limit instead of filling the memory.
+    /// Only read when [`Recorder::ENABLED`].
+    #[inline(always)]
+    fn full(&self) -> bool {
+        false
+    }
 }
+
+/// The default bound of an [`EventLog`]: events and ray nodes together. At about 200 bytes an
+/// event (its document line being longer), a full log stays a few hundred megabytes.
+pub const DEFAULT_LIMIT: usize = 1_000_000;
+/// The largest limit `--max-events` accepts: a hundred times the default, tens of gigabytes.
+pub const MAX_LIMIT: usize = 100 * DEFAULT_LIMIT;
 
 /// Records nothing; zero-sized, every method empty and inlined: rendering uses only this.
 #[derive(Clone, Copy, Debug, Default)]
@@ -120,7 +133,7 @@ pub struct Logged<V> {
 
 /// Keeps every event and the ray tree. Nodes are stored in the order they were opened, which is
 /// the pre-order walk of the tree, so a node's index is the `ray` its events carry.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct EventLog<V> {
     /// Every event, in order.
     pub events: Vec<Logged<V>>,
@@ -130,13 +143,59 @@ pub struct EventLog<V> {
     open: Vec<usize>,
     /// The sample being traced (set by the sampler).
     pub current_sample: Option<usize>,
+    /// The most events and nodes kept together; what comes after is dropped (see [`Self::overflowed`]).
+    limit: usize,
+    /// Whether an event was dropped because the log was full.
+    overflowed: bool,
+}
+
+/// Why a trace that outgrew its [`EventLog`] is refused: the limit, and the worst-case size of the
+/// tree (`Scene::worst_tree_rays`) with the option that shrinks it.
+#[must_use]
+pub fn overflow_message(limit: usize, max_depth: u32, worst_rays: f64) -> String {
+    format!(
+        "the trace outgrew its limit of {limit} recorded events and ray nodes: at depth {max_depth} one ray's \
+         tree may hold up to {worst_rays:.3e} rays; lower --depth"
+    )
+}
+
+impl<V> Default for EventLog<V> {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 impl<V> EventLog<V> {
-    /// An empty log.
+    /// An empty log that keeps up to [`DEFAULT_LIMIT`] events and nodes.
     #[must_use]
     pub fn new() -> Self {
-        Self { events: Vec::new(), nodes: Vec::new(), open: Vec::new(), current_sample: None }
+        Self::with_limit(DEFAULT_LIMIT)
+    }
+    /// An empty log that keeps up to `limit` events and ray nodes together.
+    #[must_use]
+    pub fn with_limit(limit: usize) -> Self {
+        Self {
+            events: Vec::new(),
+            nodes: Vec::new(),
+            open: Vec::new(),
+            current_sample: None,
+            limit,
+            overflowed: false,
+        }
+    }
+    /// The bound this log was made with.
+    #[must_use]
+    pub fn limit(&self) -> usize {
+        self.limit
+    }
+    /// True iff the trace outgrew the limit: events were dropped and secondary rays not spawned, so
+    /// the log is incomplete and must not be shown as the trace.
+    #[must_use]
+    pub fn overflowed(&self) -> bool {
+        self.overflowed
+    }
+    fn at_limit(&self) -> bool {
+        self.events.len() + self.nodes.len() >= self.limit
     }
     /// The roots: one per primary ray traced.
     pub fn roots(&self) -> impl Iterator<Item = usize> + '_ {
@@ -190,10 +249,22 @@ impl<V> EventLog<V> {
 impl<V> Recorder<V> for EventLog<V> {
     const ENABLED: bool = true;
     fn event(&mut self, make: impl FnOnce() -> Event<V>) {
+        if self.at_limit() {
+            self.overflowed = true;
+            return;
+        }
         let ray = self.open.last().copied();
         self.events.push(Logged { ray, sample: self.current_sample, event: make() });
     }
+    fn full(&self) -> bool {
+        self.overflowed || self.at_limit()
+    }
+    // A node is always kept, so that every open is closed: the tracer spawns none once `full`,
+    // and the sampler's primary rays add at most one node per sample beyond the limit.
     fn open_ray(&mut self, make: impl FnOnce() -> RayStart<V>) {
+        if self.at_limit() {
+            self.overflowed = true;
+        }
         let index = self.nodes.len();
         let parent = self.open.last().copied();
         if let Some(p) = parent {

@@ -4,6 +4,7 @@
 use super::options::Aa;
 use super::target::Target;
 use super::Failure;
+use crate::accel::AccelKind;
 use crate::doc::TraceTarget;
 use crate::figure::drawing::Drawing;
 use crate::figure::labels::{self, Label};
@@ -45,6 +46,19 @@ pub fn default_aa(kind: FigureKind) -> Aa {
     match kind {
         FigureKind::Adaptive | FigureKind::HeatMap => Aa::Adaptive,
         _ => Aa::Center,
+    }
+}
+
+/// The structure a figure of `kind` traces with: its own for the structure kinds, else `asked`
+/// (`--accel`); what decides which of `--bounds` and `--grid` it reads.
+#[must_use]
+pub fn structure(kind: FigureKind, asked: AccelKind) -> AccelKind {
+    match kind {
+        FigureKind::SlabTest | FigureKind::KayKajiya => AccelKind::Bounds,
+        FigureKind::Bvh => AccelKind::Bvh,
+        FigureKind::GridDda => AccelKind::Grid,
+        FigureKind::Octree => AccelKind::Octree,
+        _ => asked,
     }
 }
 

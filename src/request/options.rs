@@ -7,6 +7,7 @@ use super::Failure;
 use crate::accel::{AccelKind, AccelOptions};
 use crate::bounds::VolumeKind;
 use crate::figure::style::{REFERENCE_HEIGHT, REFERENCE_WIDTH};
+use crate::figure::MAX_CANVAS_PIXELS;
 use crate::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD};
 use crate::scene::Scene;
 use crate::shape::Dim;
@@ -98,20 +99,21 @@ impl SamplingOptions {
     }
 }
 
-/// `--accel`, `--bounds`, `--grid` as given (the defaults: `bvh`, `aabb`, the grid's heuristic).
+/// `--accel`, `--bounds`, `--grid` as given (the defaults: `bvh`, `aabb`, the grid's heuristic);
+/// `--bounds` and `--grid` optional, so that one the structure does not read is noted.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct AccelChoice {
     /// `--accel`.
     pub kind: AccelKind,
     /// `--bounds`.
-    pub volume: VolumeKind,
+    pub volume: Option<VolumeKind>,
     /// `--grid`, already parsed by `parse::grid`.
     pub grid: Option<Vec<usize>>,
 }
 
 impl Default for AccelChoice {
     fn default() -> Self {
-        Self { kind: AccelKind::Bvh, volume: VolumeKind::Aabb, grid: None }
+        Self { kind: AccelKind::Bvh, volume: None, grid: None }
     }
 }
 
@@ -129,7 +131,29 @@ impl AccelChoice {
                 )));
             }
         }
-        Ok(AccelOptions { kind: self.kind, volume: self.volume, grid: self.grid.clone() })
+        Ok(AccelOptions {
+            kind: self.kind,
+            volume: self.volume.unwrap_or(VolumeKind::Aabb),
+            grid: self.grid.clone(),
+        })
+    }
+
+    /// One line per option the structure `used` does not read (as `--threshold` without adaptive
+    /// sampling): `--bounds applies to --accel bounds only; ignored with --accel bvh`. A figure of
+    /// a structure traces with its own, whatever `--accel` says.
+    #[must_use]
+    pub fn notes(&self, used: AccelKind) -> Vec<String> {
+        let mut notes = Vec::new();
+        if self.volume.is_some() && used != AccelKind::Bounds {
+            notes.push(format!(
+                "--bounds applies to --accel bounds only; ignored with --accel {}",
+                used.name()
+            ));
+        }
+        if self.grid.is_some() && used != AccelKind::Grid {
+            notes.push(format!("--grid applies to --accel grid only; ignored with --accel {}", used.name()));
+        }
+        notes
     }
 }
 
@@ -152,13 +176,22 @@ pub fn resize<V: Dim>(scene: &mut Scene<V>, size: Option<(usize, Option<usize>)>
     None
 }
 
-/// A figure's canvas for `--size` (1920×1080 without it; W alone keeps 16:9).
-#[must_use]
-pub fn canvas(size: Option<(usize, Option<usize>)>) -> (u32, u32) {
-    let Some((w, h)) = size else { return (REFERENCE_WIDTH, REFERENCE_HEIGHT) };
+/// A figure's canvas for `--size` (1920×1080 without it; W alone keeps 16:9), at most
+/// [`MAX_CANVAS_PIXELS`].
+///
+/// # Errors
+/// Bad input naming `--size` when the canvas is larger.
+pub fn canvas(size: Option<(usize, Option<usize>)>) -> Result<(u32, u32), Failure> {
+    let Some((w, h)) = size else { return Ok((REFERENCE_WIDTH, REFERENCE_HEIGHT)) };
     let h = h.unwrap_or(((w * 9 + 8) / 16).max(1));
+    if w as u64 * h as u64 > MAX_CANVAS_PIXELS {
+        return Err(Failure::input(format!(
+            "--size: a {w}x{h} canvas is more than the {MAX_CANVAS_PIXELS} pixels a figure may have; choose a \
+             smaller --size"
+        )));
+    }
     // parse::size caps both at 65536.
-    (u32::try_from(w).unwrap_or(u32::MAX), u32::try_from(h).unwrap_or(u32::MAX))
+    Ok((u32::try_from(w).unwrap_or(u32::MAX), u32::try_from(h).unwrap_or(u32::MAX)))
 }
 
 #[cfg(test)]
@@ -189,12 +222,18 @@ mod tests {
         let choice = AccelChoice { kind: AccelKind::Grid, grid: Some(vec![2, 2]), ..AccelChoice::default() };
         assert!(choice.options(2).is_ok());
         assert_eq!(choice.options(3).unwrap_err().message, "--grid: a 3D scene needs 3 cell counts, got 2");
+        assert!(choice.notes(AccelKind::Grid).is_empty());
+        assert_eq!(
+            choice.notes(AccelKind::Bvh),
+            ["--grid applies to --accel grid only; ignored with --accel bvh"]
+        );
     }
 
     #[test]
     fn canvases() {
-        assert_eq!(canvas(None), (1920, 1080));
-        assert_eq!(canvas(Some((640, None))), (640, 360));
-        assert_eq!(canvas(Some((64, Some(64)))), (64, 64));
+        assert_eq!(canvas(None), Ok((1920, 1080)));
+        assert_eq!(canvas(Some((640, None))), Ok((640, 360)));
+        assert_eq!(canvas(Some((64, Some(64)))), Ok((64, 64)));
+        assert!(canvas(Some((65536, Some(65536)))).unwrap_err().message.starts_with("--size: a 65536x65536"));
     }
 }

@@ -1,22 +1,23 @@
 //! The options' values as the command line writes them, parsed and checked: `--pixel I,J`,
 //! `--ray OX,OY,OZ:DX,DY,DZ`, `--size WxH`, `--threshold X`, `--grid NX,NY[,NZ]`, `--depth N`,
-//! `--max-level K`. The command line hands clap these parsers; the WebAssembly binding writes a
+//! `--max-level K`, `--threads N`, `--runs N`, `--max-events N`. The command line hands clap these parsers; the WebAssembly binding writes a
 //! request's numbers in the same form and parses them here, so both refuse a value with the same
 //! words.
 
 use crate::accel::grid::MAX_CELLS;
 use crate::sample::MAX_LEVEL;
-use crate::scene::load::MAX_DEPTH;
 
-/// The largest width or height of `--size`.
-pub const MAX_SIZE: usize = 65_536;
+/// A pixel as typed: column and optional row, signed so that `--pixel -1,2` reaches the check
+/// against the image and is told it lies outside, instead of being taken for a flag.
+pub type PixelArg = (i64, Option<i64>);
 
-/// `I,J` or `I` (2D) → column and optional row.
+/// `I,J` or `I` (2D) → column and optional row; whether they lie in the image is the caller's
+/// check, which knows its size.
 ///
 /// # Errors
 /// A message naming the expected form.
-pub fn pixel(text: &str) -> Result<(usize, Option<usize>), String> {
-    let bad = || format!("--pixel: expected I,J (or I in 2D) with whole numbers ≥ 0, got `{text}`");
+pub fn pixel(text: &str) -> Result<PixelArg, String> {
+    let bad = || format!("--pixel: expected I,J (or I in 2D) with whole numbers, got `{text}`");
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     match parts.as_slice() {
         [i] => Ok((i.parse().map_err(|_| bad())?, None)),
@@ -49,14 +50,68 @@ pub fn ray(text: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
     Ok((o, d))
 }
 
+/// A whole number in `[min, max]`, for the option `name`: negative numbers reach here (the options
+/// allow hyphen values) and are told their range instead of being taken for a flag.
+fn whole(name: &str, text: &str, min: u64, max: u64) -> Result<u64, String> {
+    text.trim()
+        .parse::<i128>()
+        .ok()
+        .and_then(|n| u64::try_from(n).ok())
+        .filter(|n| (min..=max).contains(n))
+        .ok_or_else(|| format!("{name}: expected a whole number in [{min}, {max}], got `{text}`"))
+}
+
+/// `--depth N`: `[0, MAX_DEPTH]` (the scene's own limit on `max_depth`).
+///
+/// # Errors
+/// A message naming `--depth` and its range.
+pub fn depth(text: &str) -> Result<u32, String> {
+    let n = whole("--depth", text, 0, crate::scene::load::MAX_DEPTH)?;
+    u32::try_from(n).map_err(|e| e.to_string())
+}
+
+/// `--threads N`: `[1, MAX_THREADS]`.
+///
+/// # Errors
+/// A message naming `--threads` and its range.
+pub fn threads(text: &str) -> Result<u32, String> {
+    let n = whole("--threads", text, 1, u64::from(crate::render::MAX_THREADS))?;
+    u32::try_from(n).map_err(|e| e.to_string())
+}
+
+/// `--runs N` of `tradeoff`: `[1, MAX_RUNS]`.
+///
+/// # Errors
+/// A message naming `--runs` and its range.
+pub fn runs(text: &str) -> Result<u32, String> {
+    let n = whole("--runs", text, 1, u64::from(crate::tradeoff::MAX_RUNS))?;
+    u32::try_from(n).map_err(|e| e.to_string())
+}
+
+/// `--max-events N`: at least 1, at most `MAX_EVENTS_LIMIT`.
+///
+/// # Errors
+/// A message naming `--max-events` and its range.
+pub fn max_events(text: &str) -> Result<usize, String> {
+    let n = whole("--max-events", text, 1, crate::record::MAX_LIMIT as u64)?;
+    usize::try_from(n).map_err(|e| e.to_string())
+}
+
 /// `WxH` or `W` → width and optional height.
 ///
 /// # Errors
 /// A message naming the expected form.
 pub fn size(text: &str) -> Result<(usize, Option<usize>), String> {
-    let bad = || format!("--size: expected WxH (or W) with whole numbers in [1, {MAX_SIZE}], got `{text}`");
-    let check =
-        |s: &str| s.trim().parse::<usize>().ok().filter(|n| (1..=MAX_SIZE).contains(n)).ok_or_else(bad);
+    let most = crate::scene::load::MAX_RESOLUTION;
+    let bad = || format!("--size: expected WxH (or W) with whole numbers in [1, {most}], got `{text}`");
+    let check = |s: &str| {
+        s.trim()
+            .parse::<u64>()
+            .ok()
+            .filter(|n| (1..=most).contains(n))
+            .and_then(|n| usize::try_from(n).ok())
+            .ok_or_else(bad)
+    };
     match text.split_once(['x', 'X']) {
         Some((w, h)) => Ok((check(w)?, Some(check(h)?))),
         None => Ok((check(text)?, None)),
@@ -99,28 +154,13 @@ pub fn grid(text: &str) -> Result<Vec<usize>, String> {
     Ok(n)
 }
 
-/// `N`: a depth in `[0, 64]` (the binding's; the command line lets clap check the range).
+/// `--max-level K`: `[0, MAX_LEVEL]` (the binding's; the command line lets clap check it).
 ///
 /// # Errors
-/// A message naming `--depth`.
-pub fn depth(text: &str) -> Result<u32, String> {
-    text.trim()
-        .parse::<u32>()
-        .ok()
-        .filter(|d| u64::from(*d) <= MAX_DEPTH)
-        .ok_or_else(|| format!("--depth: expected a whole number in [0, {MAX_DEPTH}], got `{text}`"))
-}
-
-/// `K`: a subdivision level in `[0, 8]` (the binding's; the command line lets clap check it).
-///
-/// # Errors
-/// A message naming `--max-level`.
+/// A message naming `--max-level` and its range.
 pub fn max_level(text: &str) -> Result<u32, String> {
-    text.trim()
-        .parse::<u32>()
-        .ok()
-        .filter(|k| *k <= MAX_LEVEL)
-        .ok_or_else(|| format!("--max-level: expected a whole number in [0, {MAX_LEVEL}], got `{text}`"))
+    let n = whole("--max-level", text, 0, u64::from(MAX_LEVEL))?;
+    u32::try_from(n).map_err(|e| e.to_string())
 }
 
 #[cfg(test)]
@@ -134,7 +174,8 @@ mod tests {
         assert_eq!(pixel("12,7"), Ok((12, Some(7))));
         assert_eq!(pixel("3"), Ok((3, None)));
         assert!(pixel("1,2,3").is_err());
-        assert!(pixel("-1,2").is_err());
+        assert_eq!(pixel("-1,2"), Ok((-1, Some(2))));
+        assert!(pixel("1.5,2").is_err());
         assert!(pixel("a").is_err());
     }
 

@@ -1,10 +1,11 @@
 //! An image and its statistics (`whitted render`): the structure built and the image rendered,
 //! each timed (0 s where there is no clock, see `clock`), and the object `render --json` prints.
 
+use super::Failure;
 use crate::accel::{Accel, AccelOptions};
 use crate::clock::Stopwatch;
 use crate::doc::float;
-use crate::render::{render, RenderConfig, Rendered, EDGE_MEMORY};
+use crate::render::{check_fits, render, RenderConfig, Rendered, EDGE_MEMORY};
 use crate::sample::Sampling;
 use crate::scene::Scene;
 use crate::shape::Dim;
@@ -41,11 +42,12 @@ pub struct Job<'a> {
     pub progress: Option<&'a (dyn Fn(u64) + Sync)>,
 }
 
-/// Builds the structure and renders the scene (in the current rayon pool).
-pub fn run<V: Dim>(scene: &Scene<V>, job: &Job<'_>) -> Outcome {
-    let build = Stopwatch::start();
-    let accel = Accel::build_with(scene, job.accel);
-    let build_seconds = build.seconds();
+/// Builds the structure and renders the scene (in the current rayon pool), after checking that
+/// the image fits (`render::check_fits`).
+///
+/// # Errors
+/// Bad input: an image too large, naming `--size`.
+pub fn run<V: Dim>(scene: &Scene<V>, job: &Job<'_>) -> Result<Outcome, Failure> {
     let config = RenderConfig {
         sampling: job.sampling,
         max_depth: job.depth.unwrap_or(scene.max_depth),
@@ -54,10 +56,15 @@ pub fn run<V: Dim>(scene: &Scene<V>, job: &Job<'_>) -> Outcome {
         progress: job.progress,
         edge_memory: EDGE_MEMORY,
     };
+    check_fits(scene, &config, rayon::current_num_threads())
+        .map_err(|e| Failure::input(format!("render: {e}")))?;
+    let build = Stopwatch::start();
+    let accel = Accel::build_with(scene, job.accel);
+    let build_seconds = build.seconds();
     let watch = Stopwatch::start();
     let rendered = render(scene, &accel, &config);
     let seconds = watch.seconds();
-    Outcome { rendered, build_seconds, seconds, accel: accel.kind().name(), sampling: job.sampling }
+    Ok(Outcome { rendered, build_seconds, seconds, accel: accel.kind().name(), sampling: job.sampling })
 }
 
 impl Outcome {

@@ -2,6 +2,7 @@
 //! `--ray O:D` (validated against the dimension), turned into the primary ray and the document's
 //! `pixel`/`uv`; or, for a figure, nothing (the figure picks a pixel itself).
 
+use super::parse::PixelArg;
 use super::Failure;
 use crate::doc::TraceTarget;
 use crate::figure::source::Aim;
@@ -12,8 +13,9 @@ use crate::shape::Dim;
 /// `--pixel` and `--ray` as given (at most one; a figure takes neither).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Target {
-    /// `--pixel I,J` (`I` in 2D): column and optional row.
-    pub pixel: Option<(usize, Option<usize>)>,
+    /// `--pixel I,J` (`I` in 2D): column and optional row, as typed (signed: a negative one is
+    /// told it lies outside the image).
+    pub pixel: Option<PixelArg>,
     /// `--ray O:D`: the origin's and the direction's components, already parsed.
     pub ray: Option<(Vec<f64>, Vec<f64>)>,
 }
@@ -43,12 +45,13 @@ impl Target {
                 (_, None) => return Err(Failure::input("--pixel: a 3D scene needs I,J".to_string())),
                 (_, Some(j)) => j,
             };
-            if i >= cam.nx || j >= cam.ny {
+            let inside = |k: i64, n: usize| usize::try_from(k).ok().filter(|k| *k < n);
+            let (Some(i), Some(j)) = (inside(i, cam.nx), inside(j, cam.ny)) else {
                 return Err(Failure::input(format!(
-                    "--pixel: ({i}, {j}) is outside the image: i must be < {}, j < {}",
+                    "--pixel: ({i}, {j}) is outside the image: i must be in [0, {}), j in [0, {})",
                     cam.nx, cam.ny
                 )));
-            }
+            };
             let (u, v) = cam.pixel_center(i, j);
             let ray = cam.primary_ray(u, v);
             let (pixel, uv) = if V::DIM == 2 { (vec![i], vec![u]) } else { (vec![i, j], vec![u, v]) };

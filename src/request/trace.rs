@@ -9,7 +9,7 @@ use crate::accel::Accel;
 use crate::doc::narrate::{narration, Lang, Narration};
 use crate::doc::samples::{sample_narration, sampled_document};
 use crate::doc::{trace_document, TraceTarget};
-use crate::record::EventLog;
+use crate::record::{overflow_message, EventLog};
 use crate::sample::{trace_pixel, PixelTrace, Sampling};
 use crate::scene::material::Rgb;
 use crate::scene::{AnyScene, Scene};
@@ -29,6 +29,8 @@ pub struct Trace {
     pub sampling: Sampling,
     /// `--accel`, `--bounds`, `--grid`.
     pub accel: AccelChoice,
+    /// `--max-events`: the most events and ray nodes recorded; a trace that needs more is refused.
+    pub max_events: usize,
 }
 
 /// A narration and what was traced.
@@ -60,7 +62,7 @@ impl Trace {
         let (ray, target) = self.target.primary(scene)?;
         let options = self.accel.options(V::DIM)?;
         let accel = Accel::build_with(scene, &options);
-        let mut tracer = Tracer::new(scene, &accel, EventLog::new());
+        let mut tracer = Tracer::new(scene, &accel, EventLog::with_limit(self.max_events));
         if let Some(d) = self.depth {
             tracer.max_depth = d;
         }
@@ -79,6 +81,10 @@ impl Trace {
             ))
         };
         let max_depth = tracer.max_depth;
+        if tracer.recorder.overflowed() {
+            let why = overflow_message(tracer.recorder.limit(), max_depth, scene.worst_tree_rays(max_depth));
+            return Err(Failure::input(format!("trace: {why} or raise --max-events")));
+        }
         Ok(Done { stats: tracer.stats, log: tracer.recorder, target, max_depth, outcome })
     }
 
@@ -112,6 +118,24 @@ impl Trace {
             }
         };
         Ok(Narrated { narration, target: done.target })
+    }
+
+    /// Checks the target and the structure as the trace will, without tracing, and returns the
+    /// notes on the options the structure does not read (the command line says them before the
+    /// trace, as it says the sampling's).
+    ///
+    /// # Errors
+    /// As [`Trace::document_in`], but for a trace too large.
+    pub fn check(&self, scene: &AnyScene) -> Result<Vec<String>, Failure> {
+        fn checked<V: Dim>(t: &Trace, scene: &Scene<V>) -> Result<Vec<String>, Failure> {
+            t.target.primary(scene)?;
+            t.accel.options(V::DIM)?;
+            Ok(t.accel.notes(t.accel.kind))
+        }
+        match scene {
+            AnyScene::Flat(s) => checked(self, s),
+            AnyScene::Space(s) => checked(self, s),
+        }
     }
 
     /// [`Trace::document_in`] of a scene of either dimension.

@@ -1,5 +1,5 @@
 //! Scene text → [`AnyScene`] (product.md "Scene files" and "Defaults"; algorithm.md §11
-//! "Validation instead of sanitising"). The JSON is parsed into a `serde_json::Value` and read
+//! "Validation instead of sanitising"). The JSON is parsed into a `json::Value` (duplicate keys kept, so reported) and read
 //! field by field, so unknown fields, wrong types, wrong dimensions and invalid values are all
 //! reported together, each with its JSON path; a JSON syntax error stops at the first (line and
 //! column). Defaults are applied here and nowhere else.
@@ -11,6 +11,7 @@ use super::material::{Checker, Material, Rgb};
 use super::{AnyScene, Object, Scene};
 use crate::geom::frame::{self, Frame, FrameError};
 use crate::geom::Vector;
+use crate::json::{self, Map, Value};
 use crate::shape::aabox::AaBox;
 use crate::shape::mesh::{parse_obj, Mesh, MeshError};
 use crate::shape::plane::Plane;
@@ -19,7 +20,6 @@ use crate::shape::sphere::Sphere;
 use crate::shape::triangle::Triangle;
 use crate::shape::{Dim, Shape};
 use glam::{DVec2, DVec3};
-use serde_json::{Map, Value};
 
 /// The largest magnitude a scene number may have (§11): squares and triple sums stay finite.
 pub const MAX_MAGNITUDE: f64 = 1e100;
@@ -27,6 +27,10 @@ pub const MAX_MAGNITUDE: f64 = 1e100;
 pub const MAX_DEPTH: u64 = 64;
 /// The largest resolution along one axis (documented cap: 65 536 pixels).
 pub const MAX_RESOLUTION: u64 = 1 << 16;
+/// The largest scene file read (128 MiB, about a million objects written out).
+pub const MAX_SCENE_BYTES: u64 = 128 << 20;
+/// The largest mesh (OBJ) file read (512 MiB, about ten million triangles).
+pub const MAX_OBJ_BYTES: u64 = 512 << 20;
 
 const TOP: &[&str] =
     &["camera", "background", "ambient", "max_depth", "lights", "materials", "objects", "description"];
@@ -57,11 +61,11 @@ pub fn load_str(text: &str) -> Result<AnyScene, Vec<SceneError>> {
 /// # Errors
 /// Every problem found, each naming its JSON path; a syntax error alone if the text is not JSON.
 pub fn load_str_with(text: &str, read_file: ReadFile<'_>) -> Result<AnyScene, Vec<SceneError>> {
-    let root: Value = serde_json::from_str(text).map_err(|e| {
-        let what = e.to_string();
-        // serde_json appends " at line L column C"; say it once, first.
-        let what = what.split(" at line ").next().unwrap_or(&what).to_string();
-        vec![SceneError::new("", format!("invalid JSON at line {}, column {}: {what}", e.line(), e.column()))]
+    let root = json::parse(text).map_err(|e| {
+        vec![SceneError::new(
+            "",
+            format!("invalid JSON at line {}, column {}: {}", e.line, e.column, e.message),
+        )]
     })?;
     let mut r = Reader::default();
     let Some(top) = r.fields(&root, "", TOP) else {
@@ -85,7 +89,7 @@ pub fn load_str_with(text: &str, read_file: ReadFile<'_>) -> Result<AnyScene, Ve
 fn dimension_of(camera: &Value) -> Option<usize> {
     ["eye", "center"]
         .iter()
-        .filter_map(|k| camera.get(*k)?.as_array().map(Vec::len))
+        .filter_map(|k| camera.get(k)?.as_array().map(Vec::len))
         .find(|n| *n == 2 || *n == 3)
 }
 
@@ -129,13 +133,17 @@ impl Reader {
     }
 
     /// An object whose keys are all in `known`; unknown keys are errors with a suggestion.
-    fn fields<'a>(&mut self, v: &'a Value, path: &str, known: &[&str]) -> Option<&'a Map<String, Value>> {
+    /// A key written twice is an error too: which of its values a reader took would be a guess.
+    fn fields<'a, 'j>(&mut self, v: &'a Value<'j>, path: &str, known: &[&str]) -> Option<&'a Map<'j>> {
         let Some(map) = v.as_object() else {
             self.err(path, format!("must be an object, got {}", type_name(v)));
             return None;
         };
+        for key in map.duplicates() {
+            self.err(join(path, key), "written more than once in this object; keep one");
+        }
         for key in map.keys() {
-            if !known.contains(&key.as_str()) {
+            if !known.contains(&key) {
                 let hint = match suggest(key, known) {
                     Some(s) => format!("unknown field `{key}`; did you mean `{s}`?"),
                     None => format!("unknown field `{key}`; expected one of: {}", known.join(", ")),
@@ -159,7 +167,7 @@ impl Reader {
     }
 
     /// A required number.
-    fn required(&mut self, map: &Map<String, Value>, path: &str, key: &str) -> Option<f64> {
+    fn required(&mut self, map: &Map<'_>, path: &str, key: &str) -> Option<f64> {
         match map.get(key) {
             Some(v) => self.number(v, &join(path, key)),
             None => {
@@ -172,7 +180,7 @@ impl Reader {
     /// An optional number with its default; `check` returns the problem text, if any.
     fn optional(
         &mut self,
-        map: &Map<String, Value>,
+        map: &Map<'_>,
         path: &str,
         key: &str,
         default: f64,
@@ -222,7 +230,7 @@ impl Reader {
         ok.then_some(out)
     }
 
-    fn required_vector<V: Vector>(&mut self, map: &Map<String, Value>, path: &str, key: &str) -> Option<V> {
+    fn required_vector<V: Vector>(&mut self, map: &Map<'_>, path: &str, key: &str) -> Option<V> {
         match map.get(key) {
             Some(v) => self.vector(v, &join(path, key)),
             None => {
@@ -270,7 +278,7 @@ impl Reader {
     /// A material colour (`ka`, `kd`, `kd2`, `ka2`): one number for a grey, or an RGB triple.
     fn optional_color(
         &mut self,
-        map: &Map<String, Value>,
+        map: &Map<'_>,
         path: &str,
         key: &str,
         default: Rgb,
@@ -281,7 +289,7 @@ impl Reader {
 
     /// A light's colour (`background`, `ambient`, `intensity`): an RGB triple only. product.md lets
     /// one number stand for a grey in the material colours alone.
-    fn optional_rgb(&mut self, map: &Map<String, Value>, path: &str, key: &str, default: Rgb) -> Rgb {
+    fn optional_rgb(&mut self, map: &Map<'_>, path: &str, key: &str, default: Rgb) -> Rgb {
         map.get(key)
             .and_then(|v| self.color(v, &join(path, key), (0.0, f64::INFINITY), false))
             .unwrap_or(default)
@@ -330,18 +338,13 @@ trait LoadDim: Dim {
     const WINDOW: &'static [&'static str];
     const TYPES: &'static [&'static str];
     /// The observer frame from eye, centre and (in 3D) `up`.
-    fn frame(r: &mut Reader, camera: &Map<String, Value>, eye: Self, center: Self) -> Option<Frame<Self>>;
+    fn frame(r: &mut Reader, camera: &Map<'_>, eye: Self, center: Self) -> Option<Frame<Self>>;
     /// The flat primitive of an object of the given type.
-    fn facet(r: &mut Reader, ty: &str, map: &Map<String, Value>, path: &str) -> Option<Self::Facet>;
+    fn facet(r: &mut Reader, ty: &str, map: &Map<'_>, path: &str) -> Option<Self::Facet>;
     /// `Ny` from the resolution array.
     fn rows(r: &mut Reader, res: &[Value], path: &str) -> Option<usize>;
     /// A `mesh` object (3D only).
-    fn mesh(
-        r: &mut Reader,
-        map: &Map<String, Value>,
-        path: &str,
-        read_file: ReadFile<'_>,
-    ) -> Option<Self::Mesh>;
+    fn mesh(r: &mut Reader, map: &Map<'_>, path: &str, read_file: ReadFile<'_>) -> Option<Self::Mesh>;
 }
 
 fn frame_error(r: &mut Reader, e: FrameError) {
@@ -355,14 +358,14 @@ impl LoadDim for DVec3 {
     const CAMERA: &'static [&'static str] = CAMERA_3D;
     const WINDOW: &'static [&'static str] = WINDOW_3D;
     const TYPES: &'static [&'static str] = TYPES_3D;
-    fn frame(r: &mut Reader, camera: &Map<String, Value>, eye: Self, center: Self) -> Option<Frame<Self>> {
+    fn frame(r: &mut Reader, camera: &Map<'_>, eye: Self, center: Self) -> Option<Frame<Self>> {
         let up = match camera.get("up") {
             Some(v) => r.vector::<DVec3>(v, "camera.up")?,
             None => DVec3::Y,
         };
         frame::look_at(eye, center, up).map_err(|e| frame_error(r, e)).ok()
     }
-    fn facet(r: &mut Reader, ty: &str, map: &Map<String, Value>, path: &str) -> Option<Triangle> {
+    fn facet(r: &mut Reader, ty: &str, map: &Map<'_>, path: &str) -> Option<Triangle> {
         if ty != "triangle" {
             r.err(join(path, "type"), format!("`{ty}` exists only in 2D scenes"));
             return None;
@@ -381,7 +384,7 @@ impl LoadDim for DVec3 {
         }
         resolution_axis(r, &res[1], &format!("{path}[1]"))
     }
-    fn mesh(r: &mut Reader, map: &Map<String, Value>, path: &str, read_file: ReadFile<'_>) -> Option<Mesh> {
+    fn mesh(r: &mut Reader, map: &Map<'_>, path: &str, read_file: ReadFile<'_>) -> Option<Mesh> {
         let p = join(path, "obj");
         let Some(v) = map.get("obj") else {
             r.err(p, "missing (required: the OBJ file, relative to the scene file)");
@@ -425,10 +428,10 @@ impl LoadDim for DVec2 {
     const CAMERA: &'static [&'static str] = CAMERA_2D;
     const WINDOW: &'static [&'static str] = WINDOW_2D;
     const TYPES: &'static [&'static str] = TYPES_2D;
-    fn frame(r: &mut Reader, _camera: &Map<String, Value>, eye: Self, center: Self) -> Option<Frame<Self>> {
+    fn frame(r: &mut Reader, _camera: &Map<'_>, eye: Self, center: Self) -> Option<Frame<Self>> {
         frame::look_at_2d(eye, center).map_err(|e| frame_error(r, e)).ok()
     }
-    fn facet(r: &mut Reader, ty: &str, map: &Map<String, Value>, path: &str) -> Option<Polygon> {
+    fn facet(r: &mut Reader, ty: &str, map: &Map<'_>, path: &str) -> Option<Polygon> {
         let built = match ty {
             "segment" => {
                 let a = r.required_vector::<DVec2>(map, path, "a");
@@ -455,7 +458,7 @@ impl LoadDim for DVec2 {
         }
         Some(1)
     }
-    fn mesh(r: &mut Reader, _: &Map<String, Value>, path: &str, _: ReadFile<'_>) -> Option<Self::Mesh> {
+    fn mesh(r: &mut Reader, _: &Map<'_>, path: &str, _: ReadFile<'_>) -> Option<Self::Mesh> {
         r.err(join(path, "type"), "`mesh` exists only in 3D scenes");
         None
     }
@@ -465,13 +468,7 @@ fn resolution_axis(r: &mut Reader, v: &Value, path: &str) -> Option<usize> {
     r.integer(v, path, 1, MAX_RESOLUTION).and_then(|n| usize::try_from(n).ok())
 }
 
-fn vertices<V: Vector>(
-    r: &mut Reader,
-    map: &Map<String, Value>,
-    path: &str,
-    min: usize,
-    max: usize,
-) -> Option<Vec<V>> {
+fn vertices<V: Vector>(r: &mut Reader, map: &Map<'_>, path: &str, min: usize, max: usize) -> Option<Vec<V>> {
     let p = join(path, "vertices");
     let Some(v) = map.get("vertices") else {
         r.err(p, "missing (required)");
@@ -493,7 +490,7 @@ fn vertices<V: Vector>(
 
 fn build<V: LoadDim>(
     mut r: Reader,
-    top: &Map<String, Value>,
+    top: &Map<'_>,
     read_file: ReadFile<'_>,
 ) -> Result<Scene<V>, Vec<SceneError>> {
     let camera = read_camera::<V>(&mut r, &top["camera"]);
@@ -697,7 +694,7 @@ fn read_named_materials(r: &mut Reader, v: Option<&Value>) -> (Vec<Material>, Ve
     for (name, m) in map {
         let m = read_material(r, m, &format!("materials.{name}")).unwrap_or(Material::DEFAULT);
         mats.push(m);
-        names.push(name.clone());
+        names.push(name.to_owned());
     }
     (mats, names)
 }
@@ -781,7 +778,7 @@ fn read_objects<V: LoadDim>(
 fn read_shape<V: LoadDim>(
     r: &mut Reader,
     ty: &str,
-    map: &Map<String, Value>,
+    map: &Map<'_>,
     path: &str,
     read_file: ReadFile<'_>,
 ) -> Option<Shape<V>> {

@@ -68,6 +68,24 @@ impl<V: Dim> Scene<V> {
     pub fn has_reflective(&self) -> bool {
         (0..self.objects.len()).any(|i| self.material_of(i).reflects())
     }
+    /// The most ray nodes one primary ray's tree can hold at `max_depth`: levels 1 to
+    /// `max_depth + 1` (§6), doubling at each level when some object both reflects and transmits
+    /// (`2^(max_depth+1) − 1`), one a level when rays only reflect or only transmit, 1 otherwise.
+    #[must_use]
+    pub fn worst_tree_rays(&self, max_depth: u32) -> f64 {
+        let both = (0..self.objects.len()).any(|i| {
+            let m = self.material_of(i);
+            m.reflects() && m.transmits()
+        });
+        let levels = f64::from(max_depth) + 1.0;
+        if both {
+            levels.exp2() - 1.0
+        } else if self.has_reflective() || self.has_transparent() {
+            levels
+        } else {
+            1.0
+        }
+    }
     /// How an object is called in traces: its `name`, else its index.
     #[must_use]
     pub fn object_label(&self, index: usize) -> String {

@@ -114,6 +114,10 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
             self.recorder.event(|| Event::DepthLimit { level });
             return Rgb::BLACK;
         }
+        // A full log ends the recursion (its trace is then refused); compiled away when not recording.
+        if R::ENABLED && self.recorder.full() {
+            return Rgb::BLACK;
+        }
         let (ks, kt, ior) = (material.ks, material.kt, material.ior);
         let mut sum = Rgb::BLACK;
         let d = at.ray.dir;

@@ -1,10 +1,12 @@
-//! The one integration-test binary (design.md habit 7): scenes, traces, numerics, figures and the CLI.
+//! The one integration-test binary (one build, shared helpers): scenes, traces, numerics, figures, the CLI.
 #![allow(clippy::float_cmp)] // The tests pin exact IEEE results on purpose (numerics.md).
 
 mod accel;
 mod cli;
 mod figures;
+mod hardening;
 mod numerics;
+mod outputs;
 mod properties;
 mod sampling;
 mod support;

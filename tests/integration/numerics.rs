@@ -76,7 +76,7 @@ fn f4_index_extremes() {
     let dir: Vec<f64> = t["direction"].as_array().unwrap().iter().map(f).collect();
     let cos: f64 = n.iter().zip(&dir).map(|(a, b)| a * b).sum();
     assert!(cos < -0.999_999, "T ≈ −N, got cos = {cos}");
-    // Inside a sphere the exit angle equals the refracted entry angle, so it leaves again (§2.4).
+    // Inside a sphere the exit angle equals the refracted entry angle, so it leaves again (numerics.md F3).
     assert!(events(&doc, "total_internal_reflection").is_empty());
 }
 

@@ -20,7 +20,7 @@ use whitted::shape::Dim;
 use whitted::shape::Shape;
 
 /// Every path to a leaf or container in a JSON value.
-fn paths(v: &Value, prefix: Vec<String>, out: &mut Vec<Vec<String>>) {
+pub fn paths(v: &Value, prefix: Vec<String>, out: &mut Vec<Vec<String>>) {
     out.push(prefix.clone());
     match v {
         Value::Object(m) => m.iter().for_each(|(k, x)| {
@@ -37,7 +37,7 @@ fn paths(v: &Value, prefix: Vec<String>, out: &mut Vec<Vec<String>>) {
     }
 }
 
-fn at_mut<'a>(v: &'a mut Value, path: &[String]) -> &'a mut Value {
+pub fn at_mut<'a>(v: &'a mut Value, path: &[String]) -> &'a mut Value {
     path.iter().fold(v, |v, k| match v {
         Value::Object(m) => m.get_mut(k).unwrap(),
         Value::Array(a) => &mut a[k.parse::<usize>().unwrap()],
@@ -46,7 +46,7 @@ fn at_mut<'a>(v: &'a mut Value, path: &[String]) -> &'a mut Value {
 }
 
 /// Replacement values a careless or hostile scene might hold.
-fn wild_value() -> impl Strategy<Value = Value> {
+pub fn wild_value() -> impl Strategy<Value = Value> {
     prop_oneof![
         Just(Value::Null),
         Just(serde_json::json!(0)),

@@ -1,5 +1,7 @@
-//! Tidy checks (design.md habit 2): every source file opens with a `//!` line saying what it owns,
-//! and algorithm.md's Conventions cannot change without this project noticing (a stored hash).
+//! Tidy checks: every source file opens with a `//!` line saying what it owns; every reference
+//! the code and the top-level docs make to `docs/` resolves (a file, an `algorithm.md` section,
+//! a `numerics.md` case, a `product.md` section); algorithm.md's Conventions cannot change
+//! without this project noticing (a stored hash); and only `cli/output.rs` writes files.
 
 use std::path::{Path, PathBuf};
 
@@ -46,11 +48,7 @@ fn conventions(text: &str) -> String {
 #[test]
 fn algorithm_conventions_are_the_ones_the_tests_were_written_for() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let doc = root.join("../shared/docs/algorithm.md");
-    let Ok(text) = std::fs::read_to_string(&doc) else {
-        // Outside the workplace layout (a crate download), there is nothing to compare.
-        return;
-    };
+    let text = read_doc(root, "algorithm.md");
     let stored = std::fs::read_to_string(root.join("tests/data/conventions.hash")).unwrap();
     let now = format!("{:016x}", fnv1a(&conventions(&text)));
     assert_eq!(
@@ -59,4 +57,294 @@ fn algorithm_conventions_are_the_ones_the_tests_were_written_for() {
         "algorithm.md's Conventions changed: review the tests that pin them (tests/integration/traces.rs, \
          the numerics unit tests), then store the new hash in tests/data/conventions.hash"
     );
+}
+
+/// The calls that create or replace a file; only `src/cli/output.rs` may make them.
+const FILE_WRITES: [&str; 5] = ["fs::write(", "File::create", "OpenOptions", "fs::rename(", "fs::copy("];
+
+#[test]
+fn every_file_is_written_through_the_one_atomic_writer() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    let writer = root.join("src/cli/output.rs");
+    let offending: Vec<String> = files
+        .iter()
+        .filter(|p| **p != writer)
+        .flat_map(|p| {
+            let text = std::fs::read_to_string(p).unwrap();
+            let name = p.strip_prefix(root).unwrap().display().to_string();
+            FILE_WRITES
+                .iter()
+                .filter(|w| text.contains(*w))
+                .map(move |w| format!("{name}: {w}"))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(
+        offending.is_empty(),
+        "write files through cli::write_file (temp + rename: whole or untouched), not: {offending:?}"
+    );
+}
+
+/// The text of `docs/NAME`; a missing reference document fails the test that needs it.
+fn read_doc(root: &Path, name: &str) -> String {
+    let path = root.join("docs").join(name);
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The files whose references are checked: the sources, the tests and their fixtures, and the two
+/// top-level documents. Snapshots are left out (they hold output, not references).
+fn citing_files(root: &Path) -> Vec<PathBuf> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "rs" || e == "json") {
+                out.push(path);
+            }
+        }
+    }
+    let mut files = vec![root.join("README.md"), root.join("ARCHITECTURE.md")];
+    walk(&root.join("src"), &mut files);
+    walk(&root.join("tests"), &mut files);
+    files
+}
+
+/// A file's text with its lines joined by spaces and comment markers removed, so that a
+/// reference wrapped across two comment lines reads as one.
+fn flowing(text: &str) -> String {
+    text.lines()
+        .map(|line| {
+            let line = line.trim_start();
+            let line = ["//!", "///", "//"].iter().find_map(|m| line.strip_prefix(m)).unwrap_or(line);
+            line.trim()
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// What the reference documents define: `algorithm.md`'s section numbers (`8`, `8.2`),
+/// `numerics.md`'s section letters (`I`) and case labels (`I3`), `product.md`'s headings.
+struct Defined {
+    algorithm: String,
+    sections: Vec<String>,
+    letters: Vec<String>,
+    cases: Vec<String>,
+    product: String,
+    headings: Vec<String>,
+}
+
+impl Defined {
+    fn read(root: &Path) -> Self {
+        let algorithm = read_doc(root, "algorithm.md");
+        let numerics = read_doc(root, "numerics.md");
+        let product = read_doc(root, "product.md");
+        // `## 8. Title` and `### 8.2 Title` define `8` and `8.2`.
+        let sections = algorithm
+            .lines()
+            .filter_map(|l| l.strip_prefix("## ").or_else(|| l.strip_prefix("### ")))
+            .filter_map(|l| l.split_whitespace().next())
+            .map(|n| n.trim_end_matches('.').to_string())
+            .filter(|n| n.starts_with(|c: char| c.is_ascii_digit()))
+            .collect();
+        // `## I. Title` defines the letter; `**I3 Title.**` defines the case.
+        let letters = numerics
+            .lines()
+            .filter_map(|l| l.strip_prefix("## "))
+            .filter_map(|l| l.split_once(". ").map(|(x, _)| x.to_string()))
+            .filter(|x| x.len() == 1)
+            .collect();
+        let cases = numerics
+            .lines()
+            .filter_map(|l| l.strip_prefix("**"))
+            .filter_map(|l| l.split_whitespace().next())
+            .filter(|l| label(l).is_some_and(|n| n == l.len()))
+            .map(str::to_string)
+            .collect();
+        let headings = product
+            .lines()
+            .filter_map(|l| l.strip_prefix("## ").or_else(|| l.strip_prefix("### ")))
+            .map(|h| h.trim().to_lowercase())
+            .collect();
+        Self { algorithm: algorithm.to_lowercase(), sections, letters, cases, product, headings }
+    }
+}
+
+/// The length of a case label at the start of `s` (`I3`, `A9`; a capital A–M and 1–2 digits),
+/// if there is one.
+fn label(s: &str) -> Option<usize> {
+    let b = s.as_bytes();
+    let digits = b.iter().skip(1).take_while(|c| c.is_ascii_digit()).count();
+    (b.first().is_some_and(|c| (b'A'..=b'M').contains(c)) && (1..=2).contains(&digits)).then_some(1 + digits)
+}
+
+/// The double-quoted titles at the start of `rest` (` "A", "B" and "C"`).
+fn quoted_titles(rest: &str) -> Vec<&str> {
+    let mut out = Vec::new();
+    // A reference is prose: a space or a comma comes first (`"product.md"` in code is no title).
+    if !rest.starts_with([' ', ',']) {
+        return out;
+    }
+    let mut rest = rest.trim_start_matches([',', ' ']);
+    while let Some(inner) = rest.strip_prefix('"') {
+        let Some((title, after)) = inner.split_once('"') else { break };
+        out.push(title);
+        rest = after.trim_start_matches([',', ' ']);
+        rest = rest.strip_prefix("and ").unwrap_or(rest);
+    }
+    out
+}
+
+/// A numerics.md section letter, A to M.
+fn is_letter(s: &str) -> bool {
+    s.len() == 1 && s.starts_with(|c: char| ('A'..='M').contains(&c))
+}
+
+/// `§8.2` (an algorithm.md section, with the titles quoted after it) and `§I` (a numerics.md
+/// section) that the documents do not define.
+fn broken_sections(text: &str, d: &Defined) -> Vec<String> {
+    let mut broken = Vec::new();
+    for (at, _) in text.match_indices('§') {
+        let rest = &text[at + '§'.len_utf8()..];
+        let token: String = rest.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '.').collect();
+        let token = token.trim_end_matches('.');
+        if token.starts_with(|c: char| c.is_ascii_digit()) {
+            if !d.sections.iter().any(|s| s == token) {
+                broken.push(format!("algorithm.md §{token}"));
+            }
+            for title in quoted_titles(&rest[token.len()..]) {
+                if !d.algorithm.contains(&title.to_lowercase()) {
+                    broken.push(format!("algorithm.md §{token} \"{title}\""));
+                }
+            }
+        } else if is_letter(token) && !d.letters.iter().any(|s| s == token) {
+            broken.push(format!("numerics.md §{token}"));
+        }
+    }
+    broken
+}
+
+/// `numerics.md B5, E1, M1`, `numerics I3` or `numerics.md E, F, L`: the labels and letters up to
+/// the end of the clause that the documents do not define.
+fn broken_cases(text: &str, d: &Defined) -> Vec<String> {
+    let mut broken = Vec::new();
+    for (at, word) in text.match_indices("numerics") {
+        let rest = text[at + word.len()..].trim_start_matches(".md");
+        let end = rest.find([')', ';', ':']).unwrap_or(rest.len()).min(rest.find(". ").unwrap_or(rest.len()));
+        for raw in rest[..end].split([' ', ',', '/']) {
+            let letter = is_letter(raw) && !d.letters.iter().any(|s| s == raw);
+            let case = label(raw) == Some(raw.len()) && !d.cases.iter().any(|c| c == raw);
+            if letter || case {
+                broken.push(format!("numerics.md {raw}"));
+            }
+        }
+    }
+    broken
+}
+
+/// Tests named after cases (`fn i3_ties…`, `fn c1_c2_…`, `fn a9a_…` for A9 (a)) whose case the
+/// documents do not define.
+fn broken_test_names(text: &str, d: &Defined) -> Vec<String> {
+    let mut broken = Vec::new();
+    for (at, _) in text.match_indices("fn ") {
+        let mut rest = &text[at + 3..];
+        while let Some((head, tail)) = rest.split_once('_') {
+            if head.chars().any(|c| !(c.is_ascii_lowercase() || c.is_ascii_digit())) {
+                break;
+            }
+            let upper = head.to_uppercase();
+            let Some(n) = label(&upper).filter(|n| head.len() - n <= 1) else { break };
+            let id = &upper[..n];
+            if !d.cases.iter().any(|c| c == id) {
+                broken.push(format!("numerics.md {id} (a test named `{head}_…`)"));
+            }
+            rest = tail;
+        }
+    }
+    broken
+}
+
+/// `product.md "The trace document"` (a heading) or product.md `--aa` (a word of its text) that
+/// the document does not hold.
+fn broken_product(text: &str, d: &Defined) -> Vec<String> {
+    let mut broken = Vec::new();
+    for (at, word) in text.match_indices("product.md") {
+        let rest = text[at + word.len()..].trim_start_matches("'s");
+        for title in quoted_titles(rest) {
+            if !d.headings.iter().any(|h| h.trim_matches('`') == title.to_lowercase()) {
+                broken.push(format!("product.md \"{title}\""));
+            }
+        }
+        if let Some((code, _)) = rest.strip_prefix(" `").and_then(|r| r.split_once('`')) {
+            if !d.product.contains(&format!("`{code}`")) {
+                broken.push(format!("product.md: no `{code}` in it"));
+            }
+        }
+    }
+    broken
+}
+
+/// Every Markdown file a text names, as written: bare (a document of `docs/`, or a top-level one
+/// in capitals) or with its folder.
+fn named_documents(text: &str) -> Vec<&str> {
+    let is_name = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '/' | '.');
+    text.match_indices(".md")
+        .filter(|(at, _)| !text[at + 3..].starts_with(|c: char| c.is_ascii_alphanumeric()))
+        .map(|(at, _)| {
+            let start = text[..at].rfind(|c: char| !is_name(c)).map_or(0, |i| i + 1);
+            &text[start..at + 3]
+        })
+        .filter(|name| name.len() > 3)
+        .collect()
+}
+
+#[test]
+fn every_cited_document_and_section_exists_in_docs() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let defined = Defined::read(root);
+    let outside = ["..", "shared"].join("/");
+    let mut problems = Vec::new();
+    for file in citing_files(root) {
+        let raw = std::fs::read_to_string(&file).unwrap();
+        let text = flowing(&raw);
+        let name = file.strip_prefix(root).unwrap().display().to_string();
+        if text.contains(&outside) {
+            problems.push(format!("{name}: cites {outside}, outside the repository"));
+        }
+        for doc in named_documents(&text) {
+            let path = if doc.contains('/') || doc.starts_with(|c: char| c.is_ascii_uppercase()) {
+                root.join(doc.trim_start_matches("./"))
+            } else {
+                root.join("docs").join(doc)
+            };
+            if !path.exists() {
+                problems.push(format!("{name}: {doc} does not exist"));
+            }
+        }
+        let broken = [broken_sections, broken_cases, broken_test_names, broken_product]
+            .iter()
+            .flat_map(|check| check(&text, &defined));
+        problems.extend(broken.map(|r| format!("{name}: {r}")));
+    }
+    assert!(problems.is_empty(), "references that docs/ does not define:\n{}", problems.join("\n"));
+}
+
+/// The ```json blocks of a document, in order.
+fn json_blocks(doc: &str) -> Vec<&str> {
+    doc.split("```json\n").skip(1).filter_map(|b| b.split_once("```").map(|(json, _)| json)).collect()
+}
+
+#[test]
+fn product_md_examples_are_accepted_as_written() {
+    let product = read_doc(Path::new(env!("CARGO_MANIFEST_DIR")), "product.md");
+    let blocks = json_blocks(&product);
+    assert_eq!(blocks.len(), 2, "product.md shows a scene and a lesson");
+    // The scene's mesh names an OBJ file; any one-triangle file stands in for it.
+    let obj = |_: &str| Ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_string());
+    let scene = whitted::scene::load::load_str_with(blocks[0], &obj);
+    assert!(scene.is_ok(), "the example scene: {:?}", scene.err());
+    let lesson = whitted::lesson::parse(blocks[1]);
+    assert!(lesson.is_ok(), "the example lesson: {:?}", lesson.err());
 }

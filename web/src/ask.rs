@@ -13,7 +13,8 @@ use whitted::request::target::Target;
 use whitted::request::Failure;
 
 /// The fields of `options`, as the command line names them (`max_level` is `--max-level`).
-pub const OPTIONS: [&str; 8] = ["depth", "aa", "threshold", "max_level", "accel", "bounds", "grid", "size"];
+pub const OPTIONS: [&str; 9] =
+    ["depth", "aa", "threshold", "max_level", "accel", "bounds", "grid", "size", "max_events"];
 
 /// A JSON value as an option's text: a string as it is, anything else as JSON.
 fn text(value: &Value) -> String {
@@ -87,6 +88,8 @@ pub struct Options {
     pub accel: AccelChoice,
     /// `--size`.
     pub size: Option<(usize, Option<usize>)>,
+    /// `--max-events` (trace and narrate).
+    pub max_events: Option<usize>,
 }
 
 /// The `options` object (absent: every default).
@@ -114,10 +117,13 @@ pub fn options(value: Option<&Value>) -> Result<Options, Failure> {
     }
     if let Some(v) = f.get("bounds") {
         let kinds = [VolumeKind::Sphere, VolumeKind::Aabb, VolumeKind::Kdop].map(|k| (k.name(), k));
-        out.accel.volume = named("--bounds", v, &kinds)?;
+        out.accel.volume = Some(named("--bounds", v, &kinds)?);
     }
     if let Some(v) = f.get("grid") {
         out.accel.grid = Some(parse::grid(&joined(v, ",")).map_err(|e| input(format!("--grid: {e}")))?);
+    }
+    if let Some(v) = f.get("max_events") {
+        out.max_events = Some(parse::max_events(&text(v)).map_err(input)?);
     }
     if let Some(v) = f.get("size") {
         out.size = Some(parse::size(&joined(v, "x")).map_err(input)?);
@@ -191,7 +197,9 @@ mod tests {
         assert_eq!(t.pixel, Some((400, Some(200))));
         let t = target(Some(&json!({"ray": [[0, 0, 5], [0, 0, -1]]}))).unwrap();
         assert_eq!(t.ray, Some((vec![0.0, 0.0, 5.0], vec![0.0, 0.0, -1.0])));
-        let err = target(Some(&json!({"pixel": [-1, 2]}))).unwrap_err().message;
+        // A negative pixel parses, to be told it lies outside the image; a fraction does not.
+        assert_eq!(target(Some(&json!({"pixel": [-1, 2]}))).unwrap().pixel, Some((-1, Some(2))));
+        let err = target(Some(&json!({"pixel": [1.5, 2]}))).unwrap_err().message;
         assert!(err.starts_with("--pixel: expected I,J"), "{err}");
         assert!(target(Some(&json!({"ray": [[0, 0], [0, 0]]}))).unwrap_err().message.contains("non-zero"));
         assert!(target(None).unwrap().is_none());

@@ -11,7 +11,8 @@ use whitted::doc::narrate::Lang;
 use whitted::doc::TraceTarget;
 use whitted::figure::source::Tracing;
 use whitted::figure::{svg, FigureKind};
-use whitted::request::figure::{default_aa, figure, Request};
+use whitted::record::DEFAULT_LIMIT;
+use whitted::request::figure::{default_aa, figure, structure, Request};
 use whitted::request::options::{canvas, resize, Aa};
 use whitted::request::render::{self as job, Job};
 use whitted::request::target::Target;
@@ -208,17 +209,19 @@ fn render_op(f: &Fields<'_>) -> Result<Answer, Failure> {
             let rows = resize(&mut s, options.size);
             let (w, h) = image_size(&s, rows);
             fits("render", w, h)?;
-            job::run(&s, &run(rows))
+            job::run(&s, &run(rows))?
         }
         AnyScene::Space(mut s) => {
             let rows = resize(&mut s, options.size);
             let (w, h) = image_size(&s, rows);
             fits("render", w, h)?;
-            job::run(&s, &run(rows))
+            job::run(&s, &run(rows))?
         }
     };
     let mut doc = outcome.json(load_seconds, rayon::current_num_threads(), None);
-    doc["notes"] = json!(chosen.notes);
+    let notes: Vec<String> =
+        chosen.notes.into_iter().chain(options.accel.notes(options.accel.kind)).collect();
+    doc["notes"] = json!(notes);
     Ok(Answer { code: 0, json: doc.to_string(), bytes: outcome.rendered.image.to_rgba8() })
 }
 
@@ -229,9 +232,15 @@ fn trace_of(f: &Fields<'_>, op: &str) -> Result<(AnyScene, Trace, Options, Vec<S
     let target = ask::target(f.get("target"))?;
     let scene = scene(f)?;
     let chosen = options.sampling.choose(Aa::Center)?;
-    let trace =
-        Trace { target, depth: options.depth, sampling: chosen.sampling, accel: options.accel.clone() };
-    Ok((scene, trace, options, chosen.notes))
+    let trace = Trace {
+        target,
+        depth: options.depth,
+        sampling: chosen.sampling,
+        accel: options.accel.clone(),
+        max_events: options.max_events.unwrap_or(DEFAULT_LIMIT),
+    };
+    let notes = chosen.notes.into_iter().chain(trace.check(&scene)?).collect();
+    Ok((scene, trace, options, notes))
 }
 
 fn trace_op(f: &Fields<'_>) -> Result<Answer, Failure> {
@@ -292,11 +301,14 @@ fn command(scene: &str, target: &Target, options: &Options, lang: Lang) -> Strin
     if a.kind != default.kind {
         cmd.push_str(&format!(" --accel {}", a.kind.name()));
     }
-    if a.volume != default.volume {
-        cmd.push_str(&format!(" --bounds {}", a.volume.name()));
+    if let Some(volume) = a.volume {
+        cmd.push_str(&format!(" --bounds {}", volume.name()));
     }
     if let Some(g) = &a.grid {
         cmd.push_str(&format!(" --grid {}", g.iter().map(ToString::to_string).collect::<Vec<_>>().join(",")));
+    }
+    if let Some(n) = options.max_events {
+        cmd.push_str(&format!(" --max-events {n}"));
     }
     if lang == Lang::Ro {
         cmd.push_str(" --lang ro");
@@ -318,7 +330,7 @@ fn figure_op(f: &Fields<'_>) -> Result<Answer, Failure> {
         fits("heat-map", w, h)?;
     }
     let chosen = options.sampling.choose(default_aa(kind))?;
-    let (width, height) = canvas(options.size);
+    let (width, height) = canvas(options.size)?;
     let request = Request {
         kind,
         target,
@@ -330,7 +342,9 @@ fn figure_op(f: &Fields<'_>) -> Result<Answer, Failure> {
         opts: whitted::figure::Options { lang, width, height },
     };
     let made = figure(&scene, &stem(name(f)?), &request)?;
-    let mut answer = json!({"svg": svg::to_svg(&made.drawing), "pick": made.pick, "notes": chosen.notes});
+    let notes: Vec<String> =
+        chosen.notes.into_iter().chain(options.accel.notes(structure(kind, options.accel.kind))).collect();
+    let mut answer = json!({"svg": svg::to_svg(&made.drawing), "pick": made.pick, "notes": notes});
     traced(&mut answer, &made.traced);
     Ok(Answer::ok(answer.to_string()))
 }

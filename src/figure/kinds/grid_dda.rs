@@ -18,6 +18,10 @@ use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
 use crate::record::event::Event;
 
+/// The most cells drawn along one axis of the page: the heuristic's own cap per axis. Denser
+/// lines would merge at slide size, and `--grid` can ask for 2^24 cells along one axis.
+pub const MAX_DRAWN_CELLS: usize = crate::accel::grid::MAX_CELLS_PER_AXIS;
+
 /// At most this many steps are listed in the table.
 const LISTED: usize = 7;
 
@@ -99,6 +103,13 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let (lo, hi) = (plane.point(bounds.min), plane.point(bounds.max));
     let (lo, hi) = (lo.min(hi), lo.max(hi));
     let n = [cells[axes[0]], cells[axes[1]]];
+    if n.iter().any(|k| *k > MAX_DRAWN_CELLS) {
+        return Err(FigureError(format!(
+            "a {}x{} grid on the page is more than the {MAX_DRAWN_CELLS} cells an axis may draw legibly; give a \
+             smaller --grid",
+            n[0], n[1]
+        )));
+    }
     let size = DVec2::new((hi.x - lo.x) / n[0] as f64, (hi.y - lo.y) / n[1] as f64);
     let cell_rect = |c: &[i64]| {
         let at = DVec2::new(c[axes[0]] as f64, c[axes[1]] as f64);

@@ -1,0 +1,408 @@
+//! Every edge of issue 21 (items 1, 2 and 4): negative numbers as arguments, memory refused up
+//! front with the number and the option, inputs said exactly. Resource limits are tested with a
+//! lowered limit (`--max-events`) or with requests that are refused before any work, so each case
+//! is fast.
+
+use crate::support::whitted;
+use std::path::{Path, PathBuf};
+
+/// A fresh folder for one test (removed first, so a rerun starts clean).
+fn folder(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("whitted-hardening-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+const MIRRORS: &str = "tests/data/limits/mirrors_glass_2d.json";
+const CAMERA_3D: &str = r#""camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [4,4]}"#;
+
+/// Exit code 2 and the message on stderr: the shape of every refusal.
+#[track_caller]
+fn refused(args: &[&str], says: &str) {
+    let (code, _, err) = whitted(args);
+    assert_eq!(code, 2, "{args:?}: {err}");
+    assert!(err.contains(says), "{args:?}: expected `{says}` in: {err}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+}
+
+#[test]
+fn a_ray_whose_first_number_is_negative_is_a_ray_not_a_flag() {
+    for ray in [["--ray", "-2,0,0:1,0,0"].as_slice(), ["--ray=-2,0,0:1,0,0"].as_slice()] {
+        let args: Vec<&str> = ["trace", "scenes/whitted.json", "--json"].iter().chain(ray).copied().collect();
+        let (code, out, err) = whitted(&args);
+        assert_eq!(code, 0, "{err}");
+        let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(doc["tree"]["origin"], serde_json::json!([-2.0, 0.0, 0.0]));
+    }
+    let dir = folder("negative-ray");
+    let svg = dir.join("rays.svg").display().to_string();
+    let (code, _, err) =
+        whitted(&["figure", "rays", "scenes/flat.json", "--ray", "-0.5,3:0.2,-1", "-o", &svg]);
+    assert_eq!(code, 0, "{err}");
+}
+
+#[test]
+fn negative_numbers_reach_their_checks() {
+    refused(&["trace", "scenes/whitted.json", "--pixel", "-1,2"], "(-1, 2) is outside the image");
+    refused(&["figure", "rays", "scenes/whitted.json", "--pixel", "3,-4"], "(3, -4) is outside the image");
+    refused(
+        &["render", "scenes/whitted.json", "--depth", "-1"],
+        "--depth: expected a whole number in [0, 64]",
+    );
+    refused(&["render", "scenes/whitted.json", "--size", "-5"], "--size: expected WxH");
+    refused(
+        &["render", "scenes/whitted.json", "--threads", "-2"],
+        "--threads: expected a whole number in [1, 1024]",
+    );
+    refused(&["trace", "scenes/whitted.json", "--pixel", "1,1", "--max-level", "-1"], "--max-level");
+    refused(
+        &["trace", "scenes/whitted.json", "--pixel", "1,1", "--accel", "grid", "--grid", "-2,2,2"],
+        "--grid",
+    );
+}
+
+#[test]
+fn an_exponential_ray_tree_is_refused_at_its_limit() {
+    // 2^51 − 1 rays at depth 50: the log stops at its limit and the trace is refused, with the
+    // worst case and both options; a limit of 5 000 keeps the test small.
+    let says =
+        "outgrew its limit of 5000 recorded events and ray nodes: at depth 50 one ray's tree may hold up \
+                to 2.252e15 rays; lower --depth or raise --max-events";
+    refused(&["trace", MIRRORS, "--pixel", "4", "--max-events", "5000"], says);
+    refused(&["trace", MIRRORS, "--pixel", "4", "--max-events", "5000", "--json"], says);
+    refused(
+        &["trace", MIRRORS, "--pixel", "4", "--max-events", "5000", "--aa", "corners"],
+        "outgrew its limit",
+    );
+    // Within the limit the same pixel is traced: depth 6 holds 2^7 − 1 = 127 rays at most.
+    let (code, out, err) = whitted(&["trace", MIRRORS, "--pixel", "4", "--depth", "6", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let rays = &doc["stats"]["rays"];
+    assert!(rays["reflected"].as_u64().unwrap() + rays["transmitted"].as_u64().unwrap() > 20, "{rays}");
+    refused(&["trace", MIRRORS, "--pixel", "4", "--max-events", "0"], "--max-events");
+}
+
+#[test]
+fn a_figure_of_an_exponential_tree_is_refused_too() {
+    let dir = folder("figure-tree");
+    let svg = dir.join("t.svg").display().to_string();
+    refused(&["figure", "ray-tree", MIRRORS, "--pixel", "4", "-o", &svg], "rays; lower --depth");
+    assert!(!Path::new(&svg).exists());
+}
+
+#[test]
+fn what_cannot_fit_in_memory_is_refused_before_the_work() {
+    let dir = folder("memory");
+    let png = dir.join("x.png").display().to_string();
+    refused(
+        &["render", "scenes/whitted.json", "--size", "65536x65536", "-o", &png],
+        "65536x65536 is 4294967296 pixels, more than the limit of 268435456: choose a smaller --size",
+    );
+    refused(
+        &[
+            "render",
+            "scenes/whitted.json",
+            "--size",
+            "16384x16384",
+            "--aa",
+            "adaptive",
+            "--max-level",
+            "8",
+            "-o",
+            &png,
+        ],
+        "with adaptive sampling needs about 8.3 GiB, more than the limit of 8 GiB",
+    );
+    refused(&["render", "scenes/flat.json", "--size", "65536", "-o", &png], "65536x8192 is 536870912 pixels");
+    refused(
+        &["tradeoff", "scenes/whitted.json", "--size", "65536x65536"],
+        "tradeoff: 65536x65536 is 4294967296 pixels",
+    );
+    refused(
+        &["figure", "rays", "scenes/whitted.json", "--size", "20000", "-o", &png],
+        "canvas is more than the",
+    );
+    let scene = write(
+        &dir,
+        "huge.json",
+        r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [65536,65536]}}"#,
+    );
+    refused(&["figure", "heat-map", &scene, "-o", &png], "heat-map: 65536x65536 is 4294967296 pixels");
+    refused(&["render", &scene, "-o", &png], "render: 65536x65536");
+    assert!(!Path::new(&png).exists());
+}
+
+#[test]
+fn a_huge_grid_is_not_drawn() {
+    let dir = folder("grid");
+    let svg = dir.join("g.svg").display().to_string();
+    refused(
+        &["figure", "grid-dda", "lessons/scenes/pitfall.json", "--grid", "4096,4096,1", "-o", &svg],
+        "more than the 256 cells an axis may draw legibly; give a smaller --grid",
+    );
+}
+
+#[test]
+fn the_runs_and_threads_are_bounded() {
+    refused(
+        &["tradeoff", "scenes/whitted.json", "--runs", "101"],
+        "--runs: expected a whole number in [1, 100]",
+    );
+    refused(
+        &["tradeoff", "scenes/whitted.json", "--threads", "5000"],
+        "--threads: expected a whole number in [1, 1024]",
+    );
+}
+
+#[test]
+fn files_that_are_not_regular_files_are_refused() {
+    refused(&["check", "/dev/zero"], "/dev/zero: cannot read the scene: not a regular file");
+    refused(&["check", "/tmp"], "not a regular file");
+    let dir = folder("fifo");
+    let fifo = dir.join("pipe.json");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success());
+    if made {
+        // Opening a pipe for reading blocks until someone writes: it must be refused before.
+        refused(&["check", &fifo.display().to_string()], "not a regular file");
+    } else {
+        eprintln!("mkfifo unavailable: the named-pipe case is skipped");
+    }
+    let mesh = write(
+        &dir,
+        "mesh.json",
+        &format!(r#"{{{CAMERA_3D}, "objects": [{{"type": "mesh", "obj": "/dev/zero"}}]}}"#),
+    );
+    refused(&["check", &mesh], "objects[0].obj");
+}
+
+#[test]
+fn a_key_written_twice_is_an_error_naming_its_path() {
+    let dir = folder("duplicates");
+    let scene = write(
+        &dir,
+        "twice.json",
+        &format!(
+            r#"{{{CAMERA_3D}, "max_depth": 2, "objects": [{{"type": "sphere", "center": [0,0,0], "radius": 1, "radius": 2}}], "max_depth": 3}}"#
+        ),
+    );
+    let (code, _, err) = whitted(&["check", &scene]);
+    assert_eq!(code, 2);
+    assert!(err.contains("max_depth: written more than once in this object; keep one"), "{err}");
+    assert!(err.contains("objects[0].radius: written more than once in this object; keep one"), "{err}");
+}
+
+#[test]
+fn a_byte_order_mark_is_skipped() {
+    let dir = folder("bom");
+    let text = std::fs::read_to_string("scenes/whitted.json").unwrap();
+    let scene = write(&dir, "bom.json", &format!("\u{feff}{text}"));
+    let (code, out, err) = whitted(&["check", &scene]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("valid"), "{out}");
+}
+
+#[test]
+fn two_lessons_with_one_name_are_an_error_naming_both_files() {
+    let dir = folder("lesson-names");
+    let lessons = dir.join("lessons");
+    std::fs::create_dir_all(&lessons).unwrap();
+    let text = std::fs::read_to_string("lessons/01-ray-casting.json").unwrap();
+    std::fs::write(lessons.join("01-a.json"), &text).unwrap();
+    std::fs::write(lessons.join("02-b.json"), &text).unwrap();
+    let out = dir.join("out").display().to_string();
+    let (code, _, err) = whitted(&["lessons", "--lessons", &lessons.display().to_string(), "--out", &out]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("02-b.json: name: `ray-casting` is already the name of"), "{err}");
+    assert!(err.contains("01-a.json"), "{err}");
+}
+
+#[test]
+fn options_another_option_makes_meaningless_are_said_ignored() {
+    let (code, _, err) = whitted(&["trace", "scenes/whitted.json", "--pixel", "1,1", "--bounds", "kdop"]);
+    assert_eq!(code, 0);
+    assert!(err.contains("--bounds applies to --accel bounds only; ignored with --accel bvh"), "{err}");
+    let (code, _, err) = whitted(&["trace", "scenes/whitted.json", "--pixel", "1,1", "--grid", "2,2,2"]);
+    assert_eq!(code, 0);
+    assert!(err.contains("--grid applies to --accel grid only; ignored with --accel bvh"), "{err}");
+    let (_, _, err) =
+        whitted(&["trace", "scenes/whitted.json", "--pixel", "1,1", "--accel", "grid", "--grid", "2,2,2"]);
+    assert!(!err.contains("ignored"), "{err}");
+}
+
+/// The lines of ```sh blocks in the README and in docs/ that run `whitted`.
+fn documented_examples(root: &Path) -> Vec<(String, String)> {
+    let mut files = vec![root.join("README.md")];
+    let mut docs: Vec<PathBuf> = std::fs::read_dir(root.join("docs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    docs.sort();
+    files.extend(docs);
+    let mut examples = Vec::new();
+    for file in files {
+        let name = file.strip_prefix(root).unwrap().display().to_string();
+        let mut in_sh = false;
+        for line in std::fs::read_to_string(&file).unwrap().lines() {
+            if line.trim_start().starts_with("```") {
+                in_sh = !in_sh && line.trim() == "```sh";
+            } else if in_sh && line.contains("whitted ") {
+                examples.push((name.clone(), line.trim().to_owned()));
+            }
+        }
+    }
+    examples
+}
+
+#[test]
+fn every_documented_example_runs_as_written() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let examples = documented_examples(root);
+    assert!(examples.len() >= 10, "the README's examples were not found: {examples:?}");
+    // A folder of its own, with the repository's inputs linked in, so outputs land there.
+    let dir = folder("examples");
+    for input in ["scenes", "lessons", "tests"] {
+        std::os::unix::fs::symlink(root.join(input), dir.join(input)).unwrap();
+    }
+    let bin = Path::new(env!("CARGO_BIN_EXE_whitted")).parent().unwrap().display().to_string();
+    let path = format!("{bin}:{}", std::env::var("PATH").unwrap_or_default());
+    for (file, line) in &examples {
+        let out = std::process::Command::new("sh")
+            .args(["-c", &format!("set -e; {line}")])
+            .current_dir(&dir)
+            .env("PATH", &path)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{file}: `{line}` failed ({}): {err}", out.status);
+        assert!(!err.contains("panicked"), "{file}: `{line}`: {err}");
+    }
+    for written in
+        ["whitted.png", "flat.png", "tree.svg", "grid.png", "course/index.html", "tradeoff/tradeoff.png"]
+    {
+        assert!(dir.join(written).is_file(), "{written} was not written");
+    }
+}
+
+/// Arguments a careless or hostile user might add, good and bad.
+const EXTRA_ARGS: &[&[&str]] = &[
+    &[],
+    &["--depth", "-1"],
+    &["--depth", "3"],
+    &["--depth", "64"],
+    &["--pixel", "-1,2"],
+    &["--pixel", "1,1"],
+    &["--pixel", "1"],
+    &["--ray", "-2,0,0:1,0,0"],
+    &["--ray", "0,0:0,0"],
+    &["--aa", "adaptive", "--max-level", "3"],
+    &["--aa", "corners"],
+    &["--threshold", "nan"],
+    &["--max-level", "9"],
+    &["--accel", "grid", "--grid", "2,2,2"],
+    &["--accel", "octree"],
+    &["--size", "0"],
+    &["--size", "4x3"],
+    &["--max-events", "10"],
+    &["--threads", "0"],
+    &["--bogus"],
+    &["--lang", "ro"],
+];
+
+/// True iff every number in `v` is finite (JSON has no NaN; a bug would have to write a string).
+fn json_is_finite(v: &serde_json::Value) -> bool {
+    match v {
+        serde_json::Value::Number(n) => n.as_f64().is_some_and(f64::is_finite),
+        serde_json::Value::String(s) => !s.eq_ignore_ascii_case("nan"),
+        serde_json::Value::Array(a) => a.iter().all(json_is_finite),
+        serde_json::Value::Object(m) => m.values().all(json_is_finite),
+        _ => true,
+    }
+}
+
+/// The output file after a run: the old bytes, or a whole new PNG or SVG.
+fn whole_or_old(path: &Path, old: &[u8]) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    if bytes == old {
+        return Ok(());
+    }
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("png") => image::load_from_memory(&bytes).map(|_| ()).map_err(|e| format!("a torn PNG: {e}")),
+        _ => {
+            let text = String::from_utf8(bytes).map_err(|e| e.to_string())?;
+            roxmltree::Document::parse(&text).map(|_| ()).map_err(|e| format!("a torn SVG: {e}"))
+        }
+    }
+}
+
+mod mutated {
+    use super::*;
+    use crate::properties::{at_mut, paths, wild_value};
+    use crate::support::fixture;
+    use proptest::prelude::*;
+    use serde_json::Value;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+        /// A mutated scene under a command with added arguments: exit 0 or 2 and never a panic, no
+        /// NaN in what is printed, and the output file that was there before is either untouched
+        /// or replaced by a whole new one.
+        #[test]
+        fn mutated_scenes_and_arguments_exit_0_or_2_and_keep_outputs_whole(
+            which in 0usize..4,
+            pick in any::<prop::sample::Index>(),
+            value in wild_value(),
+            mutate in any::<bool>(),
+            command in 0usize..4,
+            extra in 0..EXTRA_ARGS.len(),
+            extra2 in 0..EXTRA_ARGS.len(),
+        ) {
+            let name = ["glass.json", "lens_2d.json", "ortho_box.json", "tir_slab_2d.json"][which];
+            let mut doc: Value = serde_json::from_str(&fixture(name)).unwrap();
+            if mutate {
+                let mut all = Vec::new();
+                paths(&doc, vec![], &mut all);
+                let path = pick.get(&all).clone();
+                *at_mut(&mut doc, &path) = value;
+            }
+            let dir = std::env::temp_dir().join(format!("whitted-mutated-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            let scene = write(&dir, "scene.json", &doc.to_string());
+            let (png, svg) = (dir.join("out.png"), dir.join("out.svg"));
+            let (png_s, svg_s) = (png.display().to_string(), svg.display().to_string());
+            let mut args: Vec<&str> = match command {
+                0 => vec!["render", &scene, "--size", "8x6", "-o", &png_s, "--json"],
+                1 => vec!["trace", &scene, "--json"],
+                2 => vec!["figure", "rays", &scene, "--size", "320", "-o", &svg_s],
+                _ => vec!["check", &scene],
+            };
+            args.extend(EXTRA_ARGS[extra]);
+            args.extend(EXTRA_ARGS[extra2]);
+            // A good file from an earlier run, which the run must keep or replace whole.
+            let old_png = std::fs::read("docs/whitted.png").unwrap();
+            std::fs::write(&png, &old_png).unwrap();
+            let old_svg = b"<svg xmlns=\"http://www.w3.org/2000/svg\"/>".to_vec();
+            std::fs::write(&svg, &old_svg).unwrap();
+
+            let (code, out, err) = whitted(&args);
+            prop_assert!(code == 0 || code == 2, "{args:?} exited {code}: {err}");
+            prop_assert!(!err.contains("panicked"), "{args:?}: {err}");
+            if code == 0 && args.contains(&"--json") {
+                let printed: Value = serde_json::from_str(&out).map_err(|e| TestCaseError::fail(e.to_string()))?;
+                prop_assert!(json_is_finite(&printed), "{args:?}: a NaN in {out}");
+            }
+            prop_assert!(!out.contains("NaN"), "{args:?}: {out}");
+            prop_assert_eq!(whole_or_old(&png, &old_png), Ok(()));
+            prop_assert_eq!(whole_or_old(&svg, &old_svg), Ok(()));
+        }
+    }
+}
