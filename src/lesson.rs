@@ -66,6 +66,20 @@ pub struct FigureSpec {
     pub caption: Both,
 }
 
+impl FigureSpec {
+    /// The pixel as `--pixel` writes it: `I,J`, or `I` in 2D.
+    #[must_use]
+    pub fn pixel_arg(&self) -> Option<String> {
+        self.pixel.map(|(i, j)| j.map_or_else(|| i.to_string(), |j| format!("{i},{j}")))
+    }
+    /// The ray as `--ray` writes it: `OX,OY,OZ:DX,DY,DZ`.
+    #[must_use]
+    pub fn ray_arg(&self) -> Option<String> {
+        let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+        self.ray.as_ref().map(|(o, d)| format!("{}:{}", join(o), join(d)))
+    }
+}
+
 /// A lesson: one section of the lecture.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lesson {

@@ -239,14 +239,10 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
     let kind = spec.map_or(FigureKind::Rays, |s| s.kind);
     attrs.push_str(&format!(" data-kind=\"{}\"", kind.name()));
     if let Some(s) = spec {
-        match (s.pixel, &s.ray) {
-            (Some((i, Some(j))), _) => attrs.push_str(&format!(" data-pixel=\"{i},{j}\"")),
-            (Some((i, None)), _) => attrs.push_str(&format!(" data-pixel=\"{i}\"")),
-            (None, Some((o, d))) => {
-                let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
-                attrs.push_str(&format!(" data-ray=\"{}:{}\"", join(o), join(d)));
-            }
-            (None, None) => {}
+        if let Some(pixel) = s.pixel_arg() {
+            attrs.push_str(&format!(" data-pixel=\"{pixel}\""));
+        } else if let Some(ray) = s.ray_arg() {
+            attrs.push_str(&format!(" data-ray=\"{ray}\""));
         }
         if let Some(depth) = s.depth {
             attrs.push_str(&format!(" data-depth=\"{depth}\""));

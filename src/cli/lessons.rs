@@ -127,14 +127,10 @@ fn lang_dir(lang: Lang) -> &'static str {
 fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
     let mut cmd =
         format!("whitted figure {} {}", spec.kind.name(), shell_quote(&scene.display().to_string()));
-    match (spec.pixel, &spec.ray) {
-        (Some((i, Some(j))), _) => cmd.push_str(&format!(" --pixel {i},{j}")),
-        (Some((i, None)), _) => cmd.push_str(&format!(" --pixel {i}")),
-        (None, Some((o, d))) => {
-            let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
-            cmd.push_str(&format!(" --ray={}:{}", join(o), join(d)));
-        }
-        (None, None) => {}
+    if let Some(pixel) = spec.pixel_arg() {
+        cmd.push_str(&format!(" --pixel {pixel}"));
+    } else if let Some(ray) = spec.ray_arg() {
+        cmd.push_str(&format!(" --ray={ray}"));
     }
     if let Some(depth) = spec.depth {
         cmd.push_str(&format!(" --depth {depth}"));

@@ -2,7 +2,7 @@
 //! numerics.md §I): property tests over random 2D and 3D scenes, exact-arithmetic scenes with
 //! axis-parallel rays through edges and corners, meshes, and every case of numerics.md §I by name.
 
-use crate::support::{fixture, scene2, scene3, trace_pixel};
+use crate::support::{fixture, scene2, scene3, trace_pixel, whitted};
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use serde_json::Value;
@@ -720,16 +720,6 @@ fn recording_changes_neither_colours_nor_counts() {
 
 // ---------------------------------------------------------------------------------------------
 // The command line
-
-fn whitted(args: &[&str]) -> (i32, String, String) {
-    let out =
-        std::process::Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 #[test]
 fn accel_options_on_the_command_line() {

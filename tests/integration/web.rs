@@ -3,19 +3,9 @@
 //! many pixels of the lesson scenes, and the events its steps name lie in the trace document.
 //! (`web/test/identical.mjs` holds the compiled module to the same outputs.)
 
+use crate::support::whitted;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
-
-/// Runs the binary; returns (exit code, stdout, stderr).
-fn whitted(args: &[&str]) -> (i32, String, String) {
-    let out =
-        std::process::Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 /// Calls the binding with a request; returns its code and JSON text.
 fn call(request: &Value) -> (u8, String) {
