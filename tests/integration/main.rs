@@ -5,6 +5,7 @@ mod accel;
 mod cli;
 mod figures;
 mod hardening;
+mod narration;
 mod numerics;
 mod outputs;
 mod properties;
