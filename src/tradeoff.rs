@@ -13,11 +13,11 @@
 use crate::accel::{Accel, AccelKind, AccelOptions};
 use crate::clock::Stopwatch;
 use crate::image::Image;
+use crate::record::stats::Stats;
 use crate::render::{render, RenderConfig, Rendered};
 use crate::sample::Sampling;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 
 /// The most renders of one setting `--runs` may ask for: medians steady well before this.
 pub const MAX_RUNS: u32 = 100;

@@ -10,12 +10,12 @@
 use super::TraceTarget;
 use crate::geom::Vector;
 use crate::record::event::{Event, LightTerm, ObjectRef};
+use crate::record::stats::Stats;
 use crate::record::{EventLog, RayNode};
 use crate::scene::camera::Projection;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 use std::fmt::Write;
 
 /// The language of the narration.
