@@ -4,6 +4,7 @@
 //! the events in order and the ray tree.
 
 pub mod event;
+pub mod names;
 
 use crate::scene::material::Rgb;
 use event::{Event, LightTerm, NodeHit, RayKind};
