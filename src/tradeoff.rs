@@ -484,8 +484,8 @@ pub fn pareto_front(rows: &[Measured]) -> Vec<usize> {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
+    use crate::record::stats::RayCounts;
     use crate::scene::material::Rgb;
-    use crate::trace::stats::RayCounts;
 
     fn image(values: &[[f64; 3]]) -> Image {
         Image { width: values.len(), height: 1, pixels: values.iter().map(|v| Rgb(*v)).collect() }
