@@ -5,6 +5,7 @@
 //! not, are [`stats::Stats`].
 
 pub mod event;
+pub mod names;
 pub mod stats;
 
 use crate::scene::material::Rgb;

@@ -10,7 +10,7 @@ use glam::DVec2;
 use super::Input;
 use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
 use crate::figure::labels::{escape, Label};
-use crate::figure::parts::{self, legend_role, num, sub, swatch, Names};
+use crate::figure::parts::{self, legend_role, num, swatch, Names};
 use crate::figure::plane::Planar;
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
@@ -301,9 +301,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 d.text("object", *p, &what, below);
             }
             Vertex::Shadow { parent, light, s, .. } => {
-                let k = names.hit[*parent].unwrap_or(0);
-                let name =
-                    if scene.lights.len() > 1 { format!("L_{{{k},{}}}", light + 1) } else { sub("L", k) };
+                let name = names.shadow_name(*parent, *light);
                 d.text("name", *p, &name, beside.offset(-22.0, 0.0));
                 let s_text = format!("s = {}", num(*s));
                 d.text(
