@@ -25,25 +25,7 @@ use crate::json::{self, Map, Value};
 use crate::figure::{FigureKind, Lang};
 use crate::sample::Sampling;
 
-/// A text in both languages.
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
-pub struct Both {
-    /// English.
-    pub en: String,
-    /// Romanian.
-    pub ro: String,
-}
-
-impl Both {
-    /// The text in `lang`.
-    #[must_use]
-    pub fn get(&self, lang: Lang) -> &str {
-        match lang {
-            Lang::En => &self.en,
-            Lang::Ro => &self.ro,
-        }
-    }
-}
+pub use crate::lang::Both;
 
 /// One figure of a lesson.
 #[derive(Clone, Debug, PartialEq)]

@@ -18,14 +18,7 @@ use crate::shape::Dim;
 use crate::trace::stats::Stats;
 use std::fmt::Write;
 
-/// The language of the narration.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Lang {
-    /// English.
-    En,
-    /// Romanian, with diacritics.
-    Ro,
-}
+pub use crate::lang::Lang;
 
 /// A number as a person reads it: up to 6 significant digits, no `-0`.
 #[must_use]
@@ -154,7 +147,7 @@ impl<'a, V: Dim> Writer<'a, V> {
     fn object(&self, o: ObjectRef) -> String {
         let obj = &self.scene.objects[o.index];
         let base = match &obj.name {
-            Some(n) => format!("“{n}” ({} {})", obj.shape.kind(), o.index),
+            Some(n) => format!("“{}” ({} {})", n.get(self.lang), obj.shape.kind(), o.index),
             None => format!("{} {}", obj.shape.kind(), o.index),
         };
         match o.triangle {
