@@ -246,7 +246,12 @@ pub fn draw<V: Planar>(
         }
     }
     let one = only(scene, focus);
+    let first_item = d.items.len();
     let anchors = parts::draw_objects(d, &one, &plane, &scene_part, &[], style::BLACK);
+    // The object keeps its scene index in its tag (`object:K`), as in every other figure.
+    for item in &mut d.items[first_item..] {
+        item.tag = format!("object:{focus}");
+    }
 
     // The rays, their crossings, the entry and exit.
     for t in &tested {

@@ -17,7 +17,10 @@
 //! `{ "origin": [...], "direction": [...] }`; `aa` is `center`, `corners` or `adaptive` (with
 //! `threshold`, default 0.1, and `max_level`, default 2) for `adaptive` and `heat-map`; `grid`
 //! (cells per axis) for `grid-dda`; `text`, `pixel`, `ray`, `depth`, `aa` and `grid` may be left
-//! out. An unknown field is an error.
+//! out. An unknown field is an error. `claims` lists what the figure must show, each checked on
+//! its traces before anything is written (module `claim`).
+
+pub mod claim;
 
 use crate::json::{self, Map, Value};
 
@@ -63,6 +66,8 @@ pub struct FigureSpec {
     pub grid: Option<Vec<usize>>,
     /// What the figure shows, in both languages.
     pub caption: Both,
+    /// What it must show, checked on its traces and drawing (`claims`).
+    pub claims: Vec<claim::Claim>,
 }
 
 impl FigureSpec {
@@ -177,8 +182,19 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
         errors.push(format!("{path}: must be an object"));
         return None;
     };
-    let fields =
-        ["kind", "scene", "pixel", "ray", "depth", "aa", "threshold", "max_level", "grid", "caption"];
+    let fields = [
+        "kind",
+        "scene",
+        "pixel",
+        "ray",
+        "depth",
+        "aa",
+        "threshold",
+        "max_level",
+        "grid",
+        "caption",
+        "claims",
+    ];
     unknown(map, &format!("{path}."), &fields, errors);
     let kind = map.get("kind").and_then(Value::as_str).and_then(FigureKind::from_name);
     if kind.is_none() {
@@ -249,7 +265,8 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
         }
     };
     let caption = both(map.get("caption"), &format!("{path}.caption"), errors);
-    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, grid, caption })
+    let claims = claim::parse(map.get("claims"), &format!("{path}.claims"), errors);
+    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, grid, caption, claims })
 }
 
 /// `aa` (`center`, `corners`, `adaptive`) with `threshold` (default 0.1) and `max_level` (default 2).
