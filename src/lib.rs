@@ -22,6 +22,7 @@ pub mod figure;
 pub mod geom;
 pub mod image;
 pub mod json;
+pub mod lang;
 pub mod lesson;
 pub mod record;
 pub mod render;

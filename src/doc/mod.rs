@@ -84,7 +84,9 @@ impl<'a, V: Dim> Namer<'a, V> {
     #[must_use]
     pub fn object(&self, o: ObjectRef) -> Value {
         match &self.scene.objects[o.index].name {
-            Some(n) => json!(n),
+            // The English name: the document is the machine interface, the same whatever the
+            // narration's language (product.md "The trace document").
+            Some(n) => json!(n.en),
             None => json!(o.index),
         }
     }

@@ -76,8 +76,8 @@ pub fn role(kind: RayKind) -> RayRole {
 
 /// An object's name as the trace calls it, safe for the markup.
 #[must_use]
-pub fn object_name<V: Planar>(scene: &Scene<V>, object: ObjectRef) -> String {
-    escape(&scene.object_label(object.index))
+pub fn object_name<V: Planar>(scene: &Scene<V>, object: ObjectRef, lang: Lang) -> String {
+    escape(&scene.object_label(object.index, lang))
 }
 
 /// Where a shadow ray first meets an occluder: the least accepted t below `d_L` among the object
@@ -203,9 +203,9 @@ pub fn draw_objects<V: Planar>(
 }
 
 /// The objects' names at the anchors of [`draw_objects`], clear of lines and labels.
-pub fn label_objects<V: Planar>(d: &mut Drawing, scene: &Scene<V>, anchors: &[(usize, DVec2)]) {
+pub fn label_objects<V: Planar>(d: &mut Drawing, scene: &Scene<V>, anchors: &[(usize, DVec2)], lang: Lang) {
     for &(index, a) in anchors {
-        let name = escape(&scene.object_label(index));
+        let name = escape(&scene.object_label(index, lang));
         let opts = TextOpts::NOTE.color(style::DARK_GREY).avoid_overlap_with_leader();
         d.text(&format!("object-name:{index}"), a, &name, opts);
     }

@@ -24,28 +24,10 @@ pub mod claim;
 
 use crate::json::{self, Map, Value};
 
-use crate::figure::{FigureKind, Lang};
+use crate::figure::FigureKind;
 use crate::sample::Sampling;
 
-/// A text in both languages.
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
-pub struct Both {
-    /// English.
-    pub en: String,
-    /// Romanian.
-    pub ro: String,
-}
-
-impl Both {
-    /// The text in `lang`.
-    #[must_use]
-    pub fn get(&self, lang: Lang) -> &str {
-        match lang {
-            Lang::En => &self.en,
-            Lang::Ro => &self.ro,
-        }
-    }
-}
+pub use crate::lang::Both;
 
 /// One figure of a lesson.
 #[derive(Clone, Debug, PartialEq)]
@@ -292,6 +274,7 @@ fn sampling(map: &Map<'_>, path: &str, errors: &mut Vec<String>) -> Option<Sampl
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lang::Lang;
 
     const GOOD: &str = r#"{ "name": "rays", "title": { "en": "Rays", "ro": "Raze" },
         "figures": [ { "kind": "rays", "scene": "s.json", "pixel": [3], "aa": "adaptive", "max_level": 3,

@@ -2,6 +2,7 @@
 //! lights, which ray kinds can occur and why, the depth. (Its errors are `scene::load`'s, one line
 //! per problem with its JSON path.)
 
+use crate::lang::Lang;
 use crate::scene::camera::Projection;
 use crate::scene::{AnyScene, Scene};
 use crate::shape::Dim;
@@ -52,7 +53,7 @@ pub fn describe<V: Dim>(scene: &Scene<V>) -> String {
             let _ = writeln!(
                 out,
                 "  mesh {}: {} triangles, {} degenerate skipped",
-                scene.object_label(i),
+                scene.object_label(i, Lang::En),
                 m.count(),
                 m.skipped()
             );
@@ -70,7 +71,7 @@ pub fn describe<V: Dim>(scene: &Scene<V>) -> String {
     };
     let _ = writeln!(out, "    shadow: {shadow}");
     let names = |pred: &dyn Fn(usize) -> bool| -> Vec<String> {
-        (0..scene.objects.len()).filter(|i| pred(*i)).map(|i| scene.object_label(i)).collect()
+        (0..scene.objects.len()).filter(|i| pred(*i)).map(|i| scene.object_label(i, Lang::En)).collect()
     };
     let secondary = |kind: &str, field: &str, objs: Vec<String>| {
         if scene.max_depth == 0 {

@@ -7,6 +7,7 @@ pub mod light;
 pub mod load;
 pub mod material;
 
+use crate::lang::{Both, Lang};
 use crate::shape::{Dim, Shape};
 use camera::Camera;
 use glam::{DVec2, DVec3};
@@ -16,8 +17,9 @@ use material::{Material, Rgb};
 /// One object of the scene: its shape, its material and its optional name.
 #[derive(Clone, Debug)]
 pub struct Object<V: Dim> {
-    /// The `name` field, if given.
-    pub name: Option<String>,
+    /// The `name` field, if given: one string for every language, or one per language
+    /// (`{"en": "mirror", "ro": "oglindă"}`).
+    pub name: Option<Both>,
     /// The geometry.
     pub shape: Shape<V>,
     /// Index into [`Scene::materials`].
@@ -85,11 +87,11 @@ impl<V: Dim> Scene<V> {
             1.0
         }
     }
-    /// How an object is called in traces: its `name`, else its index.
+    /// How an object is called in `lang`: its `name` in that language, else its index.
     #[must_use]
-    pub fn object_label(&self, index: usize) -> String {
+    pub fn object_label(&self, index: usize, lang: Lang) -> String {
         match &self.objects[index].name {
-            Some(n) => n.clone(),
+            Some(n) => n.get(lang).to_owned(),
             None => format!("objects[{index}]"),
         }
     }

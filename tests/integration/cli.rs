@@ -93,6 +93,44 @@ fn trace_json_and_narration() {
 }
 
 #[test]
+fn object_names_follow_the_language_and_the_document_keeps_the_english() {
+    // scenes/flat.json names its segment {"en": "mirror", "ro": "oglindă"}; pixel 15's primary ray
+    // meets it (narration steps 8 and 9).
+    let scene = format!("{}/scenes/flat.json", env!("CARGO_MANIFEST_DIR"));
+    let (code, out, err) = whitted(&["trace", &scene, "--pixel", "15", "--lang", "ro"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("Cea mai apropiată intersecție I pe “oglindă” (segment 2)"), "{out}");
+    assert!(!out.contains("mirror"), "{out}");
+    let (_, out, _) = whitted(&["trace", &scene, "--pixel", "15", "--lang", "en"]);
+    assert!(out.contains("“mirror” (segment 2)"), "{out}");
+    // The trace document is the same in every language: the English name.
+    let (_, out, _) = whitted(&["trace", &scene, "--pixel", "15", "--json"]);
+    let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let objects: Vec<&serde_json::Value> =
+        doc["events"].as_array().unwrap().iter().filter_map(|e| e.get("object")).collect();
+    assert!(objects.contains(&&serde_json::json!("mirror")), "{objects:?}");
+    assert!(!out.contains("oglindă"));
+    // The figure's labels: the Romanian name in a Romanian figure, the English one otherwise.
+    let dir = tempfile::tempdir().unwrap();
+    for (lang, name, other) in [("ro", "oglindă", "mirror"), ("en", "mirror", "oglindă")] {
+        let svg = dir.path().join(format!("rays-{lang}.svg"));
+        let svg_arg = svg.to_str().unwrap();
+        let (code, _, err) =
+            whitted(&["figure", "rays", &scene, "--pixel", "15", "--lang", lang, "-o", svg_arg]);
+        assert_eq!(code, 0, "{err}");
+        let svg = std::fs::read_to_string(&svg).unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let texts: Vec<String> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("text"))
+            .map(|n| n.descendants().filter(roxmltree::Node::is_text).filter_map(|t| t.text()).collect())
+            .collect();
+        assert!(texts.iter().any(|t| t == name), "{lang}: {texts:?}");
+        assert!(!texts.iter().any(|t| t.contains(other)), "{lang}: {texts:?}");
+    }
+}
+
+#[test]
 fn render_json_lists_the_statistics() {
     let out_png = std::env::temp_dir().join(format!("whitted-cli-{}-glass.png", std::process::id()));
     let (code, out, err) = whitted(&[

@@ -3,7 +3,7 @@
 //! tagged group per item; every PNG has its size, is not blank and shows the colour of each ray
 //! kind its trace holds; labels come in both languages.
 
-use crate::support::fixture;
+use crate::support::{fixture, SceneText};
 use glam::DVec2;
 use whitted::canvas::{skia, svg};
 use whitted::canvas::{Drawing, Sample, Shape};
@@ -515,11 +515,12 @@ fn every_kind_draws_or_says_why_on_every_scene() {
         }
     }
     // Edge cases: nothing in the scene, no light, a ray that leaves at once.
-    let empty3 = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [4,3]}}"#;
-    let dark2 = r#"{"camera": {"eye": [0,5], "center": [0,0], "window": {"l":-1,"r":1}, "resolution": [3]},
-                   "objects": [{"type": "sphere", "center": [0,0], "radius": 1, "material": {"kt": 0.5, "ior": 1.3}}]}"#;
-    scenes.push(("empty3".into(), empty3.into()));
-    scenes.push(("dark2".into(), dark2.into()));
+    let empty3 = SceneText::space3(4, 3);
+    let dark2 = SceneText::flat2(3).object(
+        serde_json::json!({"type": "sphere", "center": [0, 0], "radius": 1, "material": {"kt": 0.5, "ior": 1.3}}),
+    );
+    scenes.push(("empty3".into(), empty3.text()));
+    scenes.push(("dark2".into(), dark2.text()));
     for (name, text) in &scenes {
         let scene = load_str(text).unwrap_or_else(|e| panic!("{name}: {e:?}"));
         for kind in DRAWN {

@@ -1,7 +1,8 @@
-//! Helpers shared by the integration tests: load a scene from text, trace a pixel or a ray with
-//! `EventLog`, build the trace document, run the `whitted` binary.
+//! Helpers shared by the integration tests: write a scene ([`SceneText`]) or edit a fixture
+//! ([`fixture_with`]), load it, trace a pixel or a ray with `EventLog`, build the trace document,
+//! run the `whitted` binary.
 
-use serde_json::Value;
+use serde_json::{json, Value};
 use whitted::accel::{Accel, AccelKind};
 use whitted::doc::{trace_document, TraceTarget};
 use whitted::geom::ray::Ray;
@@ -38,6 +39,75 @@ pub fn fixture(name: &str) -> String {
 /// The path of a fixture scene, for the binary.
 pub fn fixture_path(name: &str) -> String {
     format!("{}/tests/data/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A fixture's text with fields changed: each `(pointer, value)` sets the field at a JSON pointer
+/// (`/max_depth`, `/materials/glass/kt`). Panics naming the pointer when the fixture has no such
+/// field, where a text `replace` would silently change nothing.
+pub fn fixture_with(name: &str, changes: &[(&str, Value)]) -> String {
+    edited(&fixture(name), changes)
+}
+
+/// A scene's text with fields changed, as [`fixture_with`] does.
+pub fn edited(text: &str, changes: &[(&str, Value)]) -> String {
+    let mut doc: Value = serde_json::from_str(text).unwrap_or_else(|e| panic!("not JSON: {e}"));
+    for (pointer, value) in changes {
+        let field = doc.pointer_mut(pointer).unwrap_or_else(|| panic!("the scene has no field {pointer}"));
+        *field = value.clone();
+    }
+    doc.to_string()
+}
+
+/// A scene written by a test: a camera on the z axis (the y axis in 2D) looking at the origin
+/// through the window [-1, 1]² ([-1, 1] in 2D), and what the test adds. Built as JSON, so a test
+/// says only what it is about; [`SceneText::text`] for the binary or an invalid scene,
+/// [`SceneText::space`] for the validated 3D scene.
+#[derive(Clone, Debug)]
+pub struct SceneText(Value);
+
+impl SceneText {
+    /// A 3D scene: eye (0, 0, 5), `nx × ny` pixels.
+    pub fn space3(nx: usize, ny: usize) -> Self {
+        Self(json!({"camera": {"eye": [0, 0, 5], "center": [0, 0, 0],
+            "window": {"l": -1, "r": 1, "b": -1, "t": 1}, "resolution": [nx, ny]}}))
+    }
+    /// A 2D scene: eye (0, 5), `nx` pixels.
+    pub fn flat2(nx: usize) -> Self {
+        Self(
+            json!({"camera": {"eye": [0, 5], "center": [0, 0], "window": {"l": -1, "r": 1}, "resolution": [nx]}}),
+        )
+    }
+    /// Sets the field at a JSON pointer (`/max_depth`, `/camera/eye`); its parent must exist.
+    #[must_use]
+    pub fn set(mut self, pointer: &str, value: Value) -> Self {
+        let (parent, key) = pointer.rsplit_once('/').unwrap_or_else(|| panic!("not a pointer: {pointer}"));
+        let map = self.0.pointer_mut(parent).and_then(Value::as_object_mut);
+        map.unwrap_or_else(|| panic!("no object at {parent}")).insert(key.to_owned(), value);
+        self
+    }
+    /// Appends an object.
+    #[must_use]
+    pub fn object(self, object: Value) -> Self {
+        self.push("objects", object)
+    }
+    /// Appends a light.
+    #[must_use]
+    pub fn light(self, light: Value) -> Self {
+        self.push("lights", light)
+    }
+    fn push(mut self, list: &str, item: Value) -> Self {
+        let items = self.0.as_object_mut().unwrap().entry(list).or_insert_with(|| json!([]));
+        items.as_array_mut().unwrap().push(item);
+        self
+    }
+    /// The scene's JSON text.
+    pub fn text(&self) -> String {
+        self.0.to_string()
+    }
+    /// The validated 3D scene.
+    pub fn space(&self) -> Scene<glam::DVec3> {
+        scene3(&self.text())
+    }
 }
 
 /// Traces pixel `(i, j)` and returns the trace document.

@@ -1,7 +1,10 @@
 //! The recursion's conventions, checked on traces (algorithm.md §3–§6, §11; numerics.md E, F, L).
 
-use crate::support::{assert_finite, events, f, fixture, scene2, scene3, trace_pixel, trace_ray};
+use crate::support::{
+    assert_finite, events, f, fixture, fixture_with, scene2, scene3, trace_pixel, trace_ray, SceneText,
+};
 use glam::{DVec2, DVec3};
+use serde_json::{json, Value};
 use whitted::accel::{Accel, AccelKind};
 use whitted::geom::ray::Ray;
 use whitted::record::NoRecorder;
@@ -10,9 +13,8 @@ use whitted::trace::Tracer;
 
 #[test]
 fn l2_mirror_corridor_sums_the_geometric_series() {
-    let text = fixture("corridor.json");
     for (k, expected) in [(0u32, 0.1), (1, 0.15), (2, 0.175), (10, 0.199_902_343_75)] {
-        let scene = scene3(&text.replace("\"max_depth\": 10", &format!("\"max_depth\": {k}")));
+        let scene = scene3(&fixture_with("corridor.json", &[("/max_depth", json!(k))]));
         let doc = trace_pixel(&scene, 0, 0);
         let c = f(&doc["color"][0]);
         assert!((c - expected).abs() < 1e-15, "k = {k}: {c}");
@@ -25,7 +27,7 @@ fn l2_mirror_corridor_sums_the_geometric_series() {
 
 #[test]
 fn l1_max_depth_zero_is_ray_casting() {
-    let scene = scene3(&fixture("glass.json").replace("\"max_depth\": 4", "\"max_depth\": 0"));
+    let scene = scene3(&fixture_with("glass.json", &[("/max_depth", json!(0))]));
     let accel = Accel::build(&scene, AccelKind::None);
     let r = render_centers(&scene, &accel, 0, None);
     assert_eq!(r.stats.rays.reflected + r.stats.rays.transmitted, 0);
@@ -86,28 +88,29 @@ fn e3_tir_inside_a_2d_slab_keeps_its_side() {
 
 #[test]
 fn e4_shadow_segments_end_at_the_light() {
-    let base = r#"{"camera": {"eye": [0,1,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [1,1]},
-        "lights": [{"position": [0,2,0]}],
-        "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0]}, OCCLUDERS]}"#;
+    let with = |occluders: &[Value]| {
+        let base = SceneText::space3(1, 1)
+            .set("/camera/eye", json!([0, 1, 5]))
+            .light(json!({"position": [0, 2, 0]}))
+            .object(json!({"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]}));
+        occluders.iter().fold(base, |s, o| s.object(o.clone())).space()
+    };
     let down = Ray::new(DVec3::new(0.0, 1.0, 0.0), DVec3::NEG_Y);
-    let s_of = |occluders: &str| {
-        let scene = scene3(&base.replace("OCCLUDERS", occluders));
-        let doc = trace_ray(&scene, &down);
+    let s_of = |occluders: &[Value]| {
+        let doc = trace_ray(&with(occluders), &down);
         f(&doc["tree"]["lights"][0]["shadow"])
     };
     // (a) planes through the light and beyond it do not shadow.
     assert_eq!(
-        s_of(
-            r#"{"type": "plane", "point": [0,2,0], "normal": [0,-1,0]}, {"type": "plane", "point": [0,3,0], "normal": [0,1,0]}"#
-        ),
+        s_of(&[
+            json!({"type": "plane", "point": [0, 2, 0], "normal": [0, -1, 0]}),
+            json!({"type": "plane", "point": [0, 3, 0], "normal": [0, 1, 0]})
+        ]),
         1.0
     );
-    assert_eq!(s_of(r#"{"type": "plane", "point": [0,1.999999,0], "normal": [0,1,0]}"#), 0.0);
+    assert_eq!(s_of(&[json!({"type": "plane", "point": [0, 1.999_999, 0], "normal": [0, 1, 0]})]), 0.0);
     // (b) a thin box 0.0007 above the point shadows it: the offset is ~1e-13, not 1e-3.
-    let scene = scene3(&base.replace(
-        "OCCLUDERS",
-        r#"{"type": "box", "min": [-0.01, 0.0007, -0.003], "max": [0.01, 0.0008, 0.003]}"#,
-    ));
+    let scene = with(&[json!({"type": "box", "min": [-0.01, 0.0007, -0.003], "max": [0.01, 0.0008, 0.003]})]);
     let doc =
         trace_ray(&scene, &Ray::new(DVec3::new(0.0, 1.0, 5.0), DVec3::new(0.0, -1.0, -5.0).normalize()));
     assert_eq!(doc["tree"]["hit"]["object"], 0);
@@ -117,12 +120,14 @@ fn e4_shadow_segments_end_at_the_light() {
 
 #[test]
 fn transparent_occluders_multiply_kt_once_each() {
-    let text = r#"{"camera": {"eye": [0,1,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [1,1]},
-        "lights": [{"position": [0,10,0]}], "max_depth": 0,
-        "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0]},
-                    {"type": "sphere", "center": [0,3,0], "radius": 1, "material": {"kt": 0.5}},
-                    {"type": "box", "min": [-1,5,-1], "max": [1,6,1], "material": {"kt": 0.8}}]}"#;
-    let doc = trace_ray(&scene3(text), &Ray::new(DVec3::new(0.0, 1.0, 0.0), DVec3::NEG_Y));
+    let scene = SceneText::space3(1, 1)
+        .set("/camera/eye", json!([0, 1, 5]))
+        .set("/max_depth", json!(0))
+        .light(json!({"position": [0, 10, 0]}))
+        .object(json!({"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]}))
+        .object(json!({"type": "sphere", "center": [0, 3, 0], "radius": 1, "material": {"kt": 0.5}}))
+        .object(json!({"type": "box", "min": [-1, 5, -1], "max": [1, 6, 1], "material": {"kt": 0.8}}));
+    let doc = trace_ray(&scene.space(), &Ray::new(DVec3::new(0.0, 1.0, 0.0), DVec3::NEG_Y));
     let shadow = events(&doc, "shadow_ray")[0];
     assert_eq!(shadow["occluders"].as_array().unwrap().len(), 2);
     assert!((f(&shadow["s"]) - 0.4).abs() < 1e-15);
@@ -131,24 +136,26 @@ fn transparent_occluders_multiply_kt_once_each() {
 
 #[test]
 fn equal_t_goes_to_the_smaller_index() {
-    let text = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [1,1]},
-        "objects": [{"type": "box", "name": "first", "min": [-1,-1,-1], "max": [1,1,1]},
-                    {"type": "plane", "name": "second", "point": [0,0,1], "normal": [0,0,1]},
-                    {"type": "sphere", "name": "third", "center": [0,0,0], "radius": 1}]}"#;
-    let doc = trace_pixel(&scene3(text), 0, 0);
-    assert_eq!(doc["tree"]["hit"]["object"], "first");
-    let reordered = text.replace("\"first\"", "\"x\"").replace("\"third\"", "\"first\"");
-    // Moving the sphere first makes it win the same t.
-    let mut objects: serde_json::Value = serde_json::from_str(&reordered).unwrap();
-    objects["objects"].as_array_mut().unwrap().reverse();
-    let doc = trace_pixel(&scene3(&objects.to_string()), 0, 0);
-    assert_eq!(doc["tree"]["hit"]["object"], "first");
-    assert_eq!(doc["tree"]["hit"]["t"], 4.0);
+    // Three objects whose nearest hits share t = 4 (the box's face, the plane, the sphere's pole).
+    let objects = [
+        json!({"type": "box", "name": "box", "min": [-1, -1, -1], "max": [1, 1, 1]}),
+        json!({"type": "plane", "name": "plane", "point": [0, 0, 1], "normal": [0, 0, 1]}),
+        json!({"type": "sphere", "name": "sphere", "center": [0, 0, 0], "radius": 1}),
+    ];
+    let first_hit = |order: [usize; 3]| {
+        let scene = order.iter().fold(SceneText::space3(1, 1), |s, &k| s.object(objects[k].clone()));
+        let doc = trace_pixel(&scene.space(), 0, 0);
+        assert_eq!(doc["tree"]["hit"]["t"], 4.0);
+        doc["tree"]["hit"]["object"].clone()
+    };
+    assert_eq!(first_hit([0, 1, 2]), "box");
+    // Listing the sphere first makes it win the same t.
+    assert_eq!(first_hit([2, 1, 0]), "sphere");
 }
 
 #[test]
 fn a_scene_with_nothing_transparent_spawns_no_t_ray() {
-    let scene = scene3(&fixture("glass.json").replace("\"kt\": 0.9", "\"kt\": 0"));
+    let scene = scene3(&fixture_with("glass.json", &[("/materials/glass/kt", json!(0))]));
     assert!(!scene.has_transparent());
     let accel = Accel::build(&scene, AccelKind::None);
     let r = render_centers(&scene, &accel, scene.max_depth, None);
@@ -158,8 +165,9 @@ fn a_scene_with_nothing_transparent_spawns_no_t_ray() {
 
 #[test]
 fn g5_one_pixel_image_looks_down_minus_w() {
-    let text = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-0.8,"r":0.8,"b":-0.6,"t":0.6}, "resolution": [1,1]}}"#;
-    let doc = trace_pixel(&scene3(text), 0, 0);
+    let scene =
+        SceneText::space3(1, 1).set("/camera/window", json!({"l": -0.8, "r": 0.8, "b": -0.6, "t": 0.6}));
+    let doc = trace_pixel(&scene.space(), 0, 0);
     assert_eq!(doc["uv"], serde_json::json!([0.0, 0.0]));
     assert_eq!(doc["tree"]["direction"], serde_json::json!([0.0, 0.0, -1.0]));
     assert_eq!(events(&doc, "miss").len(), 1);
@@ -167,8 +175,7 @@ fn g5_one_pixel_image_looks_down_minus_w() {
 
 #[test]
 fn rows_count_from_the_bottom() {
-    let text = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}}"#;
-    let scene = scene3(text);
+    let scene = SceneText::space3(2, 2).space();
     assert_eq!(scene.camera.pixel_center(0, 0), (-0.5, -0.5));
     assert_eq!(scene.camera.pixel_center(1, 1), (0.5, 0.5));
     let ray = scene.camera.primary_ray(-0.5, -0.5);

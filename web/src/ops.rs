@@ -186,7 +186,7 @@ fn info<V: Dim>(scene: &mut Scene<V>, options: &Options) -> Value {
         "dimension": V::DIM,
         "width": width,
         "height": height,
-        "objects": (0..scene.objects.len()).map(|i| scene.object_label(i)).collect::<Vec<_>>(),
+        "objects": (0..scene.objects.len()).map(|i| scene.object_label(i, Lang::En)).collect::<Vec<_>>(),
         "max_depth": options.depth.unwrap_or(scene.max_depth),
     })
 }

@@ -30,14 +30,7 @@ use crate::scene::Scene;
 use crate::shape::Dim;
 use std::fmt::Write;
 
-/// The language of the narration.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Lang {
-    /// English.
-    En,
-    /// Romanian, with diacritics.
-    Ro,
-}
+pub use crate::lang::Lang;
 
 /// A number as a person reads it: up to 6 significant digits, no `-0`.
 #[must_use]
@@ -191,7 +184,7 @@ impl<'a, V: Dim> Writer<'a, V> {
         let Some(node) = self.at else { return self.outside.clone() };
         let ray = &self.log.nodes[node];
         let what = match ray.end.as_ref().and_then(|e| e.hit) {
-            Some(hit) => self.scene.object_label(hit.object.index),
+            Some(hit) => self.scene.object_label(hit.object.index, self.lang),
             None => self.t("background", "fundal").to_owned(),
         };
         format!("{} @ {what}, {} {}", self.names.path_text(node), self.t("level", "nivelul"), ray.start.level)
@@ -222,7 +215,7 @@ impl<'a, V: Dim> Writer<'a, V> {
         let obj = &self.scene.objects[o.index];
         let kind = self.kind_word(obj.shape.kind());
         let base = match &obj.name {
-            Some(n) => format!("“{n}” ({kind} {})", o.index),
+            Some(n) => format!("“{}” ({kind} {})", n.get(self.lang), o.index),
             None => format!("{kind} {}", o.index),
         };
         match o.triangle {

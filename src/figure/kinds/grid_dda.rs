@@ -175,7 +175,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             d.text("step", DVec2::new(a.x, b.y), &(k + 1).to_string(), opts);
         });
     }
-    label_objects(d, scene, &anchors);
+    label_objects(d, scene, &anchors, input.lang);
 
     // The table of steps and the pitfall, in the column.
     let axis_names: Vec<&str> = (0..V::DIM).map(|a| names[a]).collect();
@@ -189,7 +189,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let cell: Vec<String> = s.cell.iter().map(ToString::to_string).collect();
         let t_max: Vec<String> = s.t_max.iter().map(|t| num(*t)).collect();
         let objects: Vec<String> =
-            s.objects.iter().map(|o| labels::escape(&scene.object_label(*o))).collect();
+            s.objects.iter().map(|o| labels::escape(&scene.object_label(*o, input.lang))).collect();
         let objects = if objects.is_empty() { "—".to_owned() } else { objects.join(", ") };
         lines.push(format!("{}: ({}) · ({}) · {objects}", k + 1, cell.join(", "), t_max.join(", ")));
     }
@@ -202,7 +202,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             "{} {}: {}",
             input.t(Label::PitfallIn),
             step + 1,
-            labels::escape(&scene.object_label(object))
+            labels::escape(&scene.object_label(object, input.lang))
         ));
         lines.push(format!("   t = {} > {} = {}", num(t), input.t(Label::CellExitT), num(exit)));
         lines.extend(input.t(Label::PitfallRule).split('\n').map(str::to_owned));
@@ -211,7 +211,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         lines.push(format!(
             "{}: {} (t = {})",
             input.t(Label::HitPoint),
-            labels::escape(&scene.object_label(h.object.index)),
+            labels::escape(&scene.object_label(h.object.index, input.lang)),
             num(h.t)
         ));
     }

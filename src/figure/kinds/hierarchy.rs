@@ -229,8 +229,8 @@ pub fn draw<V: Planar>(
             d.text("node-name", DVec2::new(lo.x, hi.y), &letter(k), opts);
         });
     }
-    label_objects(d, scene, &anchors);
-    tree(d, &nodes, &fate, &visits, scene, column, &view);
+    label_objects(d, scene, &anchors, input.lang);
+    tree(d, &nodes, &fate, &visits, input, column, &view);
     Ok(())
 }
 
@@ -266,7 +266,7 @@ fn tree<V: Planar>(
     nodes: &[TreeNode<V>],
     fate: &[Fate],
     visits: &[Vec<usize>],
-    scene: &crate::scene::Scene<V>,
+    input: &Input<'_, V>,
     column: DVec2,
     view: &View,
 ) {
@@ -336,8 +336,11 @@ fn tree<V: Planar>(
                 d.text("tree-order", at(k), &order.to_string(), o);
             }
             if n.children.is_empty() && !n.prims.is_empty() {
-                let names: Vec<String> =
-                    n.prims.iter().map(|p| labels::escape(&scene.object_label(p.object()))).collect();
+                let names: Vec<String> = n
+                    .prims
+                    .iter()
+                    .map(|p| labels::escape(&input.scene.object_label(p.object(), input.lang)))
+                    .collect();
                 let o = TextOpts::NOTE
                     .size(TextSize::Small)
                     .align(Align::BELOW)

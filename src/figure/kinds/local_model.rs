@@ -53,7 +53,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         .ok_or_else(|| FigureError("no plane holds N".into()))?;
 
     let object = ObjectRef { index: hit.object.index, triangle: None };
-    let title = format!("{} {hit_name} ({})", input.t(Label::TitleLocalModel), object_name(scene, object));
+    let title = format!(
+        "{} {hit_name} ({})",
+        input.t(Label::TitleLocalModel),
+        object_name(scene, object, input.lang)
+    );
     d.set_title(&title);
     let caption = format!(
         "{} · {}",

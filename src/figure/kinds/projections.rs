@@ -215,7 +215,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         }
     }
     for (list, _) in &anchors {
-        label_objects(d, scene, list);
+        label_objects(d, scene, list, input.lang);
     }
     Ok(())
 }

@@ -294,7 +294,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 };
                 d.text("name", *p, &names.ray[*k], beside);
                 let what = match log.nodes[*k].end.as_ref().and_then(|e| e.hit) {
-                    Some(h) => escape(&scene.object_label(h.object.index)),
+                    Some(h) => escape(&scene.object_label(h.object.index, input.lang)),
                     None => input.t(Label::Background).to_owned(),
                 };
                 // Fixed under the node: the halo keeps it readable over an edge.

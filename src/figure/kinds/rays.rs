@@ -187,6 +187,6 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let to = s.to.unwrap_or_else(|| exit_point(s.from, s.dir, &view));
         d.with_events(log.ray_events(s.node), |d| label(d, s.from + (to - s.from) * 0.3, &names.ray[s.node]));
     }
-    label_objects(d, scene, &anchors);
+    label_objects(d, scene, &anchors, input.lang);
     Ok(())
 }

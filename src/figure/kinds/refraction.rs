@@ -108,8 +108,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let same = k > 0 && std::ptr::eq(*traced, cases[0].0);
         let source = if same { String::new() } else { format!("{}: ", input.traced(traced)) };
         let sep = if k == 0 { "" } else { "; " };
-        let object =
-            object_name(input.scene, crate::record::event::ObjectRef { index: c.object, triangle: None });
+        let object = object_name(
+            input.scene,
+            crate::record::event::ObjectRef { index: c.object, triangle: None },
+            input.lang,
+        );
         caption.push_str(&format!("{sep}{source}{what}{hit} ({object})"));
     }
     caption.push_str(&format!(" · {}", input.t(Label::PlaneOfIncidence)));
@@ -237,8 +240,11 @@ fn panel<V: Planar>(
             );
         });
     }
-    let surface_name =
-        object_name(input.scene, crate::record::event::ObjectRef { index: c.object, triangle: None });
+    let surface_name = object_name(
+        input.scene,
+        crate::record::event::ObjectRef { index: c.object, triangle: None },
+        input.lang,
+    );
     d.text(
         "label",
         at(DVec2::new(1.5, 0.0)),

@@ -82,7 +82,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.set_caption(&format!(
         "{} · {hit_name} ({}){}",
         input.traced(traced),
-        object_name(scene, hit.object),
+        object_name(scene, hit.object, input.lang),
         plane_note(V::DIM, Label::PlaneOfNL, Some(&hit_name), lang)
     ));
     legend_role(d, parts::role(node.start.kind), lang);
@@ -165,7 +165,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for (k, l) in scene.lights.iter().enumerate() {
         label(d, plane.point(l.position), &light_name(k));
     }
-    label_objects(d, scene, &anchors);
+    label_objects(d, scene, &anchors, input.lang);
 
     // s for every light, with the recorded occluders.
     let mut lines = Vec::new();
@@ -183,7 +183,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             .occluders
             .iter()
             .map(|o| {
-                let what = object_name(scene, o.object);
+                let what = object_name(scene, o.object, input.lang);
                 if o.kt == 0.0 {
                     format!("{what} ({})", input.t(Label::Opaque))
                 } else {

@@ -173,7 +173,7 @@ pub fn draw<V: Planar>(
     let (plane, axes) = page(centre, first.direction);
 
     d.set_title(input.t(title));
-    let object = object_name(scene, ObjectRef { index: focus, triangle: None });
+    let object = object_name(scene, ObjectRef { index: focus, triangle: None }, input.lang);
     let mut caption = format!(
         "{} {} · {object}",
         input.t(Label::Scene),
@@ -287,7 +287,7 @@ pub fn draw<V: Planar>(
             }
         });
     }
-    parts::label_objects(d, &one, &anchors);
+    parts::label_objects(d, &one, &anchors, input.lang);
 
     // The per-slab intervals on a t axis, one block per ray, in the column on the right.
     let width = view.xmax() - column.x;

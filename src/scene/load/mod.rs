@@ -297,6 +297,37 @@ mod tests {
     }
 
     #[test]
+    fn a_name_is_one_string_or_one_per_language() {
+        use crate::lang::{Both, Lang};
+        let text = format!(
+            r#"{{{CAM}, "objects": [
+              {{"type": "sphere", "center": [0,0,0], "radius": 1, "name": {{"en": "mirror", "ro": "oglindă"}}}},
+              {{"type": "sphere", "center": [0,0,0], "radius": 1, "name": "A"}}]}}"#
+        );
+        let AnyScene::Space(s) = load_str(&text).unwrap() else { panic!() };
+        assert_eq!(s.objects[0].name, Some(Both { en: "mirror".into(), ro: "oglindă".into() }));
+        assert_eq!(s.object_label(0, Lang::Ro), "oglindă");
+        assert_eq!(s.object_label(0, Lang::En), "mirror");
+        assert_eq!(s.object_label(1, Lang::Ro), "A");
+        let text = format!(
+            r#"{{{CAM}, "objects": [
+              {{"type": "sphere", "center": [0,0,0], "radius": 1, "name": {{"en": "mirror"}}}},
+              {{"type": "sphere", "center": [0,0,0], "radius": 1, "name": {{"en": "a", "ro": "a", "fr": "a"}}}},
+              {{"type": "sphere", "center": [0,0,0], "radius": 1, "name": {{"en": "a", "ro": 2}}}},
+              {{"type": "sphere", "center": [0,0,0], "radius": 1, "name": 3}}]}}"#
+        );
+        assert_eq!(
+            errors(&text),
+            vec![
+                "objects[0].name.ro: missing (required)".to_owned(),
+                "objects[1].name.fr: unknown field `fr`; expected one of: en, ro".to_owned(),
+                "objects[2].name.ro: must be a string, got a number".to_owned(),
+                "objects[3].name: must be a string or {\"en\": …, \"ro\": …}, got a number".to_owned(),
+            ]
+        );
+    }
+
+    #[test]
     fn degenerate_triangle_and_zero_normal() {
         let text = format!(
             r#"{{{CAM}, "objects": [{{"type": "triangle", "vertices": [[0,0,0],[1,0,0],[2,0,0]]}},

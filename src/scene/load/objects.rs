@@ -5,11 +5,12 @@
 use super::dim::LoadDim;
 use super::materials;
 use super::required_vector;
-use super::schema::{geometry, OBJECT};
+use super::schema::{geometry, NAME, OBJECT};
 use super::ReadFile;
 use crate::geom::Vector;
 use crate::json::reader::{join, num, positive, suggest, type_name, ReadError, Reader};
 use crate::json::{Map, Value};
+use crate::lang::{Both, Lang};
 use crate::scene::material::Material;
 use crate::scene::Object;
 use crate::shape::aabox::AaBox;
@@ -71,7 +72,7 @@ pub(super) fn read<V: LoadDim>(
         };
         let known = [OBJECT, geometry].concat();
         r.fields(item, &path, &known);
-        let name = map.get("name").and_then(|n| r.string(n, &join(&path, "name"))).map(str::to_string);
+        let name = map.get("name").and_then(|n| read_name(r, n, &join(&path, "name")));
         let material = match map.get("material") {
             None => Some(*default_material.get_or_insert_with(|| {
                 materials.push(Material::DEFAULT);
@@ -99,6 +100,23 @@ pub(super) fn read<V: LoadDim>(
         }
     }
     out
+}
+
+/// An object's `name`: one string for every language, or `{"en": …, "ro": …}` with both.
+fn read_name(r: &mut Reader, v: &Value, path: &str) -> Option<Both> {
+    match v {
+        Value::String(s) => Some(Both::same(s)),
+        Value::Object(_) => {
+            let map = r.fields(v, path, NAME)?;
+            let en = r.required_string(map, path, Lang::En.code());
+            let ro = r.required_string(map, path, Lang::Ro.code());
+            Some(Both { en: en?.to_owned(), ro: ro?.to_owned() })
+        }
+        _ => {
+            r.err(path, format!("must be a string or {{\"en\": …, \"ro\": …}}, got {}", type_name(v)));
+            None
+        }
+    }
 }
 
 fn read_shape<V: LoadDim>(
