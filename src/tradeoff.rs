@@ -21,11 +21,11 @@
 use crate::accel::{Accel, AccelKind, AccelOptions};
 use crate::clock::Stopwatch;
 use crate::image::Image;
+use crate::record::stats::Stats;
 use crate::render::{render, RenderConfig, Rendered};
 use crate::sample::Sampling;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 
 /// The most renders of one setting `--runs` may ask for: medians steady well before this.
 pub const MAX_RUNS: u32 = 100;
@@ -484,8 +484,8 @@ pub fn pareto_front(rows: &[Measured]) -> Vec<usize> {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
+    use crate::record::stats::RayCounts;
     use crate::scene::material::Rgb;
-    use crate::trace::stats::RayCounts;
 
     fn image(values: &[[f64; 3]]) -> Image {
         Image { width: values.len(), height: 1, pixels: values.iter().map(|v| Rgb(*v)).collect() }

@@ -1,7 +1,7 @@
 //! Every word a figure shows, in English and Romanian, in the lecture's notation (algorithm.md's
 //! "Romanian terms worth keeping": rază primară, rază reflectată, rază transmisă, arborele de raze,
 //! fereastra vizuală, volum încadrator, subdivizare adaptivă). Labels are markup for
-//! `figure::text` (`n_1` → n₁, `θ_i` → θᵢ); the kinds compose them with numbers, never with words
+//! `canvas::text` (`n_1` → n₁, `θ_i` → θᵢ); the kinds compose them with numbers, never with words
 //! of their own.
 
 use super::source::{Pick, Target};
@@ -522,7 +522,7 @@ pub fn escape(name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::figure::text::has_glyph;
+    use crate::canvas::text::has_glyph;
 
     /// Every variant, for the checks below (kept in step with the enum by the match in `both`).
     const ALL: &[Label] = &[

@@ -7,7 +7,7 @@
 
 use glam::DVec2;
 
-use crate::figure::drawing::{Align, Corner, Drawing, LegendPlace, Sample, Style, TextOpts, View};
+use crate::canvas::{Align, Corner, Drawing, LegendPlace, Sample, Style, TextOpts, View};
 use crate::figure::labels::{escape, Label};
 use crate::figure::parts::num;
 use crate::figure::style::{self, Rgba, TextSize};

@@ -351,7 +351,7 @@ fn step_shows_the_trace_narration_a_step_at_a_time() {
     // Enter twice: steps 1, 2 and 3, no more; then the end of input ends the session.
     let (code, out) = run("\n\n");
     assert_eq!(code, Some(0));
-    assert!(out.contains("1. Pixel (i, j) = (4, 3)") && out.contains("\n3. primary ray"), "{out}");
+    assert!(out.contains("1. Pixel (i, j) = (4, 3)") && out.contains("\n3. P — primary ray"), "{out}");
     assert!(!out.contains("\n   4. "), "{out}");
     // `a`: the first step, then all the rest: the whole narration, every line of it.
     let (_, all) = run("a\n");
