@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use whitted::accel::AccelOptions;
-use whitted::figure::drawing::Drawing;
+use whitted::canvas::Drawing;
 use whitted::figure::source::Tracing;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::claim::Verdict;
