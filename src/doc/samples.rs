@@ -26,12 +26,12 @@
 use super::narrate::{num, rays_line, Lang, Narration};
 use super::{color, event, float, node, stats, Namer, TraceTarget};
 use crate::record::event::Event;
+use crate::record::stats::Stats;
 use crate::record::EventLog;
 use crate::sample::{PixelTrace, Sampling};
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 use serde_json::{json, Value};
 use std::fmt::Write;
 

@@ -5,11 +5,11 @@
 
 use glam::DVec2;
 
-use super::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
 use super::labels::{escape, Label};
 use super::plane::{ObjectOutline, Outline, PagePlane, Planar};
 use super::style::{self, RayRole, Rgba, TextSize};
 use super::Lang;
+use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
 use crate::image::to_byte;
 use crate::record::event::{Event, ObjectRef, RayKind};
 pub use crate::record::names::{sub, Names};

@@ -2,6 +2,7 @@
 #![allow(clippy::float_cmp)] // The tests pin exact IEEE results on purpose (numerics.md).
 
 mod accel;
+mod claims;
 mod cli;
 mod figures;
 mod hardening;

@@ -22,12 +22,12 @@ use super::TraceTarget;
 use crate::geom::Vector;
 use crate::record::event::{Event, ObjectRef};
 use crate::record::names::Names;
+use crate::record::stats::Stats;
 use crate::record::EventLog;
 use crate::scene::camera::Projection;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 use std::fmt::Write;
 
 /// The language of the narration.
