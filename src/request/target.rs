@@ -9,11 +9,11 @@ use crate::accel::{Accel, AccelKind};
 use crate::doc::TraceTarget;
 use crate::figure::source::Aim;
 use crate::geom::ray::Ray;
+use crate::record::stats::Stats;
 use crate::record::NoRecorder;
 use crate::scene::AnyScene;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 
 /// `--pixel` and `--ray` as given (at most one; a figure takes neither).
 #[derive(Clone, Debug, Default, PartialEq)]
