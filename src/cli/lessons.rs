@@ -14,11 +14,11 @@ use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use whitted::accel::AccelOptions;
-use whitted::figure::drawing::Drawing;
+use whitted::canvas::Drawing;
 use whitted::figure::source::Tracing;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::claim::Verdict;
-use whitted::lesson::{self, FigureSpec, Lesson, Shown};
+use whitted::lesson::{self, FigureSpec, Lesson};
 use whitted::request::figure::{figure_checked, Request};
 use whitted::request::options::canvas;
 use whitted::request::parse;
@@ -26,7 +26,7 @@ use whitted::request::target::Target;
 use whitted::sample::Sampling;
 use whitted::scene::load::MAX_SCENE_BYTES;
 use whitted::scene::AnyScene;
-use whitted::site::{self, Nav, View};
+use whitted::site::{self, Nav, Shown, View};
 
 /// Options of `whitted lessons`.
 #[derive(Args, Debug)]
@@ -305,7 +305,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             Lang::En => (args.out.join("index.html"), "ro/index.html"),
             Lang::Ro => (args.out.join("ro").join("index.html"), "../index.html"),
         };
-        write_file(&page, lesson::index_html(&lessons, &shown, *lang, other).as_bytes())?;
+        write_file(&page, site::index_html(&lessons, &shown, *lang, other).as_bytes())?;
     }
     write_site(args, &read, &langs, &results)?;
     let figures: usize =

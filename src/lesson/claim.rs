@@ -11,7 +11,7 @@ use glam::DVec2;
 
 use super::unknown;
 use crate::accel::Layout;
-use crate::figure::drawing::{Drawing, Item, Shape};
+use crate::canvas::{Drawing, Item, Shape};
 use crate::figure::plane::Planar;
 use crate::figure::source::{
     first_hit, grid_pitfall, incidence_deg, met, refraction_node, search_events, tir_node, Traces,

@@ -5,8 +5,8 @@ use super::options::Aa;
 use super::target::Target;
 use super::Failure;
 use crate::accel::AccelKind;
+use crate::canvas::Drawing;
 use crate::doc::TraceTarget;
-use crate::figure::drawing::Drawing;
 use crate::figure::labels::{self, Label};
 use crate::figure::plane::Planar;
 use crate::figure::source::{self, Pick, Tracing};
@@ -30,7 +30,7 @@ pub struct Request {
 /// A drawn figure and what it traced.
 #[derive(Clone, Debug)]
 pub struct Made {
-    /// The display list (to PNG through `figure::skia`, to SVG through `figure::svg`).
+    /// The display list (to PNG through `canvas::skia`, to SVG through `canvas::svg`).
     pub drawing: Drawing,
     /// The main trace's pixel and `(u, v)` (both None for a ray, or for `heat-map`, which traces
     /// no single pixel).

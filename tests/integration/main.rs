@@ -6,6 +6,7 @@ mod claims;
 mod cli;
 mod figures;
 mod hardening;
+mod narration;
 mod numerics;
 mod outputs;
 mod properties;

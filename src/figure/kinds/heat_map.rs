@@ -7,7 +7,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::figure::drawing::{Drawing, Sample, Style};
+use crate::canvas::{Drawing, Sample, Style};
 use crate::figure::labels::Label;
 use crate::figure::parts::num;
 use crate::figure::plane::Planar;
@@ -92,7 +92,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for n in &values {
         d.legend_entry(&format!("{n} {unit}"), Style::NONE, Sample::Swatch(colour(*n)));
     }
-    d.legend_place = crate::figure::drawing::LegendPlace::Outside;
+    d.legend_place = crate::canvas::LegendPlace::Outside;
 
     // One cell per pixel, y up so that row j = 0 is the bottom; a 2D image is one row, drawn as
     // tall as an eighth of its width. Equal neighbours in a row share one rectangle.

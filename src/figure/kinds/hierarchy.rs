@@ -10,7 +10,7 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::{Layout, TreeNode};
 use crate::bounds::aabb::Aabb;
-use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
 use crate::figure::plane::{PagePlane, Planar};
@@ -154,7 +154,7 @@ pub fn draw<V: Planar>(
     d.set_caption(&caption);
     legend_role_and_fates(d, input);
     // The legend over the tree's column, whose top is kept free for it.
-    d.legend_place = crate::figure::drawing::LegendPlace::Inside(crate::figure::drawing::Corner::TopRight);
+    d.legend_place = crate::canvas::LegendPlace::Inside(crate::canvas::Corner::TopRight);
     // The geometry on the left, the tree in the column on the right.
     let mut points: Vec<DVec2> = nodes
         .iter()
