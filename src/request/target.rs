@@ -113,13 +113,16 @@ pub fn object_pixel(scene: &AnyScene, name: &str) -> Result<PixelArg, Failure> {
 }
 
 fn pixel_showing<V: Dim>(scene: &Scene<V>, name: &str) -> Result<PixelArg, Failure> {
-    let named: Vec<usize> =
-        (0..scene.objects.len()).filter(|&k| scene.objects[k].name.as_deref() == Some(name)).collect();
+    // A name matches in either language: a student types what the figure of their language shows.
+    let named: Vec<usize> = (0..scene.objects.len())
+        .filter(|&k| scene.objects[k].name.as_ref().is_some_and(|n| n.en == name || n.ro == name))
+        .collect();
     if named.is_empty() {
-        let mut names: Vec<&str> = Vec::new();
-        for n in scene.objects.iter().filter_map(|o| o.name.as_deref()) {
-            if !names.contains(&n) {
-                names.push(n);
+        let mut names: Vec<String> = Vec::new();
+        for n in scene.objects.iter().filter_map(|o| o.name.as_ref()) {
+            let both = if n.en == n.ro { n.en.clone() } else { format!("{}/{}", n.en, n.ro) };
+            if !names.contains(&both) {
+                names.push(both);
             }
         }
         let list = if names.is_empty() { "none has a name".to_owned() } else { names.join(", ") };
