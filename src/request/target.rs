@@ -170,7 +170,7 @@ mod tests {
     /// (u = −0.667, −0.444 … centres) and a wide floor line `b`.
     const FLAT: &str = r#"{ "camera": { "eye": [0, 5], "center": [0, 0], "window": { "l": -1, "r": 1 },
         "resolution": [9] },
-        "objects": [ { "type": "sphere", "name": "a", "center": [-2.2, 0], "radius": 0.9 },
+        "objects": [ { "type": "sphere", "name": "a", "center": [-2.75, 0], "radius": 1.6 },
                      { "type": "plane", "name": "b", "point": [0, -1], "normal": [0, 1] },
                      { "type": "sphere", "center": [40, 0], "radius": 1 } ] }"#;
 
