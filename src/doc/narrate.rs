@@ -209,6 +209,12 @@ impl<'a, V: Dim> Writer<'a, V> {
                 if *hit { self.t("hit", "intersectat") } else { self.t("missed", "ratat") }
             ),
             Event::NodeVisit { structure, node, .. } => format!("{structure} {node}"),
+            Event::NodeSkip { structure, node, t_in, t_best } => format!(
+                "{structure} {node}: tᵢ = {} > t = {} → {}",
+                num(*t_in),
+                num(*t_best),
+                self.t("skipped", "sărit")
+            ),
             Event::VoxelStep { cell, .. } => format!("{} {cell:?}", self.t("cell", "celula")),
             _ => String::new(),
         }
@@ -248,7 +254,12 @@ impl<'a, V: Dim> Writer<'a, V> {
         for (k, e) in events {
             match e {
                 Event::ObjectTest { .. } if seen_hit => pending.push((k, e)),
-                Event::BoundTest { .. } | Event::NodeVisit { .. } | Event::VoxelStep { .. } if seen_hit => {
+                Event::BoundTest { .. }
+                | Event::NodeVisit { .. }
+                | Event::NodeSkip { .. }
+                | Event::VoxelStep { .. }
+                    if seen_hit =>
+                {
                     pending.push((k, e));
                 }
                 Event::ObjectTest { object, .. } => {
@@ -417,6 +428,19 @@ impl<'a, V: Dim> Writer<'a, V> {
                         &[format!("t ∈ [{}, {}]", num(*t_in), num(*t_out))],
                         vec![k],
                     );
+                }
+                Event::NodeSkip { structure, node, t_in, t_best } => {
+                    let title = format!("{} {structure} {node}", self.t("Skip node", "Sare peste nodul"));
+                    let line = format!(
+                        "tᵢ = {} > t = {}: {}",
+                        num(*t_in),
+                        num(*t_best),
+                        self.t(
+                            "its box starts beyond the nearest hit found",
+                            "volumul său începe dincolo de cea mai apropiată intersecție găsită"
+                        )
+                    );
+                    self.step(indent + 1, &title, &[line], vec![k]);
                 }
                 Event::VoxelStep { cell, t_max, .. } => {
                     let title = format!("{} {cell:?}", self.t("Grid cell", "Celula grilei"));
