@@ -175,6 +175,8 @@ pub enum Label {
     PixelColour,
     /// "primary rays traced" (heat-map caption).
     RaysTraced,
+    /// What the heat map's colours count (caption).
+    HeatMapCounts,
     /// "mean per pixel".
     MeanPerPixel,
     /// "rays" after a count in the legend.
@@ -310,7 +312,11 @@ impl Label {
             Self::TitleAdaptive => {
                 ("Adaptive subdivision of one pixel", "Subdivizarea adaptivă a unui pixel")
             }
-            Self::TitleHeatMap => ("Primary rays per pixel", "Raze primare pe pixel"),
+            Self::TitleHeatMap => ("Samples read per pixel", "Eșantioane citite pe pixel"),
+            Self::HeatMapCounts => (
+                "colour: the samples a pixel reads, a shared corner counted in each pixel",
+                "culoarea: eșantioanele citite de un pixel, un colț comun numărat la fiecare pixel",
+            ),
             Self::TitleUniform => (
                 "Uniform supersampling: the corners of one pixel",
                 "Mărirea uniformă a numărului de raze: colțurile unui pixel",
@@ -329,7 +335,7 @@ impl Label {
                 "uniformă: colțurile pixelului, comune cu vecinii",
             ),
             Self::UniformCorners => (
-                "one primary ray through each corner of the pixel",
+                "a primary ray through each corner of the pixel",
                 "câte o rază primară prin fiecare colț al pixelului",
             ),
             Self::UniformShared => (
@@ -415,9 +421,9 @@ impl Label {
             Self::SamplesTraced => ("samples traced", "eșantioane trasate"),
             Self::Reused => ("reused", "refolosite"),
             Self::PixelColour => ("pixel", "pixelul"),
-            Self::RaysTraced => ("primary rays traced", "raze primare trasate"),
+            Self::RaysTraced => ("primary rays traced (shared once)", "raze primare trasate (comune o dată)"),
             Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
-            Self::RaysPerPixel => ("rays", "raze"),
+            Self::RaysPerPixel => ("samples", "eșantioane"),
             Self::TitleTradeoff => {
                 ("What accuracy costs: error against time", "Cât costă precizia: eroarea față de timp")
             }
@@ -610,6 +616,7 @@ mod tests {
         Label::Tir,
         Label::SectionsNote,
         Label::TitleUniform,
+        Label::HeatMapCounts,
         Label::LeafUnderThreshold,
         Label::LeafAtMaxLevel,
         Label::UniformMean,

@@ -179,3 +179,29 @@ fn the_last_levels_shadow_leaves_sit_above_the_depth_limit() {
         assert!(bottom < limit, "a shadow leaf reaches {bottom:.1} px, the limit is at {limit:.1} px");
     }
 }
+
+#[test]
+fn the_heat_maps_legend_names_every_count_a_pixel_has() {
+    let AnyScene::Space(scene) = lesson_scene("whitted_small.json") else { panic!("3D") };
+    let tracing = sampled(Sampling::adaptive(0.1, 2).expect("valid"));
+    let traces = record(FigureKind::HeatMap, &scene, "whitted_small", &Aim::Auto, &tracing).expect("traced");
+    let counts = traces.counts.as_ref().expect("counts").per_pixel.clone();
+    let opts = Options { lang: Lang::En, width: 1920, height: 1080 };
+    let d = draw(FigureKind::HeatMap, &traces, &scene, &opts).expect("drawn");
+    let unit = format!(" {}", Label::RaysPerPixel.text(Lang::En));
+    let ranges: Vec<(u32, u32)> = d
+        .legend
+        .iter()
+        .map(|e| {
+            let range = e.label.strip_suffix(&unit).unwrap_or_else(|| panic!("{}", e.label));
+            let (a, b) = range.split_once('–').unwrap_or((range, range));
+            (a.parse().expect("a count"), b.parse().expect("a count"))
+        })
+        .collect();
+    assert!(ranges.len() >= 3, "{ranges:?}");
+    for n in counts {
+        assert!(ranges.iter().any(|(a, b)| (*a..=*b).contains(&n)), "{n} is in no legend line of {ranges:?}");
+    }
+    assert!(d.title.as_deref() == Some(Label::TitleHeatMap.text(Lang::En)));
+    assert!(d.caption.clone().unwrap_or_default().contains(Label::HeatMapCounts.text(Lang::En)));
+}
