@@ -14,7 +14,7 @@ use glam::DVec2;
 use std::fmt::Write;
 use std::time::Instant;
 use whitted::accel::{Accel, AccelKind};
-use whitted::figure::drawing::{Align, Dash, Drawing, Sample, Style, TextOpts, View};
+use whitted::canvas::{Align, Dash, Drawing, Sample, Style, TextOpts, View};
 use whitted::figure::style::{self, Rgba, TextSize};
 use whitted::render::render_centers;
 use whitted::scene::load::load_str;
@@ -245,5 +245,5 @@ fn plot(rows: &[Row], title: &str, ylabel: &str, value: impl Fn(&Row) -> f64) ->
         }
         d.legend_entry(kind.name(), s, Sample::Line);
     }
-    whitted::figure::skia::to_png(&d).expect("the plot renders")
+    whitted::canvas::skia::to_png(&d).expect("the plot renders")
 }

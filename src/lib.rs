@@ -15,6 +15,7 @@
 
 pub mod accel;
 pub mod bounds;
+pub mod canvas;
 pub mod clock;
 pub mod doc;
 pub mod figure;

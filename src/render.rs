@@ -13,6 +13,7 @@
 
 use crate::accel::Accel;
 use crate::image::Image;
+use crate::record::stats::Stats;
 use crate::record::NoRecorder;
 use crate::sample::corners::{Axes, Lattice};
 use crate::sample::shared::{render_row, EdgeRow, EdgeRows, Edges, Scratch};
@@ -20,7 +21,6 @@ use crate::sample::Sampling;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 use crate::trace::Tracer;
 use rayon::prelude::*;
 

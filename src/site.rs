@@ -3,13 +3,15 @@
 //! narration of one pixel, all computed in the page by the WebAssembly build of this library
 //! (`web/`), driven by `web/site/whitted.js`. This module only writes the markup: every word of
 //! it in both languages, the view's starting state as `data-` attributes, the scene's JSON in its
-//! editor. Reads values and returns text; `cli::lessons` writes the files.
+//! editor; and the static index per language (`index_html`) that shows every lesson's figures
+//! with their captions and the command that regenerates each. Reads values and returns text;
+//! `cli::lessons` writes the files.
 
 use serde_json::{Map, Value};
 
 use crate::accel::AccelKind;
 use crate::figure::{FigureKind, Lang};
-use crate::lesson::{esc, FigureSpec, Lesson};
+use crate::lesson::{FigureSpec, Lesson};
 use crate::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD, MAX_LEVEL};
 
 /// The file the page scripts read the module from (`whitted-wasm.js`, beside `whitted.js`).
@@ -353,6 +355,100 @@ fn base64(bytes: &[u8]) -> String {
     out
 }
 
+/// What the index page shows for one written figure.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Shown {
+    /// The PNG, relative to the page.
+    pub png: String,
+    /// The SVG, relative to the page.
+    pub svg: String,
+    /// The command that regenerates the PNG.
+    pub command: String,
+    /// Why it could not be drawn, if it could not.
+    pub error: Option<String>,
+}
+
+/// The static page of every lesson in `lang`: titles, introductions, each figure with its
+/// caption, its SVG and the command that regenerates it; `other` links to the other language's
+/// page. `shown[l][f]` is figure f of lesson l.
+#[must_use]
+pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &str) -> String {
+    let (title, other_name, regenerate, vector) = match lang {
+        Lang::En => {
+            ("whitted — the lecture's figures, drawn from traces", "Română", "Regenerate", "SVG for print")
+        }
+        Lang::Ro => {
+            ("whitted — figurile cursului, desenate din trasee", "English", "Regenerare", "SVG pentru tipar")
+        }
+    };
+    let (figures, play) = (word("figures", lang), word("play", lang));
+    let code = match lang {
+        Lang::En => "en",
+        Lang::Ro => "ro",
+    };
+    let mut out = format!(
+        "<!DOCTYPE html>\n<html lang=\"{code}\">\n<head>\n<meta charset=\"utf-8\">\n<title>{title}</title>\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<style>\n\
+         body {{ font-family: 'Noto Sans', sans-serif; max-width: 1100px; margin: 2em auto; padding: 0 1em; color: #1a1a1a; }}\n\
+         figure {{ margin: 1.5em 0; }} img {{ width: 100%; border: 1px solid #ccc; }}\n\
+         code {{ background: #f3f3f3; padding: 0.1em 0.3em; font-size: 0.9em; }}\n\
+         nav a {{ margin-right: 1em; }} .error {{ color: #d55e00; }}\n\
+         @media print {{ nav, .cmd {{ display: none; }} figure {{ page-break-inside: avoid; }} }}\n\
+         </style>\n</head>\n<body>\n<h1>{title}</h1>\n<nav><a href=\"{}\">{other_name}</a></nav>\n<ol>\n",
+        esc(other)
+    );
+    // The lesson pages and the playground live in the language's folder (`en/`, `ro/`); the
+    // English index is one folder up from its pages.
+    let pages = match lang {
+        Lang::En => "en/",
+        Lang::Ro => "",
+    };
+    for lesson in lessons {
+        out.push_str(&format!(
+            "<li><a href=\"{pages}{name}.html\">{}</a> (<a href=\"#{name}\">{figures}</a>)</li>\n",
+            esc(lesson.title.get(lang)),
+            name = lesson.name,
+        ));
+    }
+    out.push_str(&format!("</ol>\n<p><a href=\"{pages}play.html\">{play}</a></p>\n"));
+    for (lesson, figures) in lessons.iter().zip(shown) {
+        out.push_str(&format!(
+            "<section id=\"{}\">\n<h2>{}</h2>\n",
+            lesson.name,
+            esc(lesson.title.get(lang))
+        ));
+        if !lesson.text.get(lang).is_empty() {
+            out.push_str(&format!("<p>{}</p>\n", esc(lesson.text.get(lang))));
+        }
+        for (spec, s) in lesson.figures.iter().zip(figures) {
+            let caption = esc(spec.caption.get(lang));
+            match &s.error {
+                None => out.push_str(&format!(
+                    "<figure>\n<a href=\"{svg}\"><img src=\"{png}\" alt=\"{caption}\"></a>\n<figcaption>{caption} \
+                     (<a href=\"{svg}\">{vector}</a>)<br><span class=\"cmd\">{regenerate}: <code>{cmd}</code></span>\
+                     </figcaption>\n</figure>\n",
+                    svg = esc(&s.svg),
+                    png = esc(&s.png),
+                    cmd = esc(&s.command),
+                )),
+                Some(e) => out.push_str(&format!(
+                    "<figure>\n<figcaption>{caption}<br><span class=\"error\">{}</span><br><code>{}</code></figcaption>\n</figure>\n",
+                    esc(e),
+                    esc(&s.command)
+                )),
+            }
+        }
+        out.push_str("</section>\n");
+    }
+    out.push_str("</body>\n</html>\n");
+    out
+}
+
+/// Escapes text for HTML (element content and quoted attribute values).
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -442,5 +538,28 @@ mod tests {
         assert!(page.contains("data-whitted=\"example\""));
         assert!(page.contains("data-text=\"{&quot;x&quot;: 1}\""));
         assert!(page.contains("data-scene=\"whitted.json\""));
+    }
+
+    #[test]
+    fn the_page_has_every_figure_and_escapes_text() {
+        let lesson = parse(LESSON).unwrap();
+        let shown: Vec<Shown> = (0..1)
+            .map(|k| Shown {
+                png: format!("{k}.png"),
+                svg: format!("{k}.svg"),
+                command: "whitted figure rays s.json --lang ro -o <x>".into(),
+                error: None,
+            })
+            .collect();
+        let page = index_html(&[lesson], &[shown], Lang::Ro, "../index.html");
+        assert!(page.contains("<html lang=\"ro\">"));
+        assert!(page.contains("src=\"0.png\""));
+        assert!(page.contains("-o &lt;x&gt;"));
+        assert!(page.contains("href=\"../index.html\""));
+        assert!(
+            page.contains("<a href=\"glass.html\">Sticlă</a> (<a href=\"#glass\">figurile</a>)"),
+            "{page}"
+        );
+        assert!(page.contains("href=\"play.html\""));
     }
 }

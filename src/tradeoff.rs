@@ -1,30 +1,43 @@
 //! What accuracy costs, measured (product.md `whitted tradeoff`): one scene rendered under many
-//! settings — sampling mode (§8), recursion depth (§6), acceleration structure (§7, §9) — each
-//! timed and counted, and its image compared with a reference image of the same scene (adaptive
-//! sampling with threshold 0 and K = 3, i.e. every one of the 81 lattice points of a pixel's area,
-//! area-weighted, and `max_depth` 16).
+//! settings, each compared with a reference that differs from it in one thing only, so that a
+//! row's error is the error of what it varies. Three sweeps around the scene's own render
+//! (centre sampling, the scene's `max_depth`, the BVH):
 //!
-//! The settings vary one thing at a time around the scene's own render (centre sampling, the
-//! scene's `max_depth`, the BVH): the sampling modes, then the depths, then the structures. The
-//! errors are taken on the linear colours clamped to [0, 1], what the image file shows before its
-//! 8-bit rounding: the root mean square and the largest difference over pixels and channels, and
-//! the share of pixels with a channel off by more than 1/255.
+//! - sampling (§8): every mode at the scene's `max_depth`, against adaptive sampling with threshold
+//!   0 and K = 3 (all 81 lattice points of a pixel's area, area-weighted) at that same depth;
+//! - depth (§6): `max_depth` 0 … 8 (and the scene's own) with centre sampling, against centre
+//!   sampling at `max_depth` 16 (or the scene's own if deeper);
+//! - structure (§7, §9): every structure against brute force (`none`). A structure changes which
+//!   objects a ray is tested against, never which one it hits first, so its error is 0: the
+//!   sweep checks it and shows what the structures do change, the tests per ray.
+//!
+//! The cost of a setting is counted (rays by kind, tests by kind: the render's own stats) and
+//! timed (`runs` renders: min, median, max). The Pareto front of a sweep is decided on the rays
+//! traced, which do not depend on the machine nor on its load. The errors are taken on the
+//! linear colours clamped to [0, 1], what the image file shows before its 8-bit rounding: the root
+//! mean square and the largest difference over pixels and channels, and the share of pixels with
+//! a channel off by more than 1/255.
 
 use crate::accel::{Accel, AccelKind, AccelOptions};
 use crate::clock::Stopwatch;
 use crate::image::Image;
+use crate::record::stats::Stats;
 use crate::render::{render, RenderConfig, Rendered};
 use crate::sample::Sampling;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 
 /// The most renders of one setting `--runs` may ask for: medians steady well before this.
 pub const MAX_RUNS: u32 = 100;
-/// The reference: adaptive, threshold 0, K = 3 (81 shared samples per pixel area).
+/// Renders per setting when `--runs` is not given: enough for a median and a spread.
+pub const DEFAULT_RUNS: u32 = 5;
+/// The sampling sweep's reference: adaptive, threshold 0, K = 3 (81 shared samples per pixel
+/// area).
 pub const REFERENCE_SAMPLING: Sampling = Sampling::Adaptive { threshold: 0.0, max_level: 3 };
-/// The reference's `max_depth`.
+/// The depth sweep's reference `max_depth` (the scene's own if deeper).
 pub const REFERENCE_DEPTH: u32 = 16;
+/// The structure sweep's reference: brute force, every object tested by every ray.
+pub const REFERENCE_ACCEL: AccelKind = AccelKind::None;
 /// The adaptive thresholds of the sampling sweep.
 pub const THRESHOLDS: [f64; 3] = [0.3, 0.1, 0.03];
 /// The adaptive levels K of the sampling sweep.
@@ -43,40 +56,18 @@ pub struct Setting {
     pub accel: AccelKind,
 }
 
-/// The settings of a scene whose own `max_depth` is `depth`: centre, corners and adaptive at
-/// every threshold × level of [`THRESHOLDS`] × [`LEVELS`]; then the depths 0 … `min(depth, 8)`
-/// (and `depth` itself if deeper); then every structure, each with the others at the scene's
-/// render, which is listed once.
-#[must_use]
-pub fn settings(depth: u32) -> Vec<Setting> {
-    let base = Setting { sampling: Sampling::Center, depth, accel: AccelKind::Bvh };
-    let mut out = vec![base, Setting { sampling: Sampling::Corners, ..base }];
-    for max_level in LEVELS {
-        for threshold in THRESHOLDS {
-            out.push(Setting { sampling: Sampling::Adaptive { threshold, max_level }, ..base });
-        }
-    }
-    let depths = (0..=depth.min(DEPTHS_UP_TO)).chain((depth > DEPTHS_UP_TO).then_some(depth));
-    out.extend(depths.filter(|d| *d != depth).map(|d| Setting { depth: d, ..base }));
-    out.extend(
-        AccelKind::ALL.into_iter().filter(|k| *k != base.accel).map(|accel| Setting { accel, ..base }),
-    );
-    out
-}
-
-/// A sampling mode in a few words: `center`, `corners`, `adaptive 0.1, K = 2`.
-#[must_use]
-pub fn sampling_name(sampling: Sampling) -> String {
-    match sampling {
-        Sampling::Adaptive { threshold, max_level } => format!("adaptive {threshold}, K = {max_level}"),
-        other => other.name().to_owned(),
+impl Setting {
+    /// The scene's own render: centre sampling, its `max_depth`, the BVH.
+    #[must_use]
+    pub fn scene_render(depth: u32) -> Self {
+        Self { sampling: Sampling::Center, depth, accel: AccelKind::Bvh }
     }
 }
 
-/// Which of the three sweeps a setting belongs to: what it changes from the scene's render.
+/// What a sweep varies; its settings keep the rest at the scene's render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Sweep {
-    /// The sampling mode (the scene's render itself belongs here).
+    /// The sampling mode.
     Sampling,
     /// The `max_depth`.
     Depth,
@@ -85,27 +76,77 @@ pub enum Sweep {
 }
 
 impl Sweep {
-    /// The sweep of `setting`, from how it differs from the scene's render `base`.
+    /// The three sweeps, in the order they are measured and shown.
+    pub const ALL: [Self; 3] = [Self::Sampling, Self::Depth, Self::Accel];
+
+    /// A short name: `sampling`, `depth`, `structure` (the plot files' and JSON keys).
     #[must_use]
-    pub fn of(setting: &Setting, base: &Setting) -> Self {
-        if setting.depth != base.depth {
-            Self::Depth
-        } else if setting.accel != base.accel {
-            Self::Accel
-        } else {
-            Self::Sampling
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Sampling => "sampling",
+            Self::Depth => "depth",
+            Self::Accel => "structure",
+        }
+    }
+
+    /// The settings of this sweep for a scene whose own `max_depth` is `depth`, in order:
+    /// centre, corners, then adaptive at every level of [`LEVELS`] × threshold of [`THRESHOLDS`];
+    /// the depths 0 … 8 (and `depth` if deeper); every structure but the reference's.
+    #[must_use]
+    pub fn settings(self, depth: u32) -> Vec<Setting> {
+        let base = Setting::scene_render(depth);
+        match self {
+            Self::Sampling => {
+                let adaptive = LEVELS.into_iter().flat_map(|max_level| {
+                    THRESHOLDS.map(|threshold| Sampling::Adaptive { threshold, max_level })
+                });
+                [Sampling::Center, Sampling::Corners]
+                    .into_iter()
+                    .chain(adaptive)
+                    .map(|sampling| Setting { sampling, ..base })
+                    .collect()
+            }
+            Self::Depth => (0..=DEPTHS_UP_TO)
+                .chain((depth > DEPTHS_UP_TO).then_some(depth))
+                .map(|depth| Setting { depth, ..base })
+                .collect(),
+            Self::Accel => AccelKind::ALL
+                .into_iter()
+                .filter(|k| *k != REFERENCE_ACCEL)
+                .map(|accel| Setting { accel, ..base })
+                .collect(),
+        }
+    }
+
+    /// The reference of this sweep: the scene's render with only this sweep's field changed.
+    #[must_use]
+    pub fn reference(self, depth: u32) -> Setting {
+        let base = Setting::scene_render(depth);
+        match self {
+            Self::Sampling => Setting { sampling: REFERENCE_SAMPLING, ..base },
+            Self::Depth => Setting { depth: depth.max(REFERENCE_DEPTH), ..base },
+            Self::Accel => Setting { accel: REFERENCE_ACCEL, ..base },
+        }
+    }
+
+    /// A setting of this sweep by the one thing it varies: `adaptive 0.1, K = 2`, `max_depth 3`,
+    /// `grid`.
+    #[must_use]
+    pub fn setting_name(self, setting: &Setting) -> String {
+        match self {
+            Self::Sampling => sampling_name(setting.sampling),
+            Self::Depth => format!("max_depth {}", setting.depth),
+            Self::Accel => setting.accel.name().to_owned(),
         }
     }
 }
 
-/// A setting by what it changes from the scene's render `base`: `max_depth 3`, `grid`, or its
-/// sampling ([`sampling_name`]).
+/// A sampling mode in a few words: `center`, `corners`, `adaptive 0.1, K = 2`.
 #[must_use]
-pub fn setting_name(setting: &Setting, base: &Setting) -> String {
-    match Sweep::of(setting, base) {
-        Sweep::Depth => format!("max_depth {}", setting.depth),
-        Sweep::Accel => setting.accel.name().to_owned(),
-        Sweep::Sampling => sampling_name(setting.sampling),
+pub fn sampling_name(sampling: Sampling) -> String {
+    match sampling {
+        Sampling::Adaptive { threshold, max_level } => format!("adaptive {threshold}, K = {max_level}"),
+        other => other.name().to_owned(),
     }
 }
 
@@ -142,18 +183,44 @@ pub fn compare(image: &Image, reference: &Image) -> ImageError {
     ImageError { rmse: (sum / (3.0 * pixels)).sqrt(), max, off: off as f64 / pixels }
 }
 
+/// The trace times of a setting's renders, seconds: their spread and median.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Timing {
+    /// The fastest render.
+    pub min: f64,
+    /// The median (the mean of the middle two for an even count).
+    pub median: f64,
+    /// The slowest render.
+    pub max: f64,
+}
+
+impl Timing {
+    /// The timing of some renders' times (none: all zero).
+    #[must_use]
+    pub fn of(mut times: Vec<f64>) -> Self {
+        times.sort_by(f64::total_cmp);
+        let n = times.len();
+        let median = match n {
+            0 => 0.0,
+            n if n % 2 == 1 => times[n / 2],
+            n => 0.5 * (times[n / 2 - 1] + times[n / 2]),
+        };
+        Self { min: times.first().copied().unwrap_or(0.0), median, max: times.last().copied().unwrap_or(0.0) }
+    }
+}
+
 /// One setting, measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Measured {
     /// What was rendered.
     pub setting: Setting,
-    /// The median trace time over the runs, seconds.
-    pub seconds: f64,
-    /// Rays and tests of one render.
+    /// The trace times over the runs.
+    pub time: Timing,
+    /// Rays and tests of one render (the same in every run).
     pub stats: Stats,
     /// Pixels computed (a 2D strip counts its one row).
     pub pixels: u64,
-    /// Against the reference.
+    /// Against the sweep's reference.
     pub error: ImageError,
 }
 
@@ -163,33 +230,168 @@ impl Measured {
     pub fn per_pixel(&self, n: u64) -> f64 {
         n as f64 / self.pixels.max(1) as f64
     }
-    /// Rays of every kind per computed pixel.
+    /// Rays of every kind per computed pixel: the cost the Pareto front is decided on.
     #[must_use]
     pub fn rays_per_pixel(&self) -> f64 {
         self.per_pixel(self.stats.rays.total())
     }
-    /// Intersection tests (objects, bounding volumes, nodes, cells) per ray.
+    /// Intersection tests of every kind (objects, bounding volumes, nodes, cells).
+    #[must_use]
+    pub fn tests(&self) -> u64 {
+        let t = self.stats.tests;
+        t.object + t.bound + t.node + t.voxel
+    }
+    /// Intersection tests per ray.
     #[must_use]
     pub fn tests_per_ray(&self) -> f64 {
-        let t = self.stats.tests;
-        (t.object + t.bound + t.node + t.voxel) as f64 / self.stats.rays.total().max(1) as f64
+        self.tests() as f64 / self.stats.rays.total().max(1) as f64
+    }
+    /// Reflected and transmitted rays: those `max_depth` limits.
+    #[must_use]
+    pub fn secondary(&self) -> u64 {
+        self.stats.rays.reflected + self.stats.rays.transmitted
+    }
+}
+
+/// One sweep, measured: its reference and its rows, each compared with that reference.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measurement {
+    /// What the sweep varies.
+    pub sweep: Sweep,
+    /// The reference render, measured like the rows (its error is zero).
+    pub reference: Measured,
+    /// The settings of [`Sweep::settings`], in that order.
+    pub rows: Vec<Measured>,
+}
+
+impl Measurement {
+    /// The indices of the rows on the Pareto front of (rays traced, RMSE): no other row traces
+    /// at most as many rays with at most the error, fewer or less in one; ordered by rays.
+    #[must_use]
+    pub fn pareto_front(&self) -> Vec<usize> {
+        pareto_front(&self.rows)
+    }
+
+    /// A line per row saying why its result is what it is, computed from the counts.
+    #[must_use]
+    pub fn reasons(&self) -> Vec<String> {
+        (0..self.rows.len()).map(|i| self.reason(i)).collect()
+    }
+
+    fn reason(&self, i: usize) -> String {
+        match self.sweep {
+            Sweep::Sampling => self.sampling_reason(i),
+            Sweep::Depth => self.depth_reason(i),
+            Sweep::Accel => self.accel_reason(i),
+        }
+    }
+
+    /// Sampling: the samples a pixel, and the row that beats it if one does.
+    fn sampling_reason(&self, i: usize) -> String {
+        let m = &self.rows[i];
+        let r = m.stats.rays;
+        let out = format!(
+            "{:.2} primary rays a pixel, each with its tree: {:.2} rays a pixel in all",
+            m.per_pixel(r.primary),
+            m.rays_per_pixel()
+        );
+        let beaten_by = (0..self.rows.len())
+            .filter(|&j| dominates(&self.rows[j], m))
+            .min_by_key(|&j| self.rows[j].stats.rays.total());
+        let front = self.pareto_front();
+        let before =
+            front.iter().position(|&j| j == i).and_then(|k| k.checked_sub(1)).map(|k| &self.rows[front[k]]);
+        let name = |r: &Measured| self.sweep.setting_name(&r.setting);
+        let why = match (beaten_by, before) {
+            _ if m.error.rmse == 0.0 => "the reference's image, exactly".to_owned(),
+            (Some(j), _) => {
+                let b = &self.rows[j];
+                format!(
+                    "off the front: {} traces {:.2} rays a pixel for an RMSE of {:.5}",
+                    name(b),
+                    b.rays_per_pixel(),
+                    b.error.rmse
+                )
+            }
+            (None, Some(b)) => format!(
+                "on the front: {:.0} % less error than {} for {:.2}× its rays",
+                100.0 * (1.0 - m.error.rmse / b.error.rmse),
+                name(b),
+                m.stats.rays.total() as f64 / b.stats.rays.total().max(1) as f64
+            ),
+            (None, None) => "on the front, with the fewest rays".to_owned(),
+        };
+        format!("{out}; {why}")
+    }
+
+    /// Depth: the rays of level `d`, from the row at `d − 1`, and those the reference traces
+    /// beyond `d`.
+    fn depth_reason(&self, i: usize) -> String {
+        let m = &self.rows[i];
+        let d = m.setting.depth;
+        let below = self.rows.iter().find(|p| d > 0 && p.setting.depth == d - 1);
+        let level = match below {
+            _ if d == 0 => "ray casting: primary and shadow rays only".to_owned(),
+            Some(p) if p.stats == m.stats => {
+                format!("max_depth {} → {d} changes nothing: no ray of this scene reaches level {d}", d - 1)
+            }
+            Some(p) => format!(
+                "level {d} adds {:.3} reflected and {:.3} transmitted rays a pixel",
+                m.per_pixel(m.stats.rays.reflected - p.stats.rays.reflected.min(m.stats.rays.reflected)),
+                m.per_pixel(
+                    m.stats.rays.transmitted - p.stats.rays.transmitted.min(m.stats.rays.transmitted)
+                ),
+            ),
+            None => format!("levels 0 … {d}"),
+        };
+        let deeper = self.reference.secondary().saturating_sub(m.secondary());
+        let past = if deeper == 0 {
+            format!("no ray goes past level {d}, so the image is the reference's")
+        } else {
+            format!(
+                "the reference traces {:.3} more reflected and transmitted rays a pixel past level {d}",
+                m.per_pixel(deeper)
+            )
+        };
+        format!("{level}; {past}")
+    }
+
+    /// Structure: the error (0 by design), and the tests per ray against brute force's.
+    fn accel_reason(&self, i: usize) -> String {
+        let m = &self.rows[i];
+        let t = m.stats.tests;
+        let same = if m.error == ImageError::default() {
+            "error 0: a structure changes which objects a ray is tested against, never which one it hits first"
+        } else {
+            "differs from brute force: a structure must not change a pixel (a bug)"
+        };
+        format!(
+            "{same}; {:.2} tests a ray ({} objects, {} bounds, {} nodes, {} cells), {:.2}× brute force's {:.2}",
+            m.tests_per_ray(),
+            t.object,
+            t.bound,
+            t.node,
+            t.voxel,
+            m.tests() as f64 / self.reference.tests().max(1) as f64,
+            self.reference.tests_per_ray(),
+        )
     }
 }
 
 /// The whole measurement.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tradeoff {
-    /// The reference render, measured like the others (its error is zero).
-    pub reference: Measured,
-    /// Every setting of [`settings`], in that order.
-    pub rows: Vec<Measured>,
-    /// Renders per setting (the time is their median).
+    /// The scene's own render, the centre of every sweep.
+    pub base: Setting,
+    /// The sweeps of [`Sweep::ALL`], in that order.
+    pub sweeps: Vec<Measurement>,
+    /// Renders per setting.
     pub runs: usize,
 }
 
-/// Renders `setting` `runs` times (at least once) in the current rayon pool: the median trace
-/// time and the last render.
-fn measure<V: Dim>(scene: &Scene<V>, setting: Setting, runs: usize) -> (f64, Rendered) {
+/// Renders `setting` `runs` times (at least once) in the current rayon pool: the times and the
+/// last render.
+fn measure<V: Dim>(scene: &Scene<V>, setting: Setting, runs: usize) -> (Timing, Rendered) {
     let accel = Accel::build_with(scene, &AccelOptions::of(setting.accel));
     let config = RenderConfig { sampling: setting.sampling, ..RenderConfig::centers(setting.depth) };
     let timed = || {
@@ -204,62 +406,76 @@ fn measure<V: Dim>(scene: &Scene<V>, setting: Setting, runs: usize) -> (f64, Ren
         times.push(seconds);
         rendered = again;
     }
-    times.sort_by(f64::total_cmp);
-    (median(&times), rendered)
+    (Timing::of(times), rendered)
 }
 
-/// The median of sorted values (the mean of the middle two for an even count).
-fn median(sorted: &[f64]) -> f64 {
-    match sorted.len() {
-        0 => 0.0,
-        n if n % 2 == 1 => sorted[n / 2],
-        n => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
-    }
-}
-
-/// Measures every setting of the scene against the reference, `runs` renders each, in the
-/// current rayon pool; `progress` hears each setting as it starts (the reference first).
-pub fn run<V: Dim>(scene: &Scene<V>, runs: usize, mut progress: impl FnMut(&Setting)) -> Tradeoff {
-    let reference_setting =
-        Setting { sampling: REFERENCE_SAMPLING, depth: REFERENCE_DEPTH, accel: AccelKind::Bvh };
-    progress(&reference_setting);
-    let (seconds, reference_image) = measure(scene, reference_setting, runs);
-    let reference = Measured {
-        setting: reference_setting,
-        seconds,
-        stats: reference_image.stats,
-        pixels: reference_image.pixels,
-        error: ImageError::default(),
-    };
-    let rows = settings(scene.max_depth)
+/// The settings `run` renders, in order, each with whether it is a sweep's reference: for the
+/// progress line's count.
+#[must_use]
+pub fn plan(depth: u32) -> Vec<(Setting, bool)> {
+    Sweep::ALL
         .into_iter()
-        .map(|setting| {
-            progress(&setting);
-            let (seconds, rendered) = measure(scene, setting, runs);
-            Measured {
+        .flat_map(|s| {
+            std::iter::once((s.reference(depth), true))
+                .chain(s.settings(depth).into_iter().map(|x| (x, false)))
+        })
+        .collect()
+}
+
+/// Measures every sweep of the scene, `runs` renders a setting, in the current rayon pool;
+/// `progress` hears each setting as it starts (a sweep's reference first, `true`).
+pub fn run<V: Dim>(
+    scene: &Scene<V>,
+    runs: usize,
+    mut progress: impl FnMut(Sweep, &Setting, bool),
+) -> Tradeoff {
+    let depth = scene.max_depth;
+    let sweeps = Sweep::ALL
+        .into_iter()
+        .map(|sweep| {
+            let setting = sweep.reference(depth);
+            progress(sweep, &setting, true);
+            let (time, image) = measure(scene, setting, runs);
+            let reference = Measured {
                 setting,
-                seconds,
-                stats: rendered.stats,
-                pixels: rendered.pixels,
-                error: compare(&rendered.image, &reference_image.image),
-            }
+                time,
+                stats: image.stats,
+                pixels: image.pixels,
+                error: ImageError::default(),
+            };
+            let rows = sweep
+                .settings(depth)
+                .into_iter()
+                .map(|setting| {
+                    progress(sweep, &setting, false);
+                    let (time, rendered) = measure(scene, setting, runs);
+                    Measured {
+                        setting,
+                        time,
+                        stats: rendered.stats,
+                        pixels: rendered.pixels,
+                        error: compare(&rendered.image, &image.image),
+                    }
+                })
+                .collect();
+            Measurement { sweep, reference, rows }
         })
         .collect();
-    Tradeoff { reference, rows, runs }
+    Tradeoff { base: Setting::scene_render(depth), sweeps, runs }
 }
 
-/// The indices of the rows on the Pareto front of (time, RMSE): no other row is at least as fast
-/// and at least as accurate while better in one; ordered by time.
+/// Whether `a` beats `b`: at most its rays and its RMSE, fewer or less in one.
+fn dominates(a: &Measured, b: &Measured) -> bool {
+    let (ra, rb) = (a.stats.rays.total(), b.stats.rays.total());
+    ra <= rb && a.error.rmse <= b.error.rmse && (ra < rb || a.error.rmse < b.error.rmse)
+}
+
+/// The indices of the rows that no other row beats on (rays traced, RMSE), ordered by rays.
 #[must_use]
 pub fn pareto_front(rows: &[Measured]) -> Vec<usize> {
-    let dominates = |a: &Measured, b: &Measured| {
-        a.seconds <= b.seconds
-            && a.error.rmse <= b.error.rmse
-            && (a.seconds < b.seconds || a.error.rmse < b.error.rmse)
-    };
     let mut front: Vec<usize> =
         (0..rows.len()).filter(|&i| !rows.iter().any(|other| dominates(other, &rows[i]))).collect();
-    front.sort_by(|&a, &b| rows[a].seconds.total_cmp(&rows[b].seconds).then(a.cmp(&b)));
+    front.sort_by(|&a, &b| rows[a].stats.rays.total().cmp(&rows[b].stats.rays.total()).then(a.cmp(&b)));
     front
 }
 
@@ -268,6 +484,7 @@ pub fn pareto_front(rows: &[Measured]) -> Vec<usize> {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
+    use crate::record::stats::RayCounts;
     use crate::scene::material::Rgb;
 
     fn image(values: &[[f64; 3]]) -> Image {
@@ -289,37 +506,86 @@ mod tests {
     }
 
     #[test]
-    fn settings_vary_one_thing_at_a_time_and_list_the_scene_render_once() {
-        let s = settings(4);
-        // 2 + 9 sampling modes, depths 0..=3 (4 is the scene's), 4 other structures.
-        assert_eq!(s.len(), 11 + 4 + 4);
-        let base = s[0];
-        assert_eq!(base, Setting { sampling: Sampling::Center, depth: 4, accel: AccelKind::Bvh });
-        assert_eq!(s.iter().filter(|x| **x == base).count(), 1);
-        for x in &s[1..] {
-            let changed = usize::from(x.sampling != base.sampling)
-                + usize::from(x.depth != base.depth)
-                + usize::from(x.accel != base.accel);
-            assert_eq!(changed, 1, "{x:?}");
+    fn each_setting_differs_from_its_reference_in_its_sweep_only() {
+        for depth in [0, 4, 20] {
+            for sweep in Sweep::ALL {
+                let reference = sweep.reference(depth);
+                for s in sweep.settings(depth) {
+                    assert_eq!(s.accel != reference.accel, sweep == Sweep::Accel, "{sweep:?} {s:?}");
+                    assert_eq!(s.sampling != reference.sampling, sweep == Sweep::Sampling, "{sweep:?} {s:?}");
+                    if sweep == Sweep::Depth {
+                        // Only a scene deeper than the reference's 16 meets it, with its own depth.
+                        assert!(s.depth != reference.depth || s.depth == depth, "{s:?}");
+                    } else {
+                        assert_eq!(s.depth, reference.depth, "{sweep:?} {s:?}");
+                    }
+                }
+            }
         }
-        // A deep scene: 0..=8 and its own depth.
-        let deep: Vec<u32> = settings(20).iter().map(|x| x.depth).filter(|d| *d != 20).collect();
-        assert_eq!(deep, (0..=8).collect::<Vec<_>>());
+        // 2 + 9 sampling modes; depths 0 … 8 (a deeper scene adds its own); 4 structures.
+        assert_eq!(Sweep::Sampling.settings(4).len(), 11);
+        let depths = |d| Sweep::Depth.settings(d).iter().map(|s| s.depth).collect::<Vec<_>>();
+        assert_eq!(depths(4), (0..=8).collect::<Vec<_>>());
+        assert_eq!(depths(20), (0..=8).chain([20]).collect::<Vec<_>>());
+        assert_eq!(Sweep::Depth.reference(20).depth, 20);
+        assert_eq!(Sweep::Accel.settings(4).len(), 4);
+        assert_eq!(plan(4).len(), 3 + 11 + 9 + 4);
+    }
+
+    fn row(depth: u32, primary: u64, reflected: u64, rmse: f64) -> Measured {
+        Measured {
+            setting: Setting { depth, ..Setting::scene_render(depth) },
+            time: Timing::default(),
+            stats: Stats {
+                rays: RayCounts { primary, reflected, ..RayCounts::default() },
+                ..Stats::default()
+            },
+            pixels: 1,
+            error: ImageError { rmse, ..ImageError::default() },
+        }
     }
 
     #[test]
-    fn the_pareto_front_keeps_what_nothing_beats() {
-        let row = |seconds: f64, rmse: f64| Measured {
-            setting: Setting { sampling: Sampling::Center, depth: 1, accel: AccelKind::None },
-            seconds,
-            stats: Stats::default(),
-            pixels: 1,
-            error: ImageError { rmse, ..ImageError::default() },
-        };
-        // 0 fast and rough, 1 dominated by 0, 2 slow and exact, 3 between, 4 a tie of 3.
-        let rows = [row(1.0, 0.5), row(2.0, 0.6), row(9.0, 0.0), row(3.0, 0.2), row(3.0, 0.2)];
+    fn the_pareto_front_keeps_what_nothing_beats_on_rays() {
+        // 0 cheap and rough, 1 beaten by 0, 2 dear and exact, 3 between, 4 a tie of 3.
+        let rows =
+            [row(1, 1, 0, 0.5), row(1, 2, 0, 0.6), row(1, 9, 0, 0.0), row(1, 3, 0, 0.2), row(1, 3, 0, 0.2)];
         assert_eq!(pareto_front(&rows), vec![0, 3, 4, 2]);
-        assert_eq!(median(&[1.0, 2.0, 10.0]), 2.0);
-        assert_eq!(median(&[1.0, 2.0, 3.0, 10.0]), 2.5);
+        let mut rows = rows.to_vec();
+        for (row, threshold) in rows.iter_mut().zip([0.5, 0.4, 0.0, 0.2, 0.1]) {
+            row.setting.sampling = Sampling::Adaptive { threshold, max_level: 2 };
+        }
+        let m = Measurement { sweep: Sweep::Sampling, reference: row(1, 9, 0, 0.0), rows };
+        let why = m.reasons();
+        assert!(why[0].ends_with("on the front, with the fewest rays"), "{}", why[0]);
+        assert!(why[1]
+            .ends_with("off the front: adaptive 0.5, K = 2 traces 1.00 rays a pixel for an RMSE of 0.50000"));
+        assert!(why[3].ends_with("on the front: 60 % less error than adaptive 0.5, K = 2 for 3.00× its rays"));
+        assert!(why[2].ends_with("the reference's image, exactly"), "{}", why[2]);
+    }
+
+    #[test]
+    fn a_depth_that_adds_no_ray_says_so() {
+        // Level 1 adds 2 reflected rays; level 2 none; the reference traces 1 more past them.
+        let rows = vec![row(0, 4, 0, 0.3), row(1, 4, 2, 0.1), row(2, 4, 2, 0.1)];
+        let m = Measurement { sweep: Sweep::Depth, reference: row(16, 4, 3, 0.0), rows };
+        let why = m.reasons();
+        assert!(why[0].starts_with("ray casting"), "{}", why[0]);
+        assert!(why[1].starts_with("level 1 adds 2.000 reflected"), "{}", why[1]);
+        assert!(why[2].starts_with("max_depth 1 → 2 changes nothing: no ray of this scene reaches level 2"));
+        assert!(
+            why[2].ends_with("1.000 more reflected and transmitted rays a pixel past level 2"),
+            "{}",
+            why[2]
+        );
+        let exact = Measurement { reference: row(16, 4, 2, 0.0), ..m };
+        assert!(exact.reasons()[2].contains("no ray goes past level 2"));
+    }
+
+    #[test]
+    fn timing_keeps_the_spread_and_the_median() {
+        assert_eq!(Timing::of(vec![2.0, 10.0, 1.0]), Timing { min: 1.0, median: 2.0, max: 10.0 });
+        assert_eq!(Timing::of(vec![3.0, 1.0, 2.0, 10.0]).median, 2.5);
+        assert_eq!(Timing::of(vec![]), Timing::default());
     }
 }

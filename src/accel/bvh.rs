@@ -23,10 +23,10 @@ use crate::bounds::aabb::Aabb;
 use crate::geom::ray::Ray;
 use crate::geom::slab::RecipRay;
 use crate::geom::Vector;
+use crate::record::stats::Stats;
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 use arrayvec::ArrayVec;
 
 /// Centroid bins per axis.

@@ -27,10 +27,10 @@ use crate::geom::ray::Ray;
 use crate::geom::slab::{box_crossing, culling_hit, widen_exit};
 use crate::geom::Vector;
 use crate::record::event::Event;
+use crate::record::stats::Stats;
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 
 /// λ, the cells per primitive the heuristic aims at.
 pub const CELLS_PER_PRIM: f64 = 4.0;

@@ -2,10 +2,10 @@
 //! triangles in their order. The oracle every other structure is tested against.
 
 use super::{Prim, Visitor};
+use crate::record::stats::Stats;
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 
 /// Hands every primitive of every object, in index order, to the visitor.
 #[inline(never)]

@@ -23,11 +23,11 @@ use crate::bounds::{BoundHit, BoundingVolume, Hull, VolumeKind};
 use crate::geom::ray::Ray;
 use crate::geom::slab::culling_hit;
 use crate::record::event::{Event, ObjectRef};
+use crate::record::stats::Stats;
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::plane::Plane;
 use crate::shape::{Dim, Facet, Found, Shape, SurfaceHit};
-use crate::trace::stats::Stats;
 use std::cell::RefCell;
 
 /// The `--accel` choice.

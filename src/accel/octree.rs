@@ -19,10 +19,10 @@ use crate::bounds::aabb::Aabb;
 use crate::geom::ray::Ray;
 use crate::geom::slab::RecipRay;
 use crate::geom::Vector;
+use crate::record::stats::Stats;
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 
 /// The deepest level (the root is level 0).
 pub const MAX_DEPTH: u32 = 8;

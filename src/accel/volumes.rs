@@ -6,10 +6,10 @@ use super::{object_ref, prim_hull, Prim, Visitor};
 use crate::bounds::{BoundingVolume, VolumeKind};
 use crate::geom::ray::Ray;
 use crate::record::event::Event;
+use crate::record::stats::Stats;
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 
 /// Every primitive with its volume, in object order.
 #[derive(Clone, Debug)]

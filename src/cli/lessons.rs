@@ -14,17 +14,19 @@ use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use whitted::accel::AccelOptions;
+use whitted::canvas::Drawing;
 use whitted::figure::source::Tracing;
 use whitted::figure::{Lang, Options};
-use whitted::lesson::{self, FigureSpec, Lesson, Shown};
-use whitted::request::figure::{figure, Request};
+use whitted::lesson::claim::Verdict;
+use whitted::lesson::{self, FigureSpec, Lesson};
+use whitted::request::figure::{figure_checked, Request};
 use whitted::request::options::canvas;
 use whitted::request::parse;
 use whitted::request::target::Target;
 use whitted::sample::Sampling;
 use whitted::scene::load::MAX_SCENE_BYTES;
 use whitted::scene::AnyScene;
-use whitted::site::{self, Nav, View};
+use whitted::site::{self, Nav, Shown, View};
 
 /// Options of `whitted lessons`.
 #[derive(Args, Debug)]
@@ -68,6 +70,8 @@ const SITE_FILES: [(&str, &str); 2] = [
 
 /// One figure drawn: (lesson, figure, language) and why it failed, if it did.
 type Drawn = ((usize, usize, Lang), Option<String>);
+/// One figure made, not yet written: its drawing and its claims' verdicts, or why it failed.
+type Made = ((usize, usize, Lang), Result<(Drawing, Vec<Verdict>), String>);
 
 /// A lesson file read, with the folder its scene paths are relative to.
 struct Read {
@@ -199,15 +203,14 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             jobs.extend(langs.iter().map(|g| (l, f, *g)));
         }
     }
-    let results: Vec<Drawn> = jobs
+    // Every figure is made and its claims checked before anything is written: a figure that no
+    // longer shows its point stops the run (exit 1) with every failed claim listed.
+    let made: Vec<Made> = jobs
         .par_iter()
         .map(|&(l, f, lang)| {
             let r = &read[l];
             let spec = &r.lesson.figures[f];
             let scene_path = r.dir.join(&spec.scene);
-            let stem = r.lesson.file_stem(f);
-            let dir = args.out.join(lang_dir(lang));
-            let (png, svg) = (dir.join(format!("{stem}.png")), dir.join(format!("{stem}.svg")));
             let request = Request {
                 kind: spec.kind,
                 target: Target {
@@ -221,19 +224,45 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
                 },
                 opts: Options { lang, width, height },
             };
-            let made = scenes[&scene_path]
-                .as_ref()
-                .map_err(Clone::clone)
-                .and_then(|scene| figure(scene, &scene_name(&scene_path), &request).map_err(|f| f.message))
-                .and_then(|made| {
-                    let drawing = made.drawing;
-                    for (path, format) in [(&png, Format::Png), (&svg, Format::Svg)] {
-                        write_file(path, &format.encode(&drawing).map_err(|f| f.message)?)
-                            .map_err(|f| f.message)?;
-                    }
-                    Ok(())
-                });
-            ((l, f, lang), made.err())
+            let made = scenes[&scene_path].as_ref().map_err(Clone::clone).and_then(|scene| {
+                figure_checked(scene, &scene_name(&scene_path), &request, &spec.claims)
+                    .map(|(made, verdicts)| (made.drawing, verdicts))
+                    .map_err(|f| f.message)
+            });
+            ((l, f, lang), made)
+        })
+        .collect();
+    let mut unmet: Vec<String> = Vec::new();
+    for ((l, f, _), made) in &made {
+        for verdict in made.iter().flat_map(|(_, v)| v).filter(|v| !v.holds()) {
+            let spec = &read[*l].lesson.figures[*f];
+            let line = verdict.message(&read[*l].lesson.name, f + 1, spec.kind.name());
+            if !unmet.contains(&line) {
+                unmet.push(line);
+            }
+        }
+    }
+    if !unmet.is_empty() {
+        return Err(Failure::other(format!(
+            "{} claim(s) of the lessons do not hold; nothing was written:\n{}",
+            unmet.len(),
+            unmet.join("\n")
+        )));
+    }
+    let results: Vec<Drawn> = made
+        .into_par_iter()
+        .map(|((l, f, lang), made)| {
+            let stem = read[l].lesson.file_stem(f);
+            let dir = args.out.join(lang_dir(lang));
+            let (png, svg) = (dir.join(format!("{stem}.png")), dir.join(format!("{stem}.svg")));
+            let written = made.and_then(|(drawing, _)| {
+                for (path, format) in [(&png, Format::Png), (&svg, Format::Svg)] {
+                    write_file(path, &format.encode(&drawing).map_err(|f| f.message)?)
+                        .map_err(|f| f.message)?;
+                }
+                Ok(())
+            });
+            ((l, f, lang), written.err())
         })
         .collect();
 
@@ -276,7 +305,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             Lang::En => (args.out.join("index.html"), "ro/index.html"),
             Lang::Ro => (args.out.join("ro").join("index.html"), "../index.html"),
         };
-        write_file(&page, lesson::index_html(&lessons, &shown, *lang, other).as_bytes())?;
+        write_file(&page, site::index_html(&lessons, &shown, *lang, other).as_bytes())?;
     }
     write_site(args, &read, &langs, &results)?;
     let figures: usize =

@@ -1,8 +1,8 @@
-//! `whitted tradeoff`: what accuracy costs, measured (product.md). Every setting of
-//! `whitted::tradeoff::settings` is rendered `--runs` times in this process; stdout gets a
-//! Markdown table (or, with `--json`, the same figures as JSON), and with `--out DIR` the plots go
-//! to DIR: the error against the time with the Pareto front, and the reference's rays-per-pixel
-//! heat map.
+//! `whitted tradeoff`: what accuracy costs, measured (product.md). The sweeps of
+//! `whitted::tradeoff` are rendered `--runs` times each in this process; stdout gets a Markdown
+//! table per sweep with a line per row saying why (or, with `--json`, the same figures as JSON),
+//! and with `--out DIR` the plots go to DIR: the error against the rays traced of the sampling
+//! and of the depth sweep, and the rays per pixel of adaptive sampling as a heat map.
 
 use super::figure::{scene_name, Format};
 use super::trace::LangArg;
@@ -27,22 +27,23 @@ use whitted::request::parse;
 use whitted::request::target::Target;
 use whitted::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD};
 use whitted::scene::{AnyScene, Scene};
-use whitted::tradeoff::{self, Measured, Tradeoff, REFERENCE_DEPTH, REFERENCE_SAMPLING};
+use whitted::tradeoff::{self, Measured, Measurement, Sweep, Timing, Tradeoff, DEFAULT_RUNS};
 
 /// Options of `whitted tradeoff`.
 #[derive(Args, Debug)]
 pub struct TradeoffArgs {
     /// The scene file (JSON).
     scene: PathBuf,
-    /// Also draw the plots into this folder (created if missing): the error against the time
-    /// with the Pareto front, and the reference's rays-per-pixel heat map, PNG and SVG.
+    /// Also draw the plots into this folder (created if missing), PNG and SVG: the error against
+    /// the rays traced with the Pareto front, for sampling (sampling.*) and depth (depth.*); and
+    /// the rays per pixel of adaptive sampling (threshold 0.1, K = 2) as a heat map (heat-map.*).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Print the measurements as JSON instead of a Markdown table.
     #[arg(long)]
     json: bool,
-    /// Renders per setting; the time is their median.
-    #[arg(long, default_value_t = 3, value_parser = parse::runs, allow_hyphen_values = true)]
+    /// Renders per setting; the table shows their median time and its spread (min–max).
+    #[arg(long, default_value_t = DEFAULT_RUNS, value_parser = parse::runs, allow_hyphen_values = true)]
     runs: u32,
     /// Worker threads (default: one per core).
     #[arg(long, value_parser = parse::threads, allow_hyphen_values = true)]
@@ -55,8 +56,11 @@ pub struct TradeoffArgs {
     lang: LangArg,
 }
 
-/// The plots of `--out`, each written as PNG and SVG.
-const PLOTS: [&str; 2] = ["tradeoff", "heat-map"];
+/// The plots of `--out`, each written as PNG and SVG: one per sweep with an error (by
+/// [`Sweep::name`]), and the heat map.
+const PLOTS: [&str; 3] = ["sampling", "depth", "heat-map"];
+/// The sweeps that have a plot (a structure changes no pixel: its error is 0).
+const PLOTTED: [Sweep; 2] = [Sweep::Sampling, Sweep::Depth];
 /// The plots' formats, by extension.
 const PLOT_FORMATS: [(&str, Format); 2] = [("png", Format::Png), ("svg", Format::Svg)];
 
@@ -92,14 +96,13 @@ pub fn run(args: &TradeoffArgs) -> Result<(), Failure> {
 }
 
 fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> Result<(), Failure> {
-    // The reference render is the most demanding one, and its image is kept beside each other.
-    let reference = RenderConfig { sampling: REFERENCE_SAMPLING, ..RenderConfig::centers(REFERENCE_DEPTH) };
-    check_fits(scene, &reference, threads).map_err(|e| Failure::input(format!("tradeoff: {e}")))?;
-    let settings = tradeoff::settings(scene.max_depth);
-    let (total, base) = (settings.len() + 1, settings[0]);
+    // The dearest render is the sampling sweep's reference: it must fit.
+    let reference = Sweep::Sampling.reference(scene.max_depth);
+    let config = RenderConfig { sampling: reference.sampling, ..RenderConfig::centers(reference.depth) };
+    check_fits(scene, &config, threads).map_err(|e| Failure::input(format!("tradeoff: {e}")))?;
     let lang = args.lang.lang();
     let bar = std::io::stderr().is_terminal().then(|| {
-        let bar = ProgressBar::new(total as u64);
+        let bar = ProgressBar::new(tradeoff::plan(scene.max_depth).len() as u64);
         let template = format!(
             "{{elapsed_precise}} [{{bar:30}}] {{pos}}/{{len}} {}: {{msg}}",
             Label::ProgressSettings.text(lang)
@@ -109,13 +112,13 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
         }
         bar
     });
-    let measured = tradeoff::run(scene, args.runs as usize, |setting| {
+    let measured = tradeoff::run(scene, args.runs as usize, |sweep, setting, is_reference| {
         if let Some(bar) = &bar {
-            let reference = setting.sampling == REFERENCE_SAMPLING && setting.depth == REFERENCE_DEPTH;
-            bar.set_message(if reference {
-                Label::ProgressReference.text(lang).to_owned()
+            let name = sweep.setting_name(setting);
+            bar.set_message(if is_reference {
+                format!("{} ({name})", Label::ProgressReference.text(lang))
             } else {
-                tradeoff::setting_name(setting, &base)
+                name
             });
             bar.inc(1);
         }
@@ -123,7 +126,6 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    let front = tradeoff::pareto_front(&measured.rows);
     let (nx, ny) = (scene.camera.nx, scene.camera.ny);
     if args.json {
         let doc = json!({
@@ -132,18 +134,26 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
             "threads": threads,
             "runs": measured.runs,
             "errors_on": "linear RGB clamped to [0, 1]",
-            "reference": row_json(&measured.reference),
-            "rows": measured.rows.iter().map(row_json).collect::<Vec<_>>(),
-            "pareto": front,
+            "pareto_on": "rays traced",
+            "sweeps": measured.sweeps.iter().map(sweep_json).collect::<Vec<_>>(),
         });
         print_out(&format!("{doc:#}\n"));
     } else {
-        print_out(&table(scene, args, threads, &measured, &front));
+        print_out(&tables(scene, args, threads, &measured));
     }
-    plots(scene, args, &measured, &front)
+    plots(scene, args, &measured)
 }
 
-fn row_json(m: &Measured) -> Value {
+fn sweep_json(m: &Measurement) -> Value {
+    json!({
+        "sweep": m.sweep.name(),
+        "reference": row_json(m.sweep, &m.reference, ""),
+        "rows": m.rows.iter().zip(m.reasons()).map(|(r, why)| row_json(m.sweep, r, &why)).collect::<Vec<_>>(),
+        "pareto": m.pareto_front(),
+    })
+}
+
+fn row_json(sweep: Sweep, m: &Measured, why: &str) -> Value {
     let s = m.setting;
     // The keys of `render --json` and of a sampled trace document: `aa`, then its parameters.
     let mut sampling = json!({"aa": s.sampling.name()});
@@ -154,11 +164,13 @@ fn row_json(m: &Measured) -> Value {
     let r = m.stats.rays;
     let mut counts = stats(&m.stats);
     counts["rays"]["total"] = json!(r.total());
-    json!({
+    counts["tests"]["total"] = json!(m.tests());
+    let mut row = json!({
+        "name": sweep.setting_name(&s),
         "sampling": sampling,
         "max_depth": s.depth,
         "accel": s.accel.name(),
-        "seconds": m.seconds,
+        "seconds": {"min": m.time.min, "median": m.time.median, "max": m.time.max},
         "pixels": m.pixels,
         "rays": counts["rays"],
         "rays_per_pixel": {"primary": m.per_pixel(r.primary), "reflected": m.per_pixel(r.reflected),
@@ -169,81 +181,97 @@ fn row_json(m: &Measured) -> Value {
         "rmse": m.error.rmse,
         "max_error": m.error.max,
         "off_share": m.error.off,
-    })
+    });
+    if !why.is_empty() {
+        row["why"] = json!(why);
+    }
+    row
 }
 
-fn table<V: Planar>(
-    scene: &Scene<V>,
-    args: &TradeoffArgs,
-    threads: usize,
-    measured: &Tradeoff,
-    front: &[usize],
-) -> String {
+/// A time with its spread, in ms: `12.3 (11.9–14.0)`.
+fn time_ms(t: &Timing) -> String {
+    format!("{:.1} ({:.1}–{:.1})", 1e3 * t.median, 1e3 * t.min, 1e3 * t.max)
+}
+
+fn tables<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize, measured: &Tradeoff) -> String {
     let cam = &scene.camera;
     let size = if V::DIM == 2 { format!("{}", cam.nx) } else { format!("{}x{}", cam.nx, cam.ny) };
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "What accuracy costs: {} at {size}, {threads} thread(s), median of {} render(s) a setting.\n\
-         Error against the reference (adaptive, threshold 0, K = 3, max_depth {REFERENCE_DEPTH}) on the \
-         linear colours clamped to [0, 1]; Pareto: on the front of time against RMSE.\n",
+        "What accuracy costs: {} at {size}, {threads} thread(s), {} render(s) a setting.\n\
+         Each sweep varies one thing from the scene's render (centre sampling, max_depth {}, bvh) and \
+         compares each image with a reference that differs from it in that thing only; errors on the \
+         linear colours clamped to [0, 1]. Cost: rays traced and intersection tests (the render's \
+         counts, the same on any machine); the Pareto front is decided on rays; the time is the \
+         median trace time (min–max over the runs).",
         args.scene.display(),
         measured.runs,
+        measured.base.depth,
     );
-    let _ = writeln!(
-        out,
-        "| sampling | max_depth | accel | time (ms) | rays/pixel | primary | reflected | transmitted | shadow | tests/ray | RMSE | max error | off > 1/255 | Pareto |"
-    );
-    let _ = writeln!(out, "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
-    let row = |out: &mut String, m: &Measured, pareto: &str| {
-        let r = m.stats.rays;
+    for m in &measured.sweeps {
+        let front = m.pareto_front();
+        let _ = writeln!(out, "\n## {}: reference {}\n", m.sweep.name(), describe(&m.reference));
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {:.3} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.5} | {:.4} | {:.2} % | {pareto} |",
-            tradeoff::sampling_name(m.setting.sampling),
-            m.setting.depth,
-            m.setting.accel.name(),
-            1e3 * m.seconds,
-            m.rays_per_pixel(),
-            m.per_pixel(r.primary),
-            m.per_pixel(r.reflected),
-            m.per_pixel(r.transmitted),
-            m.per_pixel(r.shadow),
-            m.tests_per_ray(),
-            m.error.rmse,
-            m.error.max,
-            100.0 * m.error.off,
+            "| {} | rays/pixel | primary | reflected | transmitted | shadow | tests/ray | time ms (min–max) | RMSE | max error | off > 1/255 | Pareto |",
+            m.sweep.name()
         );
-    };
-    for (i, m) in measured.rows.iter().enumerate() {
-        row(&mut out, m, if front.contains(&i) { "yes" } else { "" });
+        let _ = writeln!(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+        let row = |out: &mut String, r: &Measured, pareto: &str| {
+            let k = r.stats.rays;
+            let _ = writeln!(
+                out,
+                "| {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {:.5} | {:.4} | {:.2} % | {pareto} |",
+                m.sweep.setting_name(&r.setting),
+                r.rays_per_pixel(),
+                r.per_pixel(k.primary),
+                r.per_pixel(k.reflected),
+                r.per_pixel(k.transmitted),
+                r.per_pixel(k.shadow),
+                r.tests_per_ray(),
+                time_ms(&r.time),
+                r.error.rmse,
+                r.error.max,
+                100.0 * r.error.off,
+            );
+        };
+        // A structure's error is 0 by design: no front, the cost is in its tests.
+        let with_front = m.sweep != Sweep::Accel;
+        for (i, r) in m.rows.iter().enumerate() {
+            row(&mut out, r, if with_front && front.contains(&i) { "yes" } else { "" });
+        }
+        row(&mut out, &m.reference, "reference");
+        let _ = writeln!(out);
+        for (r, why) in m.rows.iter().zip(m.reasons()) {
+            let _ = writeln!(out, "- {}: {why}.", m.sweep.setting_name(&r.setting));
+        }
     }
-    row(&mut out, &measured.reference, "reference");
     out
 }
 
-/// The plots of `--out DIR`: `tradeoff.png`/`.svg` (error against time, the Pareto front) and
-/// `heat-map.png`/`.svg` (the rays per pixel of adaptive sampling at threshold 0.1, K = 2, the
-/// default of `whitted figure adaptive`, where the counts vary with the image).
-fn plots<V: Planar>(
-    scene: &Scene<V>,
-    args: &TradeoffArgs,
-    measured: &Tradeoff,
-    front: &[usize],
-) -> Result<(), Failure> {
+/// A setting in full: `adaptive 0, K = 3, max_depth 4, bvh`.
+fn describe(m: &Measured) -> String {
+    let s = m.setting;
+    format!("{}, max_depth {}, {}", tradeoff::sampling_name(s.sampling), s.depth, s.accel.name())
+}
+
+/// The plots of `--out DIR`: `sampling` and `depth` (error against rays traced, the Pareto front),
+/// and `heat-map` (the rays per pixel of adaptive sampling at threshold 0.1, K = 2, the default of
+/// `whitted figure adaptive`, where the counts vary with the image), each `.png` and `.svg`.
+fn plots<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, measured: &Tradeoff) -> Result<(), Failure> {
     let Some(dir) = &args.out else { return Ok(()) };
     let (width, height) = canvas(None)?;
     let opts = Options { lang: args.lang.lang(), width, height };
     let name = scene_name(&args.scene);
-    // A scene whose every image equals the reference (nothing but background, say) has no
-    // point to plot: the table says so, and only the heat map is drawn.
-    let plot = match tradeoff_plot::draw(measured, front, &name, &opts) {
-        Ok(plot) => Some(plot),
-        Err(e) => {
-            eprintln!("whitted tradeoff: no plot of error against time: {e}");
-            None
+    let mut drawings = Vec::new();
+    for sweep in PLOTTED {
+        let Some(m) = measured.sweeps.iter().find(|m| m.sweep == sweep) else { continue };
+        match tradeoff_plot::draw(m, &m.pareto_front(), &name, &opts) {
+            Ok(plot) => drawings.push((sweep.name(), plot)),
+            Err(e) => eprintln!("whitted tradeoff: no {} plot: {e}", sweep.name()),
         }
-    };
+    }
     let heat = figure_in(
         scene,
         &name,
@@ -259,8 +287,8 @@ fn plots<V: Planar>(
         },
     )?
     .drawing;
-    for (stem, drawing) in PLOTS.into_iter().zip([plot.as_ref(), Some(&heat)]) {
-        let Some(drawing) = drawing else { continue };
+    drawings.push(("heat-map", heat));
+    for (stem, drawing) in &drawings {
         for (ext, format) in PLOT_FORMATS {
             write_file(&plot_file(dir, stem, ext), &format.encode(drawing)?)?;
         }

@@ -21,11 +21,11 @@ pub mod samples;
 
 use crate::geom::Vector;
 use crate::record::event::{Event, LightTerm, NodeHit, ObjectRef};
+use crate::record::stats::Stats;
 use crate::record::{EventLog, RayNode};
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 use serde_json::{json, Map, Value};
 
 /// A float as JSON: ±∞ as the strings `"inf"`/`"-inf"`.

@@ -23,15 +23,15 @@
 //!
 //! The pixel is traced alone: corners it shares with neighbouring pixels are traced here too.
 
-use super::narrate::{num, Lang, Narration};
+use super::narrate::{num, rays_line, Lang, Narration};
 use super::{color, event, float, node, stats, Namer, TraceTarget};
 use crate::record::event::Event;
+use crate::record::stats::Stats;
 use crate::record::EventLog;
 use crate::sample::{PixelTrace, Sampling};
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 use serde_json::{json, Value};
 use std::fmt::Write;
 
@@ -219,21 +219,8 @@ pub fn sample_narration<V>(
         rgb(pixel.color),
         bytes
     );
-    let r = stats_.rays;
-    let _ = writeln!(
-        out,
-        "{}: {} {}, {} {}, {} {}, {} {}; {} {}",
-        t("Rays", "Raze"),
-        r.primary,
-        t("primary", "primare"),
-        r.reflected,
-        t("reflected", "reflectate"),
-        r.transmitted,
-        t("transmitted", "transmise"),
-        r.shadow,
-        t("shadow", "de umbră"),
-        stats_.tests.object,
-        t("object tests", "teste de intersecție")
-    );
-    Narration { text: out, events }
+    out.push_str(&rays_line(stats_, lang));
+    // No ray tree to stand in: the steps are the pixel's.
+    let places = vec![String::new(); events.len()];
+    Narration { text: out, events, places }
 }

@@ -1,7 +1,7 @@
 //! Every word a figure shows, in English and Romanian, in the lecture's notation (algorithm.md's
 //! "Romanian terms worth keeping": rază primară, rază reflectată, rază transmisă, arborele de raze,
 //! fereastra vizuală, volum încadrator, subdivizare adaptivă). Labels are markup for
-//! `figure::text` (`n_1` → n₁, `θ_i` → θᵢ); the kinds compose them with numbers, never with words
+//! `canvas::text` (`n_1` → n₁, `θ_i` → θᵢ); the kinds compose them with numbers, never with words
 //! of their own.
 
 use super::source::{Pick, Target};
@@ -177,28 +177,40 @@ pub enum Label {
     RaysTraced,
     /// What the heat map's colours count (caption).
     HeatMapCounts,
+    /// "samples" after a count in the heat map's legend.
+    SamplesUnit,
     /// "mean per pixel".
     MeanPerPixel,
     /// "rays" after a count in the legend.
     RaysPerPixel,
-    /// Title of the `tradeoff` plot.
-    TitleTradeoff,
-    /// The `tradeoff` plot's sweep over sampling modes.
-    SweepSampling,
-    /// The `tradeoff` plot's sweep over depths.
-    SweepDepth,
-    /// The `tradeoff` plot's sweep over structures.
-    SweepAccel,
-    /// The Pareto front of time against error.
+    /// Title of `tradeoff`'s sampling plot.
+    TitleTradeoffSampling,
+    /// Title of `tradeoff`'s depth plot.
+    TitleTradeoffDepth,
+    /// The sampling sweep's reference, in a `tradeoff` caption.
+    ReferenceSampling,
+    /// The depth sweep's reference, in a `tradeoff` caption.
+    ReferenceDepth,
+    /// After a count of rays per pixel.
+    RaysPerPixelShort,
+    /// Where a `tradeoff` plot's times are.
+    TimesInTable,
+    /// What the names of a `tradeoff` sampling plot's points are.
+    PointsSampling,
+    /// What the names of a `tradeoff` depth plot's points are.
+    PointsDepth,
+    /// The centre sampling mode.
+    SamplingCentre,
+    /// The corners sampling mode.
+    SamplingCorners,
+    /// The adaptive sampling mode.
+    SamplingAdaptive,
+    /// The Pareto front of rays against error.
     ParetoFront,
-    /// The `tradeoff` plot's time axis.
-    AxisTime,
+    /// The `tradeoff` plot's cost axis.
+    AxisRaysPerPixel,
     /// The `tradeoff` plot's error axis.
     AxisRmse,
-    /// The reference image of `tradeoff`.
-    ReferenceImage,
-    /// After the number of renders of each setting.
-    RendersEach,
     /// `tradeoff`'s progress line: after the count of settings rendered.
     ProgressSettings,
     /// `tradeoff`'s progress line: the reference image being rendered.
@@ -423,26 +435,44 @@ impl Label {
             Self::PixelColour => ("pixel", "pixelul"),
             Self::RaysTraced => ("primary rays traced (shared once)", "raze primare trasate (comune o dată)"),
             Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
-            Self::RaysPerPixel => ("samples", "eșantioane"),
-            Self::TitleTradeoff => {
-                ("What accuracy costs: error against time", "Cât costă precizia: eroarea față de timp")
+            Self::RaysPerPixel => ("rays", "raze"),
+            Self::SamplesUnit => ("samples", "eșantioane"),
+            Self::TitleTradeoffSampling => (
+                "What sampling costs: error against rays traced",
+                "Cât costă eșantionarea: eroarea față de razele trasate",
+            ),
+            Self::TitleTradeoffDepth => (
+                "What recursion depth costs: error against rays traced",
+                "Cât costă adâncimea recursivității: eroarea față de razele trasate",
+            ),
+            Self::ReferenceSampling => (
+                "reference: the same depth limit, sampled at every lattice point",
+                "referința: aceeași adâncime maximă, eșantionată în fiecare punct al rețelei",
+            ),
+            Self::ReferenceDepth => (
+                "reference: the same sampling, traced deeper",
+                "referința: aceeași eșantionare, trasată mai adânc",
+            ),
+            Self::RaysPerPixelShort => ("rays/pixel,", "raze/pixel,"),
+            Self::TimesInTable => ("times in the table", "timpii în tabel"),
+            Self::PointsSampling => (
+                "a setting: centre, corners, or adaptive's threshold, K",
+                "o variantă: centru, colțuri sau pragul adaptivei, K",
+            ),
+            Self::PointsDepth => {
+                ("a setting: its depth limit by the point", "o variantă: adâncimea maximă lângă punct")
             }
-            Self::SweepSampling => {
-                ("sampling (centre, corners, adaptive)", "eșantionarea (centru, colțuri, adaptivă)")
-            }
-            Self::SweepDepth => ("recursion depth", "adâncimea recursivității"),
-            Self::SweepAccel => ("acceleration structure", "structura de accelerare"),
+            Self::SamplingCentre => ("centre", "centru"),
+            Self::SamplingCorners => ("corners", "colțuri"),
+            Self::SamplingAdaptive => ("adaptive", "adaptivă"),
             Self::ParetoFront => (
-                "Pareto front: nothing is both faster and more accurate",
-                "frontul Pareto: nimic nu e și mai rapid, și mai precis",
+                "Pareto front: nothing has both fewer rays and less error",
+                "frontul Pareto: nimic nu are și mai puține raze, și eroare mai mică",
             ),
-            Self::AxisTime => ("trace time (ms)", "timpul de trasare (ms)"),
+            Self::AxisRaysPerPixel => {
+                ("rays traced per pixel (all kinds)", "raze trasate pe pixel (toate tipurile)")
+            }
             Self::AxisRmse => ("RMSE against the reference", "RMSE față de referință"),
-            Self::ReferenceImage => (
-                "reference: adaptive, threshold 0, K = 3, depth 16",
-                "referința: adaptivă, prag 0, K = 3, adâncime 16",
-            ),
-            Self::RendersEach => ("renders per setting (median time)", "randări pe variantă (timpul median)"),
             Self::ProgressSettings => ("settings", "variante"),
             Self::ProgressReference => ("the reference", "referința"),
             Self::Threshold => ("threshold", "pragul"),
@@ -572,7 +602,7 @@ pub fn escape(name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::figure::text::has_glyph;
+    use crate::canvas::text::has_glyph;
 
     /// Every variant, for the checks below (kept in step with the enum by the match in `both`).
     const ALL: &[Label] = &[
@@ -590,15 +620,20 @@ mod tests {
         Label::TitleOctree,
         Label::TitleAdaptive,
         Label::TitleHeatMap,
-        Label::TitleTradeoff,
-        Label::SweepSampling,
-        Label::SweepDepth,
-        Label::SweepAccel,
+        Label::TitleTradeoffSampling,
+        Label::TitleTradeoffDepth,
+        Label::ReferenceSampling,
+        Label::ReferenceDepth,
+        Label::RaysPerPixelShort,
+        Label::TimesInTable,
+        Label::PointsSampling,
+        Label::PointsDepth,
+        Label::SamplingCentre,
+        Label::SamplingCorners,
+        Label::SamplingAdaptive,
         Label::ParetoFront,
-        Label::AxisTime,
+        Label::AxisRaysPerPixel,
         Label::AxisRmse,
-        Label::ReferenceImage,
-        Label::RendersEach,
         Label::ProgressSettings,
         Label::ProgressReference,
         Label::PrimaryRay,
@@ -617,6 +652,7 @@ mod tests {
         Label::SectionsNote,
         Label::TitleUniform,
         Label::HeatMapCounts,
+        Label::SamplesUnit,
         Label::LeafUnderThreshold,
         Label::LeafAtMaxLevel,
         Label::UniformMean,

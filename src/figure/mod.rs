@@ -1,24 +1,19 @@
 //! Diagrams drawn from traces (product.md "Diagrams"; every section of the lecture that has a
 //! figure). A figure reads recorded traces (`source`, the only part that runs the tracer) and the
-//! scene, and draws what the code *did* as a back-end-free display list (`drawing`) in the
-//! lecture's notation (`labels`, `parts`, `plane`), one file per diagram (`kinds`); the list is
-//! drawn to PNG through tiny-skia (`skia`) or to SVG (`svg`), with the lecture's colours and
-//! slide-scale sizes (`style`) and labels in an embedded font (`text`).
+//! scene, and draws what the code *did* onto a [`crate::canvas::Drawing`] (the display list) in
+//! the lecture's notation (`labels`, `parts`, `plane`), one file per diagram (`kinds`), each ray
+//! kind in its colour (`style`); the canvas draws the list to PNG or SVG.
 
-pub mod drawing;
 pub mod kinds;
 pub mod labels;
 pub mod parts;
 pub mod plane;
-pub mod skia;
 pub mod source;
 pub mod style;
-pub mod svg;
-pub mod text;
 pub mod tradeoff;
 
+use crate::canvas::Drawing;
 use crate::scene::Scene;
-use drawing::Drawing;
 use plane::Planar;
 use source::Traces;
 

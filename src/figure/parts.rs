@@ -1,17 +1,18 @@
 //! Pieces every diagram shares (product.md "Diagrams"): the names of a trace's rays and hits in the
-//! lecture's notation (P, R₁, T₁, I₁ …), numbers as a slide shows them, the scene's objects on a
+//! lecture's notation (P, R₁, T₁, I₁ …, from `record::names`, which the narration uses too), numbers as a slide shows them, the scene's objects on a
 //! page plane, rays clipped to the view, the observer, the lights, the legend rows of the ray kinds,
 //! and a view that leaves a column free for text. Drawing only: nothing here traces.
 
 use glam::DVec2;
 
-use super::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
 use super::labels::{escape, Label};
 use super::plane::{ObjectOutline, Outline, PagePlane, Planar};
 use super::style::{self, RayRole, Rgba, TextSize};
 use super::Lang;
+use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
 use crate::image::to_byte;
 use crate::record::event::{Event, ObjectRef, RayKind};
+pub use crate::record::names::{sub, Names};
 use crate::record::EventLog;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
@@ -70,62 +71,6 @@ pub fn role(kind: RayKind) -> RayRole {
         RayKind::Primary => RayRole::Primary,
         RayKind::Reflected => RayRole::Reflected,
         RayKind::Transmitted => RayRole::Transmitted,
-    }
-}
-
-/// The lecture's names of a trace's rays and hit points: the hits numbered I₁, I₂ … in the order
-/// the tracer reached them (pre-order), the primary ray P, and the R and T spawned at I_k named
-/// R_k and T_k; the shadow ray from I_k is L_k.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Names {
-    /// Per node, the number k of its hit I_k.
-    pub hit: Vec<Option<usize>>,
-    /// Per node, its name as markup.
-    pub ray: Vec<String>,
-}
-
-impl Names {
-    /// The names of every node of `log`.
-    #[must_use]
-    pub fn of<V>(log: &EventLog<V>) -> Self {
-        let mut hit = Vec::with_capacity(log.nodes.len());
-        let mut next = 0;
-        for node in &log.nodes {
-            if node.end.as_ref().is_some_and(|e| e.hit.is_some()) {
-                next += 1;
-                hit.push(Some(next));
-            } else {
-                hit.push(None);
-            }
-        }
-        let ray = log
-            .nodes
-            .iter()
-            .map(|node| match (node.parent, node.start.kind) {
-                (None, _) | (_, RayKind::Primary) => "P".to_owned(),
-                (Some(p), kind) => {
-                    let letter = if kind == RayKind::Reflected { "R" } else { "T" };
-                    sub(letter, hit[p].unwrap_or(0))
-                }
-            })
-            .collect();
-        Self { hit, ray }
-    }
-
-    /// `I_k` of a node with a hit.
-    #[must_use]
-    pub fn hit_name(&self, node: usize) -> Option<String> {
-        self.hit[node].map(|k| sub("I", k))
-    }
-}
-
-/// `X_k` in markup (`X_{12}` for two digits).
-#[must_use]
-pub fn sub(letter: &str, k: usize) -> String {
-    if k < 10 {
-        format!("{letter}_{k}")
-    } else {
-        format!("{letter}_{{{k}}}")
     }
 }
 

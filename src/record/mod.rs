@@ -1,9 +1,12 @@
 //! Watching the tracer at no cost when off (the tracer pushes each step to a recorder):
 //! the [`Recorder`] trait, the zero-sized [`NoRecorder`] that compiles away, the [`CountingRecorder`]
 //! that only counts (the benchmark's middle point) and the [`EventLog`] that keeps everything:
-//! the events in order and the ray tree.
+//! the events in order and the ray tree. The counters the tracer always keeps, recorder or
+//! not, are [`stats::Stats`].
 
 pub mod event;
+pub mod names;
+pub mod stats;
 
 use crate::scene::material::Rgb;
 use event::{Event, LightTerm, NodeHit, RayKind};

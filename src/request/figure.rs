@@ -5,12 +5,13 @@ use super::options::Aa;
 use super::target::Target;
 use super::Failure;
 use crate::accel::AccelKind;
+use crate::canvas::Drawing;
 use crate::doc::TraceTarget;
-use crate::figure::drawing::Drawing;
 use crate::figure::labels::{self, Label};
 use crate::figure::plane::Planar;
 use crate::figure::source::{self, Pick, Tracing};
 use crate::figure::{self as fig, FigureKind, Options};
+use crate::lesson::claim::{self, Claim, Verdict};
 use crate::scene::{AnyScene, Scene};
 
 /// One figure to make: its kind, what to trace, how to draw.
@@ -29,7 +30,7 @@ pub struct Request {
 /// A drawn figure and what it traced.
 #[derive(Clone, Debug)]
 pub struct Made {
-    /// The display list (to PNG through `figure::skia`, to SVG through `figure::svg`).
+    /// The display list (to PNG through `canvas::skia`, to SVG through `canvas::svg`).
     pub drawing: Drawing,
     /// The main trace's pixel and `(u, v)` (both None for a ray, or for `heat-map`, which traces
     /// no single pixel).
@@ -78,6 +79,33 @@ pub fn figure(scene: &AnyScene, name: &str, request: &Request) -> Result<Made, F
 /// # Errors
 /// As [`figure`].
 pub fn figure_in<V: Planar>(scene: &Scene<V>, name: &str, request: &Request) -> Result<Made, Failure> {
+    figure_claimed(scene, name, request, &[]).map(|(made, _)| made)
+}
+
+/// [`figure`] with its lesson's claims checked on the traces and the drawing it made
+/// (`lesson::claim`), a verdict per claim in their order.
+///
+/// # Errors
+/// As [`figure`].
+pub fn figure_checked(
+    scene: &AnyScene,
+    name: &str,
+    request: &Request,
+    claims: &[Claim],
+) -> Result<(Made, Vec<Verdict>), Failure> {
+    match scene {
+        AnyScene::Flat(s) => figure_claimed(s, name, request, claims),
+        AnyScene::Space(s) => figure_claimed(s, name, request, claims),
+    }
+}
+
+/// [`figure_checked`] in a scene of known dimension.
+fn figure_claimed<V: Planar>(
+    scene: &Scene<V>,
+    name: &str,
+    request: &Request,
+    claims: &[Claim],
+) -> Result<(Made, Vec<Verdict>), Failure> {
     let aim = request.target.aim(scene)?;
     let traces = source::record(request.kind, scene, name, &aim, &request.tracing)
         .map_err(|e| Failure::input(format!("{}: {e}", request.kind.name())))?;
@@ -99,5 +127,6 @@ pub fn figure_in<V: Planar>(scene: &Scene<V>, name: &str, request: &Request) -> 
         }),
         _ => None,
     };
-    Ok(Made { drawing, traced, pick })
+    let verdicts = claim::check_all(claims, &traces, scene, &drawing);
+    Ok((Made { drawing, traced, pick }, verdicts))
 }

@@ -5,6 +5,7 @@
 //! words.
 
 use crate::accel::grid::MAX_CELLS;
+use crate::json::reader::MAX_MAGNITUDE;
 use crate::sample::MAX_LEVEL;
 
 /// A pixel as typed: column and optional row, signed so that `--pixel -1,2` reaches the check
@@ -36,7 +37,7 @@ pub fn ray(text: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
     let (o, d) = text.split_once(':').ok_or_else(|| bad("missing `:`"))?;
     let nums = |s: &str| -> Result<Vec<f64>, String> {
         s.split(',')
-            .map(|x| x.trim().parse::<f64>().ok().filter(|v| v.is_finite() && v.abs() <= 1e100))
+            .map(|x| x.trim().parse::<f64>().ok().filter(|v| v.is_finite() && v.abs() <= MAX_MAGNITUDE))
             .collect::<Option<Vec<f64>>>()
             .ok_or_else(|| bad("with finite numbers"))
     };
@@ -186,6 +187,9 @@ mod tests {
         assert!(ray("0,0,5:0,0").is_err());
         assert!(ray("0,0,5:0,0,0").is_err());
         assert!(ray("0,0,nan:0,0,1").is_err());
+        // The scene's own bound on a number (MAX_MAGNITUDE = 1e100), not a second copy of it.
+        assert!(ray("0,0,1e100:0,0,1").is_ok());
+        assert!(ray("0,0,2e100:0,0,1").is_err());
     }
 
     #[test]

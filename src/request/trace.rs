@@ -9,12 +9,12 @@ use crate::accel::Accel;
 use crate::doc::narrate::{narration, Lang, Narration};
 use crate::doc::samples::{sample_narration, sampled_document};
 use crate::doc::{trace_document, TraceTarget};
+use crate::record::stats::Stats;
 use crate::record::{overflow_message, EventLog};
 use crate::sample::{trace_pixel, PixelTrace, Sampling};
 use crate::scene::material::Rgb;
 use crate::scene::{AnyScene, Scene};
 use crate::shape::Dim;
-use crate::trace::stats::Stats;
 use crate::trace::Tracer;
 use serde_json::Value;
 

@@ -3,7 +3,6 @@
 //! [`Scene`], valid by construction.
 
 pub mod camera;
-pub mod error;
 pub mod light;
 pub mod load;
 pub mod material;

@@ -3,18 +3,17 @@
 //! Everything it does is reported to the recorder `R`, chosen at compile time.
 
 pub mod shade;
-pub mod stats;
 
 use crate::accel::Accel;
 use crate::geom::offset::{offset_distance, spawn_origin};
 use crate::geom::optics::{indices, reflect, refract, Refraction};
 use crate::geom::ray::Ray;
 use crate::record::event::{Event, NodeHit, RayKind};
+use crate::record::stats::Stats;
 use crate::record::{RayEnd, RayStart, Recorder};
 use crate::scene::material::{Material, Rgb};
 use crate::scene::Scene;
 use crate::shape::{Dim, SurfaceHit};
-use stats::Stats;
 
 /// Traces rays through one scene, counting always and recording through `R`.
 pub struct Tracer<'s, V: Dim, R: Recorder<V>> {

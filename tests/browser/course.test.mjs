@@ -98,7 +98,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   await shot(page, '02-clicked-glass', PANES);
   assert.match(s.hash, new RegExp(`^#pixel=${pixel.join(',')}&step=1&`));
   const narration = cutSteps(whitted(['trace', SCENE, '--pixel', pixel.join(',')]));
-  assert.ok(narration.some((t) => t.includes('Nearest hit I on “glass”')), 'the pixel is on the glass sphere');
+  assert.ok(narration.some((t) => t.includes('Nearest hit of P: I₁ on “glass”')), 'the pixel is on the glass sphere');
   assert.deepEqual(s.steps.map((x) => x.step), narration.map((_, k) => k + 1));
   s.steps.forEach((x, k) => assert.equal(x.text, narration[k], `step ${k + 1}`));
   assert.match(s.command, new RegExp(`^whitted trace scenes/whitted.json --pixel ${pixel.join(',')}`));
@@ -128,7 +128,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   assert.match(s.position, /Step 4 of \d+/);
   assert.match(s.hash, /step=4/);
   // The step of the nearest hit, chosen in the list, lights the hit in the refraction figure.
-  const hit = 1 + narration.findIndex((t) => t.includes('Nearest hit I on “glass”'));
+  const hit = 1 + narration.findIndex((t) => t.includes('Nearest hit of P: I₁ on “glass”'));
   await page.locator(`[data-whitted="steps"] [data-step="${hit}"]`).first().click();
   s = await state(page);
   await shot(page, '03-nearest-hit', PANES);

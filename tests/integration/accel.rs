@@ -13,12 +13,12 @@ use whitted::bounds::VolumeKind;
 use whitted::doc::{trace_document, TraceTarget};
 use whitted::geom::ray::Ray;
 use whitted::record::event::Event;
+use whitted::record::stats::Stats;
 use whitted::record::{EventLog, NoRecorder, Recorder};
 use whitted::render::render_centers;
 use whitted::scene::load::load_str_with;
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
-use whitted::trace::stats::Stats;
 use whitted::trace::Tracer;
 
 /// Every structure and every bounding volume, brute force first.

@@ -190,14 +190,21 @@ fn check_says_what_the_scene_models() {
     assert!(out.contains("transmitted: no: no object has kt > 0"), "{out}");
 }
 
+/// The `tradeoff --json` rows of one sweep, and its reference.
+fn sweep<'a>(doc: &'a serde_json::Value, name: &str) -> (&'a serde_json::Value, &'a Vec<serde_json::Value>) {
+    let sweep = doc["sweeps"].as_array().unwrap().iter().find(|s| s["sweep"] == name).unwrap();
+    (&sweep["reference"], sweep["rows"].as_array().unwrap())
+}
+
 #[test]
-fn tradeoff_measures_every_setting_against_the_reference() {
+fn tradeoff_measures_each_sweep_against_a_reference_that_differs_in_it_only() {
     let dir = std::env::temp_dir().join(format!("whitted-cli-{}-tradeoff", std::process::id()));
+    let glass = fixture("glass.json");
     let (code, out, err) = whitted(&[
         "tradeoff",
-        &fixture("glass.json"),
+        &glass,
         "--runs",
-        "1",
+        "2",
         "--threads",
         "2",
         "--json",
@@ -206,43 +213,105 @@ fn tradeoff_measures_every_setting_against_the_reference() {
     ]);
     assert_eq!(code, 0, "{err}");
     let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let rows = doc["rows"].as_array().unwrap();
-    // max_depth 4: centre, corners, 9 adaptive; depths 0-3; 4 other structures.
-    assert_eq!(rows.len(), 19);
-    assert_eq!(doc["reference"]["rmse"], 0.0);
-    assert_eq!(doc["reference"]["max_depth"], 16);
-    assert_eq!(doc["reference"]["sampling"]["max_level"], 3);
-    // (8·8 + 1)(6·8 + 1) lattice points over 48 pixels.
-    assert_eq!(doc["reference"]["rays"]["primary"], 65 * 49);
-    let first = &rows[0];
-    assert_eq!(first["sampling"]["aa"], "center");
-    assert_eq!(first["rays_per_pixel"]["primary"], 1.0);
-    assert_eq!(rows[1]["sampling"]["aa"], "corners");
-    assert_eq!(rows[1]["rays_per_pixel"]["primary"], 9.0 * 7.0 / 48.0);
-    for row in rows {
-        let rmse = row["rmse"].as_f64().unwrap();
-        assert!(rmse > 0.0 && rmse <= row["max_error"].as_f64().unwrap(), "{row}");
-        // Every structure gives the centre image: the same error.
-        if row["sampling"]["aa"] == "center" && row["max_depth"] == 4 {
-            assert_eq!(row["rmse"], first["rmse"], "{row}");
+    assert_eq!(doc["runs"], 2);
+    let fields = ["sampling", "max_depth", "accel"];
+    // Each row differs from its sweep's reference in the sweep's field, and in nothing else.
+    for (name, field) in [("sampling", "sampling"), ("depth", "max_depth"), ("structure", "accel")] {
+        let (reference, rows) = sweep(&doc, name);
+        assert_eq!(reference["rmse"], 0.0);
+        for row in rows {
+            for f in fields {
+                assert_eq!(row[f] != reference[f], f == field, "{name}: {f} of {row}");
+            }
+            // The spread of the times holds the median; a line says why.
+            let t = &row["seconds"];
+            assert!(t["min"].as_f64() <= t["median"].as_f64() && t["median"].as_f64() <= t["max"].as_f64());
+            assert!(!row["why"].as_str().unwrap().is_empty());
         }
     }
-    // Ray casting (max_depth 0) lacks every reflection and refraction the reference has.
-    let depth_error = |d: u64| {
-        rows.iter()
-            .find(|r| r["sampling"]["aa"] == "center" && r["max_depth"] == d && r["accel"] == "bvh")
-            .map(|r| r["rmse"].as_f64().unwrap())
+    // max_depth 4: centre, corners, 9 adaptive; depths 0 … 8; 4 structures but brute force.
+    let (reference, sampling) = sweep(&doc, "sampling");
+    assert_eq!(sampling.len(), 11);
+    assert_eq!(
+        (reference["max_depth"].as_u64(), reference["sampling"]["max_level"].as_u64()),
+        (Some(4), Some(3))
+    );
+    // (8·8 + 1)(6·8 + 1) lattice points over 48 pixels.
+    assert_eq!(reference["rays"]["primary"], 65 * 49);
+    assert_eq!(sampling[0]["rays_per_pixel"]["primary"], 1.0);
+    assert_eq!(sampling[1]["rays_per_pixel"]["primary"], 9.0 * 7.0 / 48.0);
+    let (reference, depths) = sweep(&doc, "depth");
+    assert_eq!(depths.len(), 9);
+    assert_eq!(
+        (reference["max_depth"].as_u64(), reference["sampling"]["aa"].as_str()),
+        (Some(16), Some("center"))
+    );
+    let depth_error = |d: usize| depths[d]["rmse"].as_f64().unwrap();
+    assert!(depth_error(0) > depth_error(4), "ray casting lacks every reflection the reference has");
+    // A structure changes no pixel: every structure's image is brute force's, exactly.
+    let (reference, structures) = sweep(&doc, "structure");
+    assert_eq!(reference["accel"], "none");
+    assert_eq!(structures.len(), 4);
+    for row in structures {
+        assert_eq!((row["rmse"].as_f64(), row["max_error"].as_f64()), (Some(0.0), Some(0.0)), "{row}");
+        assert_eq!(row["rays"], reference["rays"], "the same rays, other tests");
+    }
+    // Every cost is the render's own count: `render --json` of the same setting says the same.
+    let out_png = dir.join("render.png").display().to_string();
+    for (name, row, extra) in [
+        ("sampling", &sampling[5], vec!["--aa", "adaptive", "--threshold", "0.3", "--max-level", "2"]),
+        ("depth", &depths[2], vec!["--depth", "2"]),
+        ("structure", &structures[2], vec!["--accel", "grid"]),
+    ] {
+        let mut args = vec!["render", glass.as_str(), "--json", "-o", out_png.as_str()];
+        args.extend(extra);
+        let (code, out, err) = whitted(&args);
+        assert_eq!(code, 0, "{err}");
+        let render: serde_json::Value = serde_json::from_str(&out).unwrap();
+        for kind in ["primary", "reflected", "transmitted", "shadow"] {
+            assert_eq!(row["rays"][kind], render["rays"][kind], "{name} {kind}");
+        }
+        for kind in ["object", "bound", "node", "voxel"] {
+            assert_eq!(row["tests"][kind], render["tests"][kind], "{name} {kind}");
+        }
+    }
+    // The front is decided on rays: of two rows, the one with fewer rays and less error wins.
+    for name in ["sampling", "depth"] {
+        let s = doc["sweeps"].as_array().unwrap().iter().find(|s| s["sweep"] == name).unwrap();
+        let rows = s["rows"].as_array().unwrap();
+        let front: Vec<usize> = s["pareto"]
+            .as_array()
             .unwrap()
-    };
-    assert!(depth_error(0) > depth_error(4));
-    let front = doc["pareto"].as_array().unwrap();
-    assert!(!front.is_empty() && front.iter().all(|i| i.as_u64().unwrap() < 19));
-    for file in ["tradeoff.png", "tradeoff.svg", "heat-map.png", "heat-map.svg"] {
+            .iter()
+            .map(|i| usize::try_from(i.as_u64().unwrap()).unwrap())
+            .collect();
+        let cost =
+            |r: &serde_json::Value| (r["rays"]["total"].as_u64().unwrap(), r["rmse"].as_f64().unwrap());
+        for (i, row) in rows.iter().enumerate() {
+            let (rays, rmse) = cost(row);
+            let beaten = rows.iter().any(|o| {
+                let (r, e) = cost(o);
+                r <= rays && e <= rmse && (r < rays || e < rmse)
+            });
+            assert_eq!(front.contains(&i), !beaten, "{name} row {i}");
+        }
+    }
+    // The plots: one per sweep with an error, every point named.
+    for file in ["sampling.png", "sampling.svg", "depth.png", "depth.svg", "heat-map.png", "heat-map.svg"] {
         let bytes = std::fs::read(dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
         assert!(bytes.len() > 1000, "{file}");
     }
-    // A scene of nothing but background: every image equals the reference, so there is no
-    // error to plot; the table still comes, and the heat map.
+    let svg = std::fs::read_to_string(dir.join("sampling.svg")).unwrap();
+    for name in ["centre", "corners", "0.3, K = 1", "0.03, K = 3"] {
+        assert!(svg.contains(&format!(">{name}<")), "{name} is not in sampling.svg");
+    }
+    let svg = std::fs::read_to_string(dir.join("depth.svg")).unwrap();
+    assert!(svg.contains("rays traced per pixel"));
+    for d in 0..=8 {
+        assert!(svg.contains(&format!(">{d}<")) || svg.contains(&format!("… {d}<")), "depth {d}");
+    }
+    // A scene of nothing but background: every image equals its reference, every point sits on
+    // the plot's 0 row; the tables still come.
     let empty = scene_file(
         "empty.json",
         r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [4,3]}}"#,
@@ -251,14 +320,16 @@ fn tradeoff_measures_every_setting_against_the_reference() {
     let (code, out, err) =
         whitted(&["tradeoff", &empty, "--runs", "1", "--out", &empty_dir.display().to_string()]);
     assert_eq!(code, 0, "{err}");
-    assert!(err.contains("no plot"), "{err}");
-    assert!(out.contains("| reference |"));
-    assert!(empty_dir.join("heat-map.png").exists() && !empty_dir.join("tradeoff.png").exists());
-    // Without --json: the Markdown table, a row per setting and the reference.
-    let (code, out, err) = whitted(&["tradeoff", &fixture("glass.json"), "--runs", "1"]);
+    assert_eq!(out.matches("| reference |").count(), 3, "{out}");
+    assert!(out.contains("no ray goes past level 0"), "{out}");
+    assert!(empty_dir.join("sampling.png").exists() && empty_dir.join("heat-map.png").exists());
+    // Without --json: a Markdown table per sweep, a row per setting and the reference, and a
+    // line per row saying why.
+    let (code, out, err) = whitted(&["tradeoff", &glass, "--runs", "1"]);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(out.lines().filter(|l| l.starts_with("| ")).count(), 1 + 19 + 1);
-    assert!(out.contains("| reference |"));
+    assert_eq!(out.lines().filter(|l| l.starts_with("| ")).count(), 3 + (11 + 1) + (9 + 1) + (4 + 1));
+    assert_eq!(out.lines().filter(|l| l.starts_with("- ")).count(), 11 + 9 + 4);
+    assert!(out.contains("- grid: error 0"), "{out}");
 }
 
 #[test]
@@ -280,7 +351,7 @@ fn step_shows_the_trace_narration_a_step_at_a_time() {
     // Enter twice: steps 1, 2 and 3, no more; then the end of input ends the session.
     let (code, out) = run("\n\n");
     assert_eq!(code, Some(0));
-    assert!(out.contains("1. Pixel (i, j) = (4, 3)") && out.contains("\n3. primary ray"), "{out}");
+    assert!(out.contains("1. Pixel (i, j) = (4, 3)") && out.contains("\n3. P — primary ray"), "{out}");
     assert!(!out.contains("\n   4. "), "{out}");
     // `a`: the first step, then all the rest: the whole narration, every line of it.
     let (_, all) = run("a\n");

@@ -4,12 +4,13 @@
 
 use crate::support::fixture;
 use glam::DVec2;
-use whitted::figure::drawing::{Drawing, Sample, Shape};
+use whitted::canvas::{skia, svg};
+use whitted::canvas::{Drawing, Sample, Shape};
 use whitted::figure::labels::Label;
 use whitted::figure::plane::Planar;
 use whitted::figure::source::{record, Aim, Tracing};
 use whitted::figure::style::{RayRole, Rgba};
-use whitted::figure::{draw, skia, svg, FigureKind, Lang, Options};
+use whitted::figure::{draw, FigureKind, Lang, Options};
 use whitted::geom::ray::Ray;
 use whitted::record::event::{Event, RayKind};
 use whitted::scene::load::load_str;
@@ -97,7 +98,7 @@ fn colour(rgba: Rgba) -> String {
 }
 
 /// One line per item: tag, geometry (world coordinates, rounded), stroke.
-fn item_line(item: &whitted::figure::drawing::Item) -> String {
+fn item_line(item: &whitted::canvas::Item) -> String {
     let st = &item.style;
     let stroke = if st.strokes() {
         format!(" {} w{}{}", colour(st.color), c(st.width), if st.dash.is_some() { " dashed" } else { "" })

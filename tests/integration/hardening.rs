@@ -286,7 +286,7 @@ fn every_documented_example_runs_as_written() {
         assert!(!err.contains("panicked"), "{file}: `{line}`: {err}");
     }
     for written in
-        ["whitted.png", "flat.png", "tree.svg", "grid.png", "course/index.html", "tradeoff/tradeoff.png"]
+        ["whitted.png", "flat.png", "tree.svg", "grid.png", "course/index.html", "tradeoff/sampling.png"]
     {
         assert!(dir.join(written).is_file(), "{written} was not written");
     }

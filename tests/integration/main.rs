@@ -2,9 +2,11 @@
 #![allow(clippy::float_cmp)] // The tests pin exact IEEE results on purpose (numerics.md).
 
 mod accel;
+mod claims;
 mod cli;
 mod figures;
 mod hardening;
+mod narration;
 mod numerics;
 mod outputs;
 mod properties;

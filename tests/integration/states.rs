@@ -1,11 +1,12 @@
 //! Every drawn state has its reason (issue 23 item 2): each state a figure draws is its own
 //! legend entry and its own item tag, shown here on the lesson scene that teaches it.
 
-use whitted::figure::drawing::{Drawing, Shape};
+use whitted::canvas::svg;
+use whitted::canvas::{Drawing, Shape};
 use whitted::figure::labels::Label;
 use whitted::figure::plane::Planar;
 use whitted::figure::source::{record, Aim, Tracing};
-use whitted::figure::{draw, svg, FigureKind, Lang, Options};
+use whitted::figure::{draw, FigureKind, Lang, Options};
 use whitted::record::event::Event;
 use whitted::sample::Sampling;
 use whitted::scene::load::load_str;
@@ -188,7 +189,7 @@ fn the_heat_maps_legend_names_every_count_a_pixel_has() {
     let counts = traces.counts.as_ref().expect("counts").per_pixel.clone();
     let opts = Options { lang: Lang::En, width: 1920, height: 1080 };
     let d = draw(FigureKind::HeatMap, &traces, &scene, &opts).expect("drawn");
-    let unit = format!(" {}", Label::RaysPerPixel.text(Lang::En));
+    let unit = format!(" {}", Label::SamplesUnit.text(Lang::En));
     let ranges: Vec<(u32, u32)> = d
         .legend
         .iter()

@@ -348,3 +348,191 @@ fn product_md_examples_are_accepted_as_written() {
     let lesson = whitted::lesson::parse(blocks[1]);
     assert!(lesson.is_ok(), "the example lesson: {:?}", lesson.err());
 }
+
+/// The top-level module of `src/` a file belongs to (`src/accel/bvh.rs` → `accel`,
+/// `src/render.rs` → `render`), with the depth of the file's module below the crate root
+/// (`accel::bvh` → 2); `None` for the crate roots `lib.rs` and `main.rs`.
+fn top_module(rel: &Path) -> Option<(String, usize)> {
+    let parts: Vec<String> = rel.iter().map(|p| p.to_string_lossy().into_owned()).collect();
+    let [first, rest @ ..] = parts.as_slice() else { return None };
+    if rest.is_empty() {
+        let name = first.strip_suffix(".rs")?;
+        return (name != "lib" && name != "main").then(|| (name.to_owned(), 1));
+    }
+    let depth = if parts.last().is_some_and(|f| f == "mod.rs") { parts.len() - 1 } else { parts.len() };
+    Some((first.clone(), depth))
+}
+
+/// A file's code with its comments blanked (line comments and doc comments; a `//` inside a
+/// string cuts the rest of that line, which can only hide a path, never invent one).
+fn code_only(text: &str) -> String {
+    text.lines().map(|line| line.find("//").map_or(line, |at| &line[..at])).collect::<Vec<_>>().join("\n")
+}
+
+/// The leading identifier of `s` (letters, digits, `_`), possibly empty.
+fn ident(s: &str) -> &str {
+    let end = s.find(|c: char| !(c.is_alphanumeric() || c == '_')).unwrap_or(s.len());
+    &s[..end]
+}
+
+/// Every top-level module `code` names through the crate root, with the byte offset where it
+/// is named: `crate::X…`, each `X` of a group `crate::{X, Y::z}`, and `super::…::X` when the
+/// `super`s climb from a module `depth` deep up to the root.
+fn crate_paths(code: &str, depth: usize) -> Vec<(String, usize)> {
+    let mut found = Vec::new();
+    for (at, _) in code.match_indices("crate::") {
+        // `$crate::` in a macro and `whitted_crate::`-like names are not the crate root.
+        if code[..at].ends_with(|c: char| c.is_alphanumeric() || c == '_' || c == '$') {
+            continue;
+        }
+        let rest = &code[at + "crate::".len()..];
+        if let Some(group) = rest.strip_prefix('{') {
+            // The top-level entries of the group: split on commas outside nested braces.
+            let (mut level, mut start) = (0usize, 0usize);
+            for (i, c) in group.char_indices() {
+                match c {
+                    '{' => level += 1,
+                    '}' if level == 0 => {
+                        found.push((ident(group[start..].trim_start()).to_owned(), at));
+                        break;
+                    }
+                    '}' => level -= 1,
+                    ',' if level == 0 => {
+                        found.push((ident(group[start..].trim_start()).to_owned(), at));
+                        start = i + 1;
+                    }
+                    _ => {}
+                }
+            }
+        } else {
+            found.push((ident(rest).to_owned(), at));
+        }
+    }
+    for (at, _) in code.match_indices("super::") {
+        if code[..at].ends_with("super::") {
+            continue;
+        }
+        let mut rest = &code[at..];
+        let mut climbs = 0;
+        while let Some(r) = rest.strip_prefix("super::") {
+            rest = r;
+            climbs += 1;
+        }
+        if climbs >= depth {
+            found.push((ident(rest).to_owned(), at));
+        }
+    }
+    found.retain(|(name, _)| !name.is_empty());
+    found
+}
+
+/// The import graph between the top-level modules of `src/`: for each module, the modules it
+/// names and where it first names each (`src/accel/mod.rs:30`).
+fn module_graph(
+    root: &Path,
+) -> std::collections::BTreeMap<String, std::collections::BTreeMap<String, String>> {
+    let src = root.join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    files.sort();
+    let tops: std::collections::BTreeSet<String> =
+        files.iter().filter_map(|p| top_module(p.strip_prefix(&src).unwrap())).map(|(m, _)| m).collect();
+    let mut graph: std::collections::BTreeMap<String, std::collections::BTreeMap<String, String>> =
+        tops.iter().map(|m| (m.clone(), std::collections::BTreeMap::new())).collect();
+    for path in &files {
+        let rel = path.strip_prefix(&src).unwrap();
+        let Some((from, depth)) = top_module(rel) else { continue };
+        let code = code_only(&std::fs::read_to_string(path).unwrap());
+        for (to, at) in crate_paths(&code, depth) {
+            if to != from && tops.contains(&to) {
+                let line = code[..at].lines().count().max(1);
+                let place = format!("src/{}:{line}", rel.display());
+                graph.get_mut(&from).unwrap().entry(to).or_insert(place);
+            }
+        }
+    }
+    graph
+}
+
+/// The import cycles of `graph`, each as `a → b → a` with where each step is imported: one
+/// shortest cycle through every module that lies on one.
+fn import_cycles(
+    graph: &std::collections::BTreeMap<String, std::collections::BTreeMap<String, String>>,
+) -> Vec<String> {
+    let mut cycles: Vec<Vec<String>> = Vec::new();
+    for start in graph.keys() {
+        // Breadth first from `start`, back to `start`: the shortest cycle through it.
+        let mut came_from: std::collections::BTreeMap<&str, &str> = std::collections::BTreeMap::new();
+        let mut queue = std::collections::VecDeque::from([start.as_str()]);
+        let mut closing = None;
+        while let Some(m) = queue.pop_front() {
+            if let Some(next) = graph[m].keys().find(|n| *n == start) {
+                closing = Some((m, next.as_str()));
+                break;
+            }
+            for n in graph[m].keys() {
+                if n != start && !came_from.contains_key(n.as_str()) {
+                    came_from.insert(n, m);
+                    queue.push_back(n);
+                }
+            }
+        }
+        let Some((last, _)) = closing else { continue };
+        let mut path = vec![last.to_owned()];
+        while let Some(prev) = came_from.get(path.last().unwrap().as_str()) {
+            path.push((*prev).to_owned());
+        }
+        path.reverse();
+        // The same cycle seen from another of its modules is reported once.
+        let mut key = path.clone();
+        key.sort();
+        if !cycles.iter().any(|c| {
+            let mut k = c.clone();
+            k.sort();
+            k == key
+        }) {
+            cycles.push(path);
+        }
+    }
+    cycles
+        .into_iter()
+        .map(|path| {
+            let steps: Vec<String> = path
+                .iter()
+                .zip(path.iter().cycle().skip(1))
+                .map(|(a, b)| format!("{a} → {b} ({})", graph[a][b]))
+                .collect();
+            steps.join(", ")
+        })
+        .collect()
+}
+
+#[test]
+fn no_import_cycle_between_the_top_level_modules() {
+    let graph = module_graph(Path::new(env!("CARGO_MANIFEST_DIR")));
+    assert!(graph.len() > 10 && graph["figure"].contains_key("canvas"), "the graph was not read: {graph:?}");
+    let cycles = import_cycles(&graph);
+    assert!(cycles.is_empty(), "import cycles between top-level modules of src/: {cycles:#?}");
+}
+
+#[test]
+fn the_canvas_imports_nothing_from_the_crate() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let graph = module_graph(root);
+    let canvas = &graph["canvas"];
+    assert!(canvas.is_empty(), "src/canvas/ knows nothing of ray tracing; it imports {canvas:?}");
+}
+
+#[test]
+fn the_import_reader_finds_paths_groups_and_climbs() {
+    let code = "use crate::geom::Vector;\nuse crate::{scene::Scene, shape};\nlet s = crate::trace::x();\n\
+                use super::super::render;\n$crate::image";
+    let names: Vec<String> = crate_paths(code, 2).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(names, ["geom", "scene", "shape", "trace", "render"]);
+    // One `super` from a module two deep stays inside its top-level module.
+    assert!(crate_paths("use super::render;", 2).is_empty());
+    assert_eq!(top_module(Path::new("accel/bvh.rs")), Some(("accel".to_owned(), 2)));
+    assert_eq!(top_module(Path::new("figure/kinds/mod.rs")), Some(("figure".to_owned(), 2)));
+    assert_eq!(top_module(Path::new("render.rs")), Some(("render".to_owned(), 1)));
+    assert_eq!(top_module(Path::new("lib.rs")), None);
+}

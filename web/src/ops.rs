@@ -6,11 +6,12 @@
 use crate::ask::{self, Fields, Options};
 use serde_json::{json, Map, Value};
 use std::path::Path;
+use whitted::canvas::svg;
 use whitted::clock::Stopwatch;
 use whitted::doc::narrate::Lang;
 use whitted::doc::TraceTarget;
 use whitted::figure::source::Tracing;
-use whitted::figure::{svg, FigureKind};
+use whitted::figure::FigureKind;
 use whitted::record::DEFAULT_LIMIT;
 use whitted::request::figure::{default_aa, figure, structure, Request};
 use whitted::request::options::{canvas, resize, Aa};

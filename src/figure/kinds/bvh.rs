@@ -4,7 +4,7 @@
 //! and those never tested — all from its recorded `node_visit` events. Traced with `--accel bvh`.
 
 use super::{hierarchy, Input};
-use crate::figure::drawing::Drawing;
+use crate::canvas::Drawing;
 use crate::figure::labels::Label;
 use crate::figure::plane::Planar;
 use crate::figure::FigureError;

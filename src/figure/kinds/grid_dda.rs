@@ -9,7 +9,7 @@ use glam::DVec2;
 
 use super::Input;
 use crate::accel::Layout;
-use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, num, text_column};
 use crate::figure::plane::{PagePlane, Planar};
@@ -97,7 +97,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         d.legend_entry(input.t(Label::FoundBeyond), pitfall_ring(), Sample::Dot(style::WHITE));
     }
     // Under the table, in the column kept free of the scene (the table is at most 13 lines).
-    d.legend_place = crate::figure::drawing::LegendPlace::Inside(crate::figure::drawing::Corner::BottomRight);
+    d.legend_place = crate::canvas::LegendPlace::Inside(crate::canvas::Corner::BottomRight);
 
     // The grid's rectangle on the page and the size of a cell.
     let (lo, hi) = (plane.point(bounds.min), plane.point(bounds.max));

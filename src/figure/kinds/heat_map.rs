@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::figure::drawing::{Drawing, Sample, Style};
+use crate::canvas::{Drawing, Sample, Style};
 use crate::figure::labels::Label;
 use crate::figure::parts::num;
 use crate::figure::plane::Planar;
@@ -104,7 +104,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         num(sum as f64 / pixels as f64),
     ));
     // The legend is the scale: every count, or every bin of counts, that a pixel has.
-    let unit = input.t(Label::RaysPerPixel);
+    let unit = input.t(Label::SamplesUnit);
     for (k, (a, b)) in bins.iter().enumerate() {
         if !counts.per_pixel.iter().any(|n| (*a..=*b).contains(n)) {
             continue;
@@ -112,7 +112,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let range = if a == b { a.to_string() } else { format!("{a}–{b}") };
         d.legend_entry(&format!("{range} {unit}"), Style::NONE, Sample::Swatch(shade(k)));
     }
-    d.legend_place = crate::figure::drawing::LegendPlace::Outside;
+    d.legend_place = crate::canvas::LegendPlace::Outside;
 
     // One cell per pixel, y up so that row j = 0 is the bottom; a 2D image is one row, drawn as
     // tall as an eighth of its width. Equal neighbours in a row share one rectangle.

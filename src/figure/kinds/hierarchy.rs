@@ -11,7 +11,7 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::{Layout, TreeNode};
 use crate::bounds::aabb::Aabb;
-use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
 use crate::figure::plane::{PagePlane, Planar};
@@ -94,7 +94,7 @@ const MISSED: Rgba = style::REDDISH_PURPLE;
 /// The colour of nodes skipped beyond the nearest hit.
 const SKIPPED: Rgba = style::VERMILLION;
 /// The dash of skipped nodes: dots, apart from the missed nodes' dashes.
-const SKIPPED_DASH: crate::figure::drawing::Dash = crate::figure::drawing::Dash { on: 5.0, off: 9.0 };
+const SKIPPED_DASH: crate::canvas::Dash = crate::canvas::Dash { on: 5.0, off: 9.0 };
 
 /// The tree's top, as a fraction of the view's height below its top, under a legend of up to
 /// [`LEGEND_LINES_FREE`] lines.
@@ -256,7 +256,7 @@ pub fn draw<V: Planar>(
     d.set_caption(&caption);
     legend_role_and_fates(d, input, &fate);
     // The legend over the tree's column, whose top is kept free for it.
-    d.legend_place = crate::figure::drawing::LegendPlace::Inside(crate::figure::drawing::Corner::TopRight);
+    d.legend_place = crate::canvas::LegendPlace::Inside(crate::canvas::Corner::TopRight);
     // The geometry on the left, the tree in the column on the right.
     let mut points: Vec<DVec2> = nodes
         .iter()

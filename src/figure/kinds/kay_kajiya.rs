@@ -8,7 +8,7 @@ use super::slabs::{self, Slab};
 use super::Input;
 use crate::bounds::kdop::{normal, slab_count};
 use crate::bounds::BoundingVolume;
-use crate::figure::drawing::Drawing;
+use crate::canvas::Drawing;
 use crate::figure::labels::Label;
 use crate::figure::plane::Planar;
 use crate::figure::FigureError;

@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::figure::drawing::{Drawing, Sample, Style};
+use crate::canvas::{Drawing, Sample, Style};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     self, label_outward, legend_normal, num, object_name, rgb_text, sub, swatch, text_column, Names,
@@ -132,7 +132,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         d.with_events(events.iter().copied(), |d| label_outward(d, i + *dir * len, *dir, text));
     }
     d.with_events(hit_ev, |d| {
-        d.text("label", i, &hit_name, crate::figure::drawing::TextOpts::LABEL.avoid_overlap());
+        d.text("label", i, &hit_name, crate::canvas::TextOpts::LABEL.avoid_overlap());
     });
 
     // The terms, with the recorded numbers.

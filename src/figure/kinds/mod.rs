@@ -18,11 +18,11 @@ pub mod slab_test;
 pub mod slabs;
 pub mod uv_map;
 
-use super::drawing::{Drawing, LegendPlace};
 use super::labels::{self, Label};
 use super::plane::Planar;
 use super::source::{Traced, Traces};
 use super::{FigureError, FigureKind, Lang};
+use crate::canvas::{Drawing, LegendPlace};
 use crate::scene::Scene;
 
 /// What a kind reads.

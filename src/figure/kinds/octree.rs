@@ -4,7 +4,7 @@
 //! missed, or never tested. Traced with `--accel octree`.
 
 use super::{hierarchy, Input};
-use crate::figure::drawing::Drawing;
+use crate::canvas::Drawing;
 use crate::figure::labels::Label;
 use crate::figure::plane::Planar;
 use crate::figure::FigureError;

@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::figure::drawing::{Align, Drawing, Sample, Style, TextOpts, View};
+use crate::canvas::{Align, Drawing, Sample, Style, TextOpts, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     camera_plane, draw_objects, draw_observer, draw_ray, label, label_objects, legend_points, legend_role,

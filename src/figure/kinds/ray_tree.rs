@@ -11,9 +11,9 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
+use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
 use crate::figure::labels::{escape, Label};
-use crate::figure::parts::{self, legend_role, num, sub, swatch, Names};
+use crate::figure::parts::{self, legend_role, num, swatch, Names};
 use crate::figure::plane::Planar;
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
@@ -196,7 +196,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
 
     // The legend beside the graph, which fills the rest: its corners are rarely free.
-    d.legend_place = crate::figure::drawing::LegendPlace::Outside;
+    d.legend_place = crate::canvas::LegendPlace::Outside;
     // The view: the graph, a column for the level names on the left, the limit line below.
     let mut points: Vec<DVec2> = graph.iter().map(|(_, p, _)| *p).collect();
     let left = points.iter().map(|p| p.x).fold(f64::INFINITY, f64::min) - 1.5;
@@ -330,9 +330,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 d.text("object", *p, &what, below);
             }
             Vertex::Shadow { parent, light, s, .. } => {
-                let k = names.hit[*parent].unwrap_or(0);
-                let name =
-                    if scene.lights.len() > 1 { format!("L_{{{k},{}}}", light + 1) } else { sub("L", k) };
+                let name = names.shadow_name(*parent, *light);
                 d.text("name", *p, &name, beside.offset(-22.0, 0.0));
                 let s_text = match s {
                     Some(s) => format!("s = {}", num(*s)),
@@ -375,11 +373,11 @@ const STOP_CLEAR: f64 = 6.0;
 /// dotted.
 fn uncast_style() -> Style {
     Style::solid(style::DARK_GREY, style::CONSTRUCTION_WIDTH)
-        .dashed(crate::figure::drawing::Dash { on: 4.0, off: 8.0 })
+        .dashed(crate::canvas::Dash { on: 4.0, off: 8.0 })
 }
 
 /// The mark of a node stopped by the depth limit: a dashed vermillion ring.
 fn stop_style() -> Style {
     Style::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH)
-        .dashed(crate::figure::drawing::Dash { on: 10.0, off: 7.0 })
+        .dashed(crate::canvas::Dash { on: 10.0, off: 7.0 })
 }

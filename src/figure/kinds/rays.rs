@@ -7,7 +7,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::figure::drawing::{Drawing, Style};
+use crate::canvas::{Drawing, Style};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     self, camera_plane, draw_light, draw_objects, draw_observer, draw_ray, exit_point, label, label_objects,

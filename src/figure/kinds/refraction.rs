@@ -7,7 +7,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
+use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{
     self, deg, draw_arc, label_outward, legend_normal, legend_role, num, object_name, text_column, Names,

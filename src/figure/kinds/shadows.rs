@@ -8,7 +8,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::figure::drawing::{Drawing, Style};
+use crate::canvas::{Drawing, Style};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     self, camera_plane, draw_light, draw_objects, draw_ray, label, label_objects, legend_normal,
@@ -96,7 +96,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         d.legend_entry(
             input.t(Label::OccluderPoint),
             Style::NONE,
-            crate::figure::drawing::Sample::Dot(RayRole::BlockedShadow.color()),
+            crate::canvas::Sample::Dot(RayRole::BlockedShadow.color()),
         );
     }
     legend_points(d, lang, false, true, false);
@@ -118,7 +118,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let view = d.view;
     // Unbounded lines stop where the text column begins, leaving its lower part to the legend.
     let scene_part =
-        crate::figure::drawing::View::new(view.xmin(), column.x, view.ymin(), view.ymax()).unwrap_or(view);
+        crate::canvas::View::new(view.xmin(), column.x, view.ymin(), view.ymax()).unwrap_or(view);
 
     let anchors = draw_objects(d, scene, &plane, &scene_part, &occluding, RayRole::BlockedShadow.color());
     let hit_ev: Vec<usize> = log.ended_by(node_index).into_iter().collect();

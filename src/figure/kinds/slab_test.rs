@@ -7,7 +7,7 @@
 use super::slabs::{self, axis_name, Slab};
 use super::Input;
 use crate::bounds::BoundingVolume;
-use crate::figure::drawing::Drawing;
+use crate::canvas::Drawing;
 use crate::figure::labels::Label;
 use crate::figure::plane::Planar;
 use crate::figure::FigureError;

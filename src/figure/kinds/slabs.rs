@@ -11,7 +11,7 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::Layout;
 use crate::bounds::BoundingVolume;
-use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, clip_line, num, object_name};
 use crate::figure::plane::{PagePlane, Planar};
@@ -208,7 +208,7 @@ pub fn draw<V: Planar>(
             Sample::Line,
         );
     }
-    d.legend_place = crate::figure::drawing::LegendPlace::Outside;
+    d.legend_place = crate::canvas::LegendPlace::Outside;
 
     // Where each ray is drawn: around its max t_i and min t_e, a volume's width either side.
     let size = slabs.iter().map(|s| (s.hi - s.lo) / s.normal.length()).fold(0.0, f64::max).max(1e-9);
@@ -250,7 +250,12 @@ pub fn draw<V: Planar>(
         }
     }
     let one = only(scene, focus);
+    let first_item = d.items.len();
     let anchors = parts::draw_objects(d, &one, &plane, &scene_part, &[], style::BLACK);
+    // The object keeps its scene index in its tag (`object:K`), as in every other figure.
+    for item in &mut d.items[first_item..] {
+        item.tag = format!("object:{focus}");
+    }
 
     // The rays, their crossings, the entry and exit.
     for t in &tested {

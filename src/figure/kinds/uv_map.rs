@@ -7,7 +7,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::figure::drawing::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
+use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
 use crate::figure::labels::Label;
 use crate::figure::parts::{num, text_column};
 use crate::figure::plane::Planar;

@@ -12,11 +12,9 @@ use std::fmt::Write as _;
 
 use glam::DVec2;
 
-use super::drawing::{
-    ArrowPx, Drawing, Frame, HAlign, LegendBox, PlacedLine, PxRect, Sample, Shape, Style, Text, Transform,
-};
-use super::style::{self, Rgba};
+use super::style::{self, Rgba, Style};
 use super::text::{self, Script, Weight};
+use super::{ArrowPx, Drawing, Frame, HAlign, LegendBox, PlacedLine, PxRect, Sample, Shape, Text, Transform};
 
 /// The id of the clip path that keeps shapes inside the plot area.
 const CLIP_ID: &str = "plot-area";
@@ -358,26 +356,33 @@ fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &Le
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
-    use crate::figure::drawing::{Sample, TextOpts, View};
-    use crate::figure::style::RayRole;
+    use crate::canvas::style::Dash;
+    use crate::canvas::{TextOpts, View};
+
+    // A figure's strokes, as the canvas sees them: colours and widths, nothing of rays.
+    const BLUE_LINE: Style = Style::solid(style::BLUE, 6.0);
+    const GREEN_LINE: Style = Style::solid(style::BLUISH_GREEN, 6.0);
+    const OUTLINE: Style = Style::solid(style::BLACK, 4.0);
+    const DASHED: Style = Style::solid(style::DARK_GREY, 3.5).dashed(Dash { on: 18.0, off: 12.0 });
+    const FILL: Rgba = Rgba { a: 64, ..style::SKY_BLUE };
 
     fn demo() -> Drawing {
         let mut d = Drawing::new(960, 540).unwrap();
         d.set_title("Refracție <T> & \"R\"").set_caption("θ_t = arcsin(n_1/n_2 · sin θ_i)");
         d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
-        d.segment("ray:primary", DVec2::new(-2.0, 0.0), DVec2::ZERO, RayRole::Primary.style())
-            .arrow("ray:transmitted", DVec2::ZERO, DVec2::new(1.0, -1.0), RayRole::Transmitted.style())
-            .circle("object:0", DVec2::ZERO, 0.5, style::object(), Some(style::OBJECT_FILL))
-            .dot("hit", DVec2::ZERO, style::HIT)
-            .polygon("object:1", [DVec2::ZERO, DVec2::X, DVec2::Y], style::object(), None)
-            .rect("cell", DVec2::ZERO, DVec2::ONE, style::grid(), Some(style::HIGHLIGHT))
-            .segment("normal", DVec2::ZERO, DVec2::Y, style::normal())
+        d.segment("ray:primary", DVec2::new(-2.0, 0.0), DVec2::ZERO, BLUE_LINE)
+            .arrow("ray:transmitted", DVec2::ZERO, DVec2::new(1.0, -1.0), GREEN_LINE)
+            .circle("object:0", DVec2::ZERO, 0.5, OUTLINE, Some(FILL))
+            .dot("hit", DVec2::ZERO, style::BLACK)
+            .polygon("object:1", [DVec2::ZERO, DVec2::X, DVec2::Y], OUTLINE, None)
+            .rect("cell", DVec2::ZERO, DVec2::ONE, style::grid(), Some(style::YELLOW))
+            .segment("normal", DVec2::ZERO, DVec2::Y, DASHED)
             .text("label", DVec2::new(0.5, 0.5), "θ_t & t_{ex} <K_s>", TextOpts::LABEL)
             .text("a\"b", DVec2::new(-0.5, 0.5), "n_1", TextOpts::LABEL);
-        d.legend_entry("primary", RayRole::Primary.style(), Sample::Line)
-            .legend_entry("T", RayRole::Transmitted.style(), Sample::Arrow)
-            .legend_entry("hit", Style::NONE, Sample::Dot(style::HIT))
-            .legend_entry("object", style::object(), Sample::Swatch(style::OBJECT_FILL));
+        d.legend_entry("primary", BLUE_LINE, Sample::Line)
+            .legend_entry("T", GREEN_LINE, Sample::Arrow)
+            .legend_entry("hit", Style::NONE, Sample::Dot(style::BLACK))
+            .legend_entry("object", OUTLINE, Sample::Swatch(FILL));
         d
     }
 

@@ -14,9 +14,9 @@ use tiny_skia::{
     Transform as SkTransform,
 };
 
-use super::drawing::{ArrowPx, Drawing, Frame, LegendBox, PlacedLine, Sample, Shape, Style, Transform};
-use super::style::{self, Rgba};
+use super::style::{self, Rgba, Style};
 use super::text::{self, PathSink, Weight};
+use super::{ArrowPx, Drawing, Frame, LegendBox, PlacedLine, Sample, Shape, Transform};
 
 /// Why a drawing could not become a PNG.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -357,18 +357,23 @@ impl Canvas<'_> {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
-    use crate::figure::drawing::{TextOpts, View};
-    use crate::figure::style::RayRole;
+    use crate::canvas::{TextOpts, View};
+
+    // A figure's strokes, as the canvas sees them: colours and widths, nothing of rays.
+    const BLUE_LINE: Style = Style::solid(style::BLUE, 6.0);
+    const RED_LINE: Style = Style::solid(style::VERMILLION, 6.0);
+    const OUTLINE: Style = Style::solid(style::BLACK, 4.0);
+    const FILL: Rgba = Rgba { a: 64, ..style::SKY_BLUE };
 
     fn demo() -> Drawing {
         let mut d = Drawing::new(640, 360).unwrap();
         d.set_title("Reflexie").set_caption("n_1 < n_2");
         d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
-        d.segment("ray:reflected", DVec2::new(-2.0, 0.5), DVec2::new(2.0, 0.5), RayRole::Reflected.style())
-            .circle("object:0", DVec2::ZERO, 0.4, style::object(), Some(style::OBJECT_FILL))
-            .arrow("ray:primary", DVec2::new(-1.5, -0.5), DVec2::new(-0.4, 0.0), RayRole::Primary.style())
+        d.segment("ray:reflected", DVec2::new(-2.0, 0.5), DVec2::new(2.0, 0.5), RED_LINE)
+            .circle("object:0", DVec2::ZERO, 0.4, OUTLINE, Some(FILL))
+            .arrow("ray:primary", DVec2::new(-1.5, -0.5), DVec2::new(-0.4, 0.0), BLUE_LINE)
             .text("label", DVec2::new(1.0, -0.5), "ă â î ș ț θ n_1", TextOpts::LABEL);
-        d.legend_entry("reflected", RayRole::Reflected.style(), crate::figure::drawing::Sample::Line);
+        d.legend_entry("reflected", RED_LINE, Sample::Line);
         d
     }
 
@@ -391,7 +396,7 @@ mod tests {
     fn a_coloured_line_shows_its_colour() {
         let d = demo();
         let pixmap = render(&d).unwrap();
-        let c = RayRole::Reflected.color();
+        let c = style::VERMILLION;
         let exact = pixmap
             .pixels()
             .iter()
@@ -418,7 +423,7 @@ mod tests {
         d.set_caption("caption");
         d.set_view(View::new(0.0, 1.0, 0.0, 1.0).unwrap());
         // A vertical line far taller than the view.
-        d.segment("ray:primary", DVec2::new(0.5, -10.0), DVec2::new(0.5, 10.0), RayRole::Primary.style());
+        d.segment("ray:primary", DVec2::new(0.5, -10.0), DVec2::new(0.5, 10.0), BLUE_LINE);
         let frame = d.frame();
         let pixmap = render(&d).unwrap();
         let x = frame.transform.to_px(DVec2::new(0.5, 0.5)).x.round();

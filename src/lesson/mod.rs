@@ -1,8 +1,7 @@
 //! A lesson (product.md "Lessons"): one section of the lecture as a small JSON file naming its
 //! figures — each a kind, a scene, optionally a pixel or a ray and a depth, and a caption in both
-//! languages — and the static page per language (`index.html`) that shows every lesson's figures
-//! with their captions and the command that regenerates each. Reads text and returns values; the
-//! command line (`cli::lessons`) reads the files and writes the outputs.
+//! languages. Reads text and returns values; the pages that show the lessons are `site`'s, and
+//! the command line (`cli::lessons`) reads the files and writes the outputs.
 //!
 //! # Format
 //!
@@ -18,7 +17,10 @@
 //! `{ "origin": [...], "direction": [...] }`; `aa` is `center`, `corners` or `adaptive` (with
 //! `threshold`, default 0.1, and `max_level`, default 2) for `adaptive` and `heat-map`; `grid`
 //! (cells per axis) for `grid-dda`; `text`, `pixel`, `ray`, `depth`, `aa` and `grid` may be left
-//! out. An unknown field is an error.
+//! out. An unknown field is an error. `claims` lists what the figure must show, each checked on
+//! its traces before anything is written (module `claim`).
+
+pub mod claim;
 
 use crate::json::{self, Map, Value};
 
@@ -64,6 +66,8 @@ pub struct FigureSpec {
     pub grid: Option<Vec<usize>>,
     /// What the figure shows, in both languages.
     pub caption: Both,
+    /// What it must show, checked on its traces and drawing (`claims`).
+    pub claims: Vec<claim::Claim>,
 }
 
 impl FigureSpec {
@@ -178,8 +182,19 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
         errors.push(format!("{path}: must be an object"));
         return None;
     };
-    let fields =
-        ["kind", "scene", "pixel", "ray", "depth", "aa", "threshold", "max_level", "grid", "caption"];
+    let fields = [
+        "kind",
+        "scene",
+        "pixel",
+        "ray",
+        "depth",
+        "aa",
+        "threshold",
+        "max_level",
+        "grid",
+        "caption",
+        "claims",
+    ];
     unknown(map, &format!("{path}."), &fields, errors);
     let kind = map.get("kind").and_then(Value::as_str).and_then(FigureKind::from_name);
     if kind.is_none() {
@@ -250,7 +265,8 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
         }
     };
     let caption = both(map.get("caption"), &format!("{path}.caption"), errors);
-    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, grid, caption })
+    let claims = claim::parse(map.get("claims"), &format!("{path}.claims"), errors);
+    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, grid, caption, claims })
 }
 
 /// `aa` (`center`, `corners`, `adaptive`) with `threshold` (default 0.1) and `max_level` (default 2).
@@ -271,100 +287,6 @@ fn sampling(map: &Map<'_>, path: &str, errors: &mut Vec<String>) -> Option<Sampl
         _ => Err("must be center, corners or adaptive".to_owned()),
     };
     made.map_err(|e| errors.push(format!("{path}.aa: {e}"))).ok()
-}
-
-/// What the index page shows for one written figure.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Shown {
-    /// The PNG, relative to the page.
-    pub png: String,
-    /// The SVG, relative to the page.
-    pub svg: String,
-    /// The command that regenerates the PNG.
-    pub command: String,
-    /// Why it could not be drawn, if it could not.
-    pub error: Option<String>,
-}
-
-/// The static page of every lesson in `lang`: titles, introductions, each figure with its
-/// caption, its SVG and the command that regenerates it; `other` links to the other language's
-/// page. `shown[l][f]` is figure f of lesson l.
-#[must_use]
-pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &str) -> String {
-    let (title, other_name, regenerate, vector) = match lang {
-        Lang::En => {
-            ("whitted — the lecture's figures, drawn from traces", "Română", "Regenerate", "SVG for print")
-        }
-        Lang::Ro => {
-            ("whitted — figurile cursului, desenate din trasee", "English", "Regenerare", "SVG pentru tipar")
-        }
-    };
-    let (figures, play) = (crate::site::word("figures", lang), crate::site::word("play", lang));
-    let code = match lang {
-        Lang::En => "en",
-        Lang::Ro => "ro",
-    };
-    let mut out = format!(
-        "<!DOCTYPE html>\n<html lang=\"{code}\">\n<head>\n<meta charset=\"utf-8\">\n<title>{title}</title>\n\
-         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<style>\n\
-         body {{ font-family: 'Noto Sans', sans-serif; max-width: 1100px; margin: 2em auto; padding: 0 1em; color: #1a1a1a; }}\n\
-         figure {{ margin: 1.5em 0; }} img {{ width: 100%; border: 1px solid #ccc; }}\n\
-         code {{ background: #f3f3f3; padding: 0.1em 0.3em; font-size: 0.9em; }}\n\
-         nav a {{ margin-right: 1em; }} .error {{ color: #d55e00; }}\n\
-         @media print {{ nav, .cmd {{ display: none; }} figure {{ page-break-inside: avoid; }} }}\n\
-         </style>\n</head>\n<body>\n<h1>{title}</h1>\n<nav><a href=\"{}\">{other_name}</a></nav>\n<ol>\n",
-        esc(other)
-    );
-    // The lesson pages and the playground live in the language's folder (`en/`, `ro/`); the
-    // English index is one folder up from its pages.
-    let pages = match lang {
-        Lang::En => "en/",
-        Lang::Ro => "",
-    };
-    for lesson in lessons {
-        out.push_str(&format!(
-            "<li><a href=\"{pages}{name}.html\">{}</a> (<a href=\"#{name}\">{figures}</a>)</li>\n",
-            esc(lesson.title.get(lang)),
-            name = lesson.name,
-        ));
-    }
-    out.push_str(&format!("</ol>\n<p><a href=\"{pages}play.html\">{play}</a></p>\n"));
-    for (lesson, figures) in lessons.iter().zip(shown) {
-        out.push_str(&format!(
-            "<section id=\"{}\">\n<h2>{}</h2>\n",
-            lesson.name,
-            esc(lesson.title.get(lang))
-        ));
-        if !lesson.text.get(lang).is_empty() {
-            out.push_str(&format!("<p>{}</p>\n", esc(lesson.text.get(lang))));
-        }
-        for (spec, s) in lesson.figures.iter().zip(figures) {
-            let caption = esc(spec.caption.get(lang));
-            match &s.error {
-                None => out.push_str(&format!(
-                    "<figure>\n<a href=\"{svg}\"><img src=\"{png}\" alt=\"{caption}\"></a>\n<figcaption>{caption} \
-                     (<a href=\"{svg}\">{vector}</a>)<br><span class=\"cmd\">{regenerate}: <code>{cmd}</code></span>\
-                     </figcaption>\n</figure>\n",
-                    svg = esc(&s.svg),
-                    png = esc(&s.png),
-                    cmd = esc(&s.command),
-                )),
-                Some(e) => out.push_str(&format!(
-                    "<figure>\n<figcaption>{caption}<br><span class=\"error\">{}</span><br><code>{}</code></figcaption>\n</figure>\n",
-                    esc(e),
-                    esc(&s.command)
-                )),
-            }
-        }
-        out.push_str("</section>\n");
-    }
-    out.push_str("</body>\n</html>\n");
-    out
-}
-
-/// Escapes text for HTML (element content and quoted attribute values).
-pub(crate) fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
 #[cfg(test)]
@@ -401,25 +323,5 @@ mod tests {
         {
             assert!(all.contains(expected), "{expected} in {all}");
         }
-    }
-
-    #[test]
-    fn the_page_has_every_figure_and_escapes_text() {
-        let lesson = parse(GOOD).unwrap();
-        let shown: Vec<Shown> = (0..2)
-            .map(|k| Shown {
-                png: format!("{k}.png"),
-                svg: format!("{k}.svg"),
-                command: "whitted figure rays s.json --lang ro -o <x>".into(),
-                error: None,
-            })
-            .collect();
-        let page = index_html(&[lesson], &[shown], Lang::Ro, "../index.html");
-        assert!(page.contains("<html lang=\"ro\">"));
-        assert!(page.contains("src=\"1.png\""));
-        assert!(page.contains("-o &lt;x&gt;"));
-        assert!(page.contains("href=\"../index.html\""));
-        assert!(page.contains("<a href=\"rays.html\">Raze</a> (<a href=\"#rays\">figurile</a>)"), "{page}");
-        assert!(page.contains("href=\"play.html\""));
     }
 }

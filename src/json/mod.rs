@@ -9,6 +9,11 @@
 //!   hashed, owned `serde_json::Value` took sixteen).
 //! - **A UTF-8 byte-order mark is skipped** (editors write one), and the nesting depth is
 //!   serde_json's (128), so a hostile file cannot overflow the stack.
+//!
+//! [`reader`] reads such a tree field by field and collects every problem with its path: the
+//! scene loader and the lesson reader share it, so both word their errors alike.
+
+pub mod reader;
 
 use serde::de::{self, Deserialize, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::value::RawValue;

@@ -1,0 +1,193 @@
+//! The legend: its rows ([`LegendEntry`], each with a [`Sample`] of the line, arrow, dot or
+//! swatch it explains), where its box goes ([`LegendPlace`]: a clear corner of the plot area, a
+//! column beside it or a band under it), and its box and rows laid out in pixels ([`LegendBox`]).
+
+use glam::DVec2;
+
+use super::drawing::Drawing;
+use super::page::{PlacedLine, LINE_SPACING};
+use super::style::{self, Rgba, Style, TextSize};
+use super::text::{self, Weight};
+use super::view::{PxRect, Transform};
+
+/// What a legend entry's sample looks like.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Sample {
+    /// A short line in the entry's style.
+    Line,
+    /// A short arrow in the entry's style.
+    Arrow,
+    /// A dot of this fill, outlined in the entry's style.
+    Dot(Rgba),
+    /// A filled square of this colour, outlined in the entry's style.
+    Swatch(Rgba),
+}
+
+/// One row of the legend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegendEntry {
+    /// The text (markup).
+    pub label: String,
+    /// The sample's stroke.
+    pub style: Style,
+    /// The sample's kind.
+    pub sample: Sample,
+}
+
+/// A corner of the plot area, for the legend.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Corner {
+    /// Top right.
+    TopRight,
+    /// Top left.
+    TopLeft,
+    /// Bottom right.
+    BottomRight,
+    /// Bottom left.
+    BottomLeft,
+}
+
+impl Corner {
+    /// The corners in the order the automatic placement prefers them.
+    pub const ALL: [Self; 4] = [Self::TopRight, Self::TopLeft, Self::BottomRight, Self::BottomLeft];
+}
+
+/// Where the legend box goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LegendPlace {
+    /// The first corner of the plot area (in [`Corner::ALL`] order) that no line crosses and no
+    /// label overlaps; if none is clear, [`LegendPlace::Outside`]. The view is fitted to the whole
+    /// plot area first, so going outside only shrinks the picture, uniformly.
+    Auto,
+    /// In this corner of the plot area, whatever it covers.
+    Inside(Corner),
+    /// In a column to the right of the plot area, which is narrowed to make room.
+    Outside,
+    /// In a band under the plot area (above the caption), at its right end; the plot area is
+    /// shortened to make room. A wide picture (two panels side by side) keeps more of its size
+    /// this way than beside a column.
+    Below,
+}
+
+/// One legend row laid out in pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegendRow {
+    /// Where the sample starts (left end, vertical middle of the row).
+    pub sample_from: DVec2,
+    /// Where the sample ends.
+    pub sample_to: DVec2,
+    /// The row's text.
+    pub label: PlacedLine,
+}
+
+/// The legend box laid out in pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegendBox {
+    /// The box.
+    pub rect: PxRect,
+    /// Its rows, top to bottom, in the order of [`Drawing::legend`].
+    pub rows: Vec<LegendRow>,
+}
+
+impl Drawing {
+    /// The legend's padding, sample length, gap before the text, and row height, in pixels.
+    pub(super) fn legend_metrics(&self) -> (f64, f64, f64, f64) {
+        let k = self.px_scale();
+        (18.0 * k, 64.0 * k, 16.0 * k, TextSize::Body.px() * k * LINE_SPACING)
+    }
+
+    /// The legend box's size in pixels, or `None` without legend entries.
+    pub(super) fn legend_size(&self) -> Option<DVec2> {
+        if self.legend.is_empty() {
+            return None;
+        }
+        let size = TextSize::Body.px() * self.px_scale();
+        let (pad, sample_len, gap, row) = self.legend_metrics();
+        let text_width = self
+            .legend
+            .iter()
+            .map(|e| text::layout(&e.label, size, Weight::Regular).width)
+            .fold(0.0, f64::max);
+        Some(DVec2::new(
+            pad * 2.0 + sample_len + gap + text_width,
+            pad * 2.0 + row * self.legend.len() as f64,
+        ))
+    }
+
+    /// The transform, the plot area and the legend box, with [`LegendPlace::Auto`] resolved.
+    pub(super) fn placed_legend(&self) -> (Transform, PxRect, Option<PxRect>) {
+        let Some(size) = self.legend_size() else {
+            let plot = self.plot_area_beside(0.0);
+            return (self.transform_in(&plot), plot, None);
+        };
+        let inset = style::MARGIN * self.px_scale() * 0.3;
+        let in_corner = |plot: &PxRect, corner: Corner| {
+            let x = match corner {
+                Corner::TopLeft | Corner::BottomLeft => plot.min.x + inset,
+                Corner::TopRight | Corner::BottomRight => plot.max.x - inset - size.x,
+            };
+            let y = match corner {
+                Corner::TopLeft | Corner::TopRight => plot.min.y + inset,
+                Corner::BottomLeft | Corner::BottomRight => plot.max.y - inset - size.y,
+            };
+            PxRect { min: DVec2::new(x, y), max: DVec2::new(x, y) + size }
+        };
+        let outside = || {
+            let plot = self.plot_area_beside(size.x);
+            let margin = style::MARGIN * self.px_scale();
+            let min = DVec2::new(plot.max.x + margin, plot.min.y);
+            (self.transform_in(&plot), plot, Some(PxRect { min, max: min + size }))
+        };
+        let below = || {
+            let plot = self.plot_area_above(size.y);
+            let margin = style::MARGIN * self.px_scale();
+            let min = DVec2::new(plot.max.x - size.x, plot.max.y + margin);
+            (self.transform_in(&plot), plot, Some(PxRect { min, max: min + size }))
+        };
+        match self.legend_place {
+            LegendPlace::Below => below(),
+            LegendPlace::Inside(corner) => {
+                let plot = self.plot_area_beside(0.0);
+                (self.transform_in(&plot), plot, Some(in_corner(&plot, corner)))
+            }
+            LegendPlace::Outside => outside(),
+            LegendPlace::Auto => {
+                let plot = self.plot_area_beside(0.0);
+                let tf = self.transform_in(&plot);
+                let segments = self.segments(&tf);
+                let boxes = self.text_boxes(&tf);
+                let clear = |r: &PxRect| {
+                    let r = r.inflate(inset);
+                    !segments.iter().any(|(a, b)| r.meets_segment(*a, *b))
+                        && boxes.iter().all(|b| r.overlap(b) <= 0.0)
+                };
+                Corner::ALL
+                    .iter()
+                    .map(|c| in_corner(&plot, *c))
+                    .find(|r| clear(r))
+                    .map_or_else(outside, |r| (tf, plot, Some(r)))
+            }
+        }
+    }
+
+    /// The legend's rows inside its box.
+    pub(super) fn legend_rows(&self, rect: PxRect) -> LegendBox {
+        let size = TextSize::Body.px() * self.px_scale();
+        let (pad, sample_len, gap, row) = self.legend_metrics();
+        let cap = text::cap_height(size);
+        let rows = self
+            .legend
+            .iter()
+            .enumerate()
+            .map(|(i, e)| {
+                let mid_y = rect.min.y + pad + row * (i as f64 + 0.5);
+                let sample_from = DVec2::new(rect.min.x + pad, mid_y);
+                let sample_to = sample_from + DVec2::new(sample_len, 0.0);
+                let origin = DVec2::new(sample_to.x + gap, mid_y + cap / 2.0);
+                let label = PlacedLine { text: e.label.clone(), origin, size };
+                LegendRow { sample_from, sample_to, label }
+            })
+            .collect();
+        LegendBox { rect, rows }
+    }
+}
