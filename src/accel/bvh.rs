@@ -18,7 +18,7 @@
 //! when its entry lies beyond the best hit so far ([`super::beyond`]), so the walk stops as soon
 //! as the nearest hit is closer than the next node.
 
-use super::{beyond, node_visit, prim_bounds, Prim, TreeNode, Visitor};
+use super::{beyond, node_skip, node_visit, prim_bounds, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
 use crate::geom::ray::Ray;
 use crate::geom::slab::RecipRay;
@@ -286,7 +286,11 @@ impl<V: Dim> Bvh<V> {
             let r = recip.insert(RecipRay::new(ray));
             let root =
                 node_visit("bvh", r.box_interval(self.root_box.min, self.root_box.max), (0, 0), stats, rec);
-            if !root.hit || beyond(root.t_in, visitor.bound()) {
+            if !root.hit {
+                return;
+            }
+            if beyond(root.t_in, visitor.bound()) {
+                node_skip("bvh", 0, root.t_in, visitor.bound(), rec);
                 return;
             }
             root.t_in
@@ -302,6 +306,7 @@ impl<V: Dim> Bvh<V> {
         stack.push((self.root, 0, root_t_in));
         while let Some((link, depth, t_in)) = stack.pop() {
             if beyond(t_in, visitor.bound()) {
+                node_skip("bvh", link.id as usize, t_in, visitor.bound(), rec);
                 continue;
             }
             if link.count > 0 {
@@ -322,6 +327,8 @@ impl<V: Dim> Bvh<V> {
             for (child, h) in [(far, h_far), (near, h_near)] {
                 if h.hit && !beyond(h.t_in, visitor.bound()) {
                     stack.push((child, depth + 1, h.t_in));
+                } else if h.hit {
+                    node_skip("bvh", child.id as usize, h.t_in, visitor.bound(), rec);
                 }
             }
         }

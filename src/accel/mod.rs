@@ -542,6 +542,20 @@ pub(crate) fn node_visit<V: Dim, R: Recorder<V>>(
     BoundHit { t_in, t_out, hit: culling_hit(t_in, t_out) }
 }
 
+/// A hierarchy node whose box the ray met at `t_in`, skipped because `t_in` lies beyond
+/// `t_best` ([`beyond`]): recorded as a `node_skip` event, so that a figure can tell it from a
+/// missed box.
+#[inline(always)]
+pub(crate) fn node_skip<V: Dim, R: Recorder<V>>(
+    structure: &'static str,
+    node: usize,
+    t_in: f64,
+    t_best: f64,
+    rec: &mut R,
+) {
+    rec.event(|| Event::NodeSkip { structure, node, t_in, t_best });
+}
+
 /// [`test_prim`] as the nearest-hit search keeps it ([`Shape::part_found`]): the same count, the
 /// same event, the same hit, but a sphere's or plane's point and normal wait for the nearest.
 #[inline(always)]

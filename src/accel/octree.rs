@@ -14,7 +14,7 @@
 //! index), each skipped when it starts beyond the best hit ([`super::beyond`]); a primitive in
 //! several leaves is tested once (the mailbox). `node_visit` events, one per node box tested.
 
-use super::{beyond, node_visit, prim_bounds, Mailbox, Prim, TreeNode, Visitor};
+use super::{beyond, node_skip, node_visit, prim_bounds, Mailbox, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
 use crate::geom::ray::Ray;
 use crate::geom::slab::RecipRay;
@@ -211,8 +211,12 @@ impl<V: Dim> Octree<V> {
                 }
                 // In the order the ray enters them; ties by child index.
                 entered[..n].sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                for &(t_in, child) in &entered[..n] {
+                for (k, &(t_in, child)) in entered[..n].iter().enumerate() {
                     if beyond(t_in, visitor.bound()) {
+                        // Sorted by entry: every child from here on lies beyond too.
+                        for &(t, c) in &entered[k..n] {
+                            node_skip("octree", c, t, visitor.bound(), rec);
+                        }
                         break;
                     }
                     if self.visit(child, depth + 1, ray, visitor, stats, rec, mailbox) {

@@ -231,6 +231,12 @@ pub fn event<V: Dim>(
             put("t_in", float(*t_in));
             put("t_out", float(*t_out));
         }
+        Event::NodeSkip { structure, node, t_in, t_best } => {
+            put("structure", json!(structure));
+            put("node", json!(node));
+            put("t_in", float(*t_in));
+            put("t_best", float(*t_best));
+        }
         Event::VoxelStep { cell, t_max, t_delta, objects } => {
             put("cell", json!(cell));
             put("t_max", Value::Array(t_max.iter().map(|x| float(*x)).collect()));

@@ -39,6 +39,8 @@ pub enum Label {
     TitleAdaptive,
     /// Title of `heat-map`.
     TitleHeatMap,
+    /// Title of `adaptive` for a pixel sampled uniformly (`--aa corners`).
+    TitleUniform,
 
     // Rays and points.
     /// The primary ray P.
@@ -49,8 +51,12 @@ pub enum Label {
     TransmittedRay,
     /// A shadow ray that reaches its light.
     ShadowRay,
-    /// A shadow ray stopped by an occluder.
+    /// A shadow leaf not cast: the light is behind the surface.
+    ShadowNotCast,
+    /// A shadow ray attenuated by transparent occluders (0 < s < 1).
     BlockedShadowRay,
+    /// A shadow ray stopped by an opaque occluder (s = 0).
+    OpaqueShadowRay,
     /// A hit point.
     HitPoint,
     /// Where a shadow ray meets an occluder.
@@ -145,6 +151,20 @@ pub enum Label {
     SampleReused,
     /// A leaf square's colour.
     LeafColour,
+    /// Legend: a leaf whose corners differ by less than the threshold.
+    LeafUnderThreshold,
+    /// Legend: a leaf at level K whose corners still differ by the threshold or more.
+    LeafAtMaxLevel,
+    /// Legend of the uniform figure: the pixel is the mean of its corners.
+    UniformMean,
+    /// Caption of the uniform figure: the method.
+    UniformRule,
+    /// The uniform figure's rule: a ray through each corner.
+    UniformCorners,
+    /// The uniform figure's rule: corners shared, and what an image costs (3D).
+    UniformShared,
+    /// The uniform figure's rule: corners shared, and what an image costs (2D).
+    UniformShared2d,
     /// "split while" (the rule of `adaptive`).
     SplitWhen,
     /// "samples traced".
@@ -155,6 +175,10 @@ pub enum Label {
     PixelColour,
     /// "primary rays traced" (heat-map caption).
     RaysTraced,
+    /// What the heat map's colours count (caption).
+    HeatMapCounts,
+    /// "samples" after a count in the heat map's legend.
+    SamplesUnit,
     /// "mean per pixel".
     MeanPerPixel,
     /// "rays" after a count in the legend.
@@ -217,8 +241,16 @@ pub enum Label {
     NodeEntered,
     /// Legend: a node whose box it missed.
     NodeMissed,
-    /// Legend: a node never tested.
+    /// Legend: a node met but skipped beyond the nearest hit.
+    NodeSkipped,
+    /// Legend: a node not reached because an ancestor's box was missed.
+    NodeUnderMissed,
+    /// Legend: a node not reached because an ancestor was skipped beyond the nearest hit.
+    NodeUnderSkipped,
+    /// Legend: a node never tested (the walk ended first).
     NodeUntested,
+    /// Caption: nodes skipped beyond the nearest hit.
+    NodesSkipped,
     /// "grid" (caption, before its cells).
     Grid,
     /// "cells visited".
@@ -292,15 +324,52 @@ impl Label {
             Self::TitleAdaptive => {
                 ("Adaptive subdivision of one pixel", "Subdivizarea adaptivă a unui pixel")
             }
-            Self::TitleHeatMap => ("Primary rays per pixel", "Raze primare pe pixel"),
+            Self::TitleHeatMap => ("Samples read per pixel", "Eșantioane citite pe pixel"),
+            Self::HeatMapCounts => (
+                "colour: the samples a pixel reads, a shared corner counted in each pixel",
+                "culoarea: eșantioanele citite de un pixel, un colț comun numărat la fiecare pixel",
+            ),
+            Self::TitleUniform => (
+                "Uniform supersampling: the corners of one pixel",
+                "Mărirea uniformă a numărului de raze: colțurile unui pixel",
+            ),
+            Self::LeafUnderThreshold => (
+                "leaf: corners differ < threshold (their mean)",
+                "frunză: colțurile diferă < prag (media lor)",
+            ),
+            Self::LeafAtMaxLevel => (
+                "leaf at level K: still ≥ threshold (their mean)",
+                "frunză la nivelul K: încă ≥ prag (media lor)",
+            ),
+            Self::UniformMean => ("pixel: the mean of its corners", "pixelul: media colțurilor"),
+            Self::UniformRule => (
+                "uniform: the pixel's corners, shared with its neighbours",
+                "uniformă: colțurile pixelului, comune cu vecinii",
+            ),
+            Self::UniformCorners => (
+                "a primary ray through each corner of the pixel",
+                "câte o rază primară prin fiecare colț al pixelului",
+            ),
+            Self::UniformShared => (
+                "each corner serves the adjacent pixels too:\nm × n pixels, (m + 1)(n + 1) rays",
+                "fiecare colț servește și pixelii adiacenți:\nm × n pixeli, (m + 1)(n + 1) raze",
+            ),
+            Self::UniformShared2d => (
+                "each end serves the adjacent pixel too:\nm pixels, m + 1 rays",
+                "fiecare capăt servește și pixelul adiacent:\nm pixeli, m + 1 raze",
+            ),
 
             Self::PrimaryRay => ("primary ray P", "rază primară P"),
             Self::ReflectedRay => ("reflected ray R", "rază reflectată R"),
             Self::TransmittedRay => ("transmitted ray T", "rază transmisă T"),
             Self::ShadowRay => ("shadow ray L, free (s = 1)", "rază de umbră L, liberă (s = 1)"),
             Self::BlockedShadowRay => {
-                ("shadow ray L with obstacles (s < 1)", "rază de umbră L cu obstacole (s < 1)")
+                ("L, transparent occluder (0 < s < 1)", "L, obstacol transparent (0 < s < 1)")
             }
+            Self::ShadowNotCast => {
+                ("L not cast: light behind (lum = 0)", "L netrasată: sursa în spate (lum = 0)")
+            }
+            Self::OpaqueShadowRay => ("L, opaque occluder (s = 0)", "L, obstacol opac (s = 0)"),
             Self::HitPoint => ("hit point I", "punct de intersecție I"),
             Self::OccluderPoint => ("L meets an object", "L întâlnește un obiect"),
             Self::LightSource => ("light source S", "sursă de lumină S"),
@@ -364,9 +433,10 @@ impl Label {
             Self::SamplesTraced => ("samples traced", "eșantioane trasate"),
             Self::Reused => ("reused", "refolosite"),
             Self::PixelColour => ("pixel", "pixelul"),
-            Self::RaysTraced => ("primary rays traced", "raze primare trasate"),
+            Self::RaysTraced => ("primary rays traced (shared once)", "raze primare trasate (comune o dată)"),
             Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
             Self::RaysPerPixel => ("rays", "raze"),
+            Self::SamplesUnit => ("samples", "eșantioane"),
             Self::TitleTradeoffSampling => (
                 "What sampling costs: error against rays traced",
                 "Cât costă eșantionarea: eroarea față de razele trasate",
@@ -413,10 +483,20 @@ impl Label {
             Self::RayMisses => ("a ray that misses it", "o rază care îl ratează"),
             Self::SlabPlanes => ("planes", "planele"),
             Self::NodesTested => ("nodes tested", "noduri testate"),
-            Self::NodesEntered => ("met", "intersectate"),
+            Self::NodesEntered => ("opened", "deschise"),
+            Self::NodesSkipped => ("not opened (beyond the hit)", "nedeschise (dincolo de intersecție)"),
             Self::ObjectsTested => ("objects tested", "obiecte testate"),
-            Self::NodeEntered => ("box met (n: test order)", "volum intersectat (n: ordinea testului)"),
+            Self::NodeEntered => {
+                ("box met: opened (n: test order)", "volum intersectat: deschis (n: ordinea testului)")
+            }
+            Self::NodeSkipped => {
+                ("box beyond the nearest hit: not opened", "volum dincolo de intersecția găsită: nedeschis")
+            }
             Self::NodeMissed => ("box missed: subtree skipped", "volum ratat: subarbore sărit"),
+            Self::NodeUnderMissed => ("not reached: an ancestor missed", "neatins: un strămoș ratat"),
+            Self::NodeUnderSkipped => {
+                ("not reached: an ancestor not opened", "neatins: un strămoș nedeschis")
+            }
             Self::NodeUntested => ("never tested", "netestat"),
             Self::Grid => ("grid", "grila"),
             Self::CellsVisited => ("cells visited", "voxeli parcurși"),
@@ -561,6 +641,8 @@ mod tests {
         Label::TransmittedRay,
         Label::ShadowRay,
         Label::BlockedShadowRay,
+        Label::OpaqueShadowRay,
+        Label::ShadowNotCast,
         Label::HitPoint,
         Label::LightSource,
         Label::Observer,
@@ -568,6 +650,23 @@ mod tests {
         Label::ViewWindow,
         Label::Tir,
         Label::SectionsNote,
+        Label::TitleUniform,
+        Label::HeatMapCounts,
+        Label::SamplesUnit,
+        Label::LeafUnderThreshold,
+        Label::LeafAtMaxLevel,
+        Label::UniformMean,
+        Label::UniformRule,
+        Label::UniformCorners,
+        Label::UniformShared,
+        Label::UniformShared2d,
+        Label::NodeEntered,
+        Label::NodeSkipped,
+        Label::NodeMissed,
+        Label::NodeUnderMissed,
+        Label::NodeUnderSkipped,
+        Label::NodeUntested,
+        Label::NodesSkipped,
     ];
 
     #[test]
@@ -577,7 +676,7 @@ mod tests {
             assert!(!en.is_empty() && !ro.is_empty());
             assert_ne!(en, ro, "{label:?}");
             for c in en.chars().chain(ro.chars()) {
-                assert!(has_glyph(c) || c == ' ', "{label:?}: {c:?}");
+                assert!(has_glyph(c) || c == ' ' || c == '\n', "{label:?}: {c:?}");
             }
         }
     }

@@ -306,6 +306,7 @@ pub fn legend_role(d: &mut Drawing, role: RayRole, lang: Lang) {
         RayRole::Transmitted => Label::TransmittedRay,
         RayRole::Shadow => Label::ShadowRay,
         RayRole::BlockedShadow => Label::BlockedShadowRay,
+        RayRole::OpaqueShadow => Label::OpaqueShadowRay,
     };
     d.legend_entry(text.text(lang), role.style(), Sample::Arrow);
 }

@@ -33,6 +33,8 @@ pub const LIGHT_RADIUS: f64 = 18.0;
 pub const CONSTRUCTION_DASH: Dash = Dash { on: 18.0, off: 12.0 };
 /// The dash of blocked shadow rays: 22 px on, 12 px off.
 pub const BLOCKED_DASH: Dash = Dash { on: 22.0, off: 12.0 };
+/// The dash of shadow rays stopped by an opaque object: 8 px on, 8 px off.
+pub const OPAQUE_DASH: Dash = Dash { on: 8.0, off: 8.0 };
 
 /// Which ray of the recursion a line shows; each has its own colour (and blocked shadows a dash).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -45,14 +47,35 @@ pub enum RayRole {
     Transmitted,
     /// A shadow ray that reaches its light: orange.
     Shadow,
-    /// A shadow ray stopped by an occluder: reddish purple, dashed.
+    /// A shadow ray attenuated by transparent occluders (0 < s < 1): reddish purple, dashed.
     BlockedShadow,
+    /// A shadow ray stopped by an opaque occluder (s = 0): black, short dashes.
+    OpaqueShadow,
 }
 
 impl RayRole {
     /// Every role, in the order a legend lists them.
-    pub const ALL: [Self; 5] =
-        [Self::Primary, Self::Reflected, Self::Transmitted, Self::Shadow, Self::BlockedShadow];
+    pub const ALL: [Self; 6] = [
+        Self::Primary,
+        Self::Reflected,
+        Self::Transmitted,
+        Self::Shadow,
+        Self::BlockedShadow,
+        Self::OpaqueShadow,
+    ];
+
+    /// A shadow ray's role by its factor s = Π kt of what it met: free (nothing met), attenuated
+    /// by transparent objects (0 < s < 1), or stopped by an opaque one (s = 0).
+    #[must_use]
+    pub fn shadow(s: f64, met_something: bool) -> Self {
+        if !met_something {
+            Self::Shadow
+        } else if s > 0.0 {
+            Self::BlockedShadow
+        } else {
+            Self::OpaqueShadow
+        }
+    }
 
     /// The role's colour.
     #[must_use]
@@ -63,6 +86,7 @@ impl RayRole {
             Self::Transmitted => BLUISH_GREEN,
             Self::Shadow => ORANGE,
             Self::BlockedShadow => REDDISH_PURPLE,
+            Self::OpaqueShadow => BLACK,
         }
     }
 
@@ -71,6 +95,7 @@ impl RayRole {
     pub const fn style(self) -> Style {
         let dash = match self {
             Self::BlockedShadow => Some(BLOCKED_DASH),
+            Self::OpaqueShadow => Some(OPAQUE_DASH),
             _ => None,
         };
         Style { color: self.color(), width: RAY_WIDTH, dash }
@@ -85,6 +110,7 @@ impl RayRole {
             Self::Transmitted => "ray:transmitted",
             Self::Shadow => "ray:shadow",
             Self::BlockedShadow => "ray:shadow-blocked",
+            Self::OpaqueShadow => "ray:shadow-opaque",
         }
     }
 }

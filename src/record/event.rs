@@ -198,6 +198,19 @@ pub enum Event<V> {
         /// Where it leaves.
         t_out: f64,
     },
+    /// A hierarchy node whose box the ray meets, skipped unopened because its entry lies beyond
+    /// the nearest hit found so far (§11's prune rule, `t_in > t_best`): the lecture's reason
+    /// for not descending, distinct from a missed box.
+    NodeSkip {
+        /// `bvh` or `octree`.
+        structure: &'static str,
+        /// The node's index in the structure.
+        node: usize,
+        /// Where the ray enters its volume.
+        t_in: f64,
+        /// The nearest hit's t when the node was skipped (a shadow ray: its light's distance).
+        t_best: f64,
+    },
     /// A grid cell stepped into by the 3D DDA (Amanatides–Woo).
     VoxelStep {
         /// The cell's integer coordinates.
@@ -239,6 +252,7 @@ impl<V> Event<V> {
             Self::Sample { .. } => "sample",
             Self::BoundTest { .. } => "bound_test",
             Self::NodeVisit { .. } => "node_visit",
+            Self::NodeSkip { .. } => "node_skip",
             Self::VoxelStep { .. } => "voxel_step",
         }
     }

@@ -145,6 +145,9 @@ pub struct SquareRecord {
 /// One pixel's samples, squares and colour, traced with the `EventLog`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PixelTrace {
+    /// The lecture's uniform supersampling (`Corners`: the 4 corners, no rule to split), as
+    /// opposed to adaptive subdivision, whatever its threshold.
+    pub uniform: bool,
     /// The threshold used.
     pub threshold: f64,
     /// K.
@@ -197,7 +200,8 @@ pub fn trace_pixel<V: Dim>(
     for (square, corners) in sink.squares.iter_mut().zip(&sink.local_corners) {
         square.corners = corners.iter().map(|p| source.seen[p]).collect();
     }
-    PixelTrace { threshold, max_level, samples: source.samples, squares: sink.squares, color }
+    let uniform = sampling == Sampling::Corners;
+    PixelTrace { uniform, threshold, max_level, samples: source.samples, squares: sink.squares, color }
 }
 
 /// The samples of one traced pixel: traced on first use, remembered by local lattice point.

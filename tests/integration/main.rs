@@ -11,6 +11,7 @@ mod numerics;
 mod outputs;
 mod properties;
 mod sampling;
+mod states;
 mod support;
 mod tidy;
 mod traces;

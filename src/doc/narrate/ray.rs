@@ -47,6 +47,12 @@ impl<'a, V: Dim> Writer<'a, V> {
                 format!("{volume}: {}", self.interval(*t_in, *t_out, *hit))
             }
             Event::NodeVisit { structure, node, .. } => format!("{structure} {node}"),
+            Event::NodeSkip { structure, node, t_in, t_best } => format!(
+                "{structure} {node}: tᵢ = {} > t = {} → {}",
+                num(*t_in),
+                num(*t_best),
+                self.t("skipped", "sărit")
+            ),
             Event::VoxelStep { cell, .. } => format!("{} {cell:?}", self.t("cell", "celula")),
             _ => String::new(),
         }
@@ -123,7 +129,12 @@ impl<'a, V: Dim> Writer<'a, V> {
             let deeper = usize::from(in_cell > 0);
             match e {
                 Event::ObjectTest { .. } if seen_hit => pending.push((k, e)),
-                Event::BoundTest { .. } | Event::NodeVisit { .. } | Event::VoxelStep { .. } if seen_hit => {
+                Event::BoundTest { .. }
+                | Event::NodeVisit { .. }
+                | Event::NodeSkip { .. }
+                | Event::VoxelStep { .. }
+                    if seen_hit =>
+                {
                     pending.push((k, e));
                 }
                 Event::ObjectTest { object, .. } => {
@@ -228,6 +239,19 @@ impl<'a, V: Dim> Writer<'a, V> {
                         &[format!("t ∈ [{}, {}]", num(*t_in), num(*t_out))],
                         vec![k],
                     );
+                }
+                Event::NodeSkip { structure, node, t_in, t_best } => {
+                    let title = format!("{} {structure} {node}", self.t("Skip node", "Sare peste nodul"));
+                    let line = format!(
+                        "tᵢ = {} > t = {}: {}",
+                        num(*t_in),
+                        num(*t_best),
+                        self.t(
+                            "its box starts beyond the nearest hit found",
+                            "volumul său începe dincolo de cea mai apropiată intersecție găsită"
+                        )
+                    );
+                    self.step(indent + 1, &title, &[line], vec![k]);
                 }
                 Event::VoxelStep { cell, t_max, objects, .. } => {
                     in_cell = objects.len();

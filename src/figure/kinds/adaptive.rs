@@ -2,8 +2,10 @@
 //! recorded adaptive subdivision — the squares of each level shaded darker, the samples labelled
 //! in the order they were traced as the lecture does (CA, CB, …), the ones another square read
 //! again ringed, each leaf's colour (the mean of its corners) at its centre — and beside it the
-//! rule, the counts and the area-weighted mean, with the recorded numbers. In 2D the pixel is an
-//! interval and each level's intervals are drawn under it.
+//! rule, the counts and the area-weighted mean, with the recorded numbers. Each leaf says why it
+//! stopped: under the threshold, or at the maximum level K. In 2D the pixel is an interval and
+//! each level's intervals are drawn under it. A pixel sampled uniformly (`--aa corners`, the
+//! lecture's "uniformă", §8.1) is drawn as that method: its 4 shared corners and their mean.
 
 use glam::DVec2;
 
@@ -44,10 +46,16 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let flat = V::DIM == 2;
     let deepest = pixel.squares.iter().map(|s| s.level).max().unwrap_or(0);
 
-    d.set_title(input.t(Label::TitleAdaptive));
-    let rule = format!("{} = {}, K = {}", input.t(Label::Threshold), num(pixel.threshold), pixel.max_level);
-    d.set_caption(&format!("{} · {rule}", input.traced(traced)));
-    for level in 0..=deepest {
+    if pixel.uniform {
+        d.set_title(input.t(Label::TitleUniform));
+        d.set_caption(&format!("{} · {}", input.traced(traced), input.t(Label::UniformRule)));
+    } else {
+        d.set_title(input.t(Label::TitleAdaptive));
+        let rule =
+            format!("{} = {}, K = {}", input.t(Label::Threshold), num(pixel.threshold), pixel.max_level);
+        d.set_caption(&format!("{} · {rule}", input.traced(traced)));
+    }
+    for level in (0..=deepest).filter(|_| !pixel.uniform) {
         d.legend_entry(
             &format!("{} {level}", input.t(Label::Level)),
             Style::NONE,
@@ -59,7 +67,19 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     if pixel.samples.iter().any(|s| s.reused) {
         d.legend_entry(input.t(Label::SampleReused), reused_ring(), Sample::Dot(style::WHITE));
     }
-    d.legend_entry(input.t(Label::LeafColour), style::outline(style::BLACK), Sample::Dot(style::LIGHT_GREY));
+    if pixel.uniform {
+        d.legend_entry(
+            input.t(Label::UniformMean),
+            style::outline(style::BLACK),
+            Sample::Dot(style::LIGHT_GREY),
+        );
+    } else {
+        for stop in [Stop::Threshold, Stop::MaxLevel] {
+            if pixel.squares.iter().any(|s| stop_of(s, pixel) == Some(stop)) {
+                d.legend_entry(input.t(stop.label()), stop.outline(), Sample::Dot(style::LIGHT_GREY));
+            }
+        }
+    }
     let (bottom, top) = if flat { (-0.2 * f64::from(deepest + 1) - 0.1, 0.12) } else { (-0.05, 1.08) };
     let column = parts::fit_with_column(d, &[DVec2::new(-0.08, bottom), DVec2::new(1.08, top)], 0.02, 0.45);
 
@@ -108,8 +128,14 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     for s in pixel.squares.iter().filter(|s| !s.split) {
         let (lo, hi) = rect_of(s);
+        let stop = stop_of(s, pixel).unwrap_or(Stop::Threshold);
+        let (tag, outline) = if pixel.uniform {
+            ("leaf-colour:uniform".to_owned(), style::outline(style::BLACK))
+        } else {
+            (format!("leaf-colour:{}", stop.class()), stop.outline())
+        };
         d.with_events(square_events(s), |d| {
-            d.marker("leaf-colour", (lo + hi) / 2.0, 16.0, swatch(s.color), style::outline(style::BLACK));
+            d.marker(&tag, (lo + hi) / 2.0, 16.0, swatch(s.color), outline);
         });
     }
     for (sample, events) in pixel.samples.iter().zip(&sample_events) {
@@ -148,6 +174,53 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     Ok(())
 }
 
+/// Why a leaf square was not split (lecture: "până la un nivel maxim prestabilit sau până când
+/// diferența dintre cele 4 culori scade sub un prag dat").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stop {
+    /// Its corners differ by less than the threshold.
+    Threshold,
+    /// Its corners differ by the threshold or more, but it is at level K.
+    MaxLevel,
+}
+
+impl Stop {
+    fn label(self) -> Label {
+        match self {
+            Stop::Threshold => Label::LeafUnderThreshold,
+            Stop::MaxLevel => Label::LeafAtMaxLevel,
+        }
+    }
+
+    /// The item tag's suffix.
+    fn class(self) -> &'static str {
+        match self {
+            Stop::Threshold => "threshold",
+            Stop::MaxLevel => "max-level",
+        }
+    }
+
+    /// The leaf colour disc's outline: black, or a thick vermillion ring at the maximum level.
+    fn outline(self) -> Style {
+        match self {
+            Stop::Threshold => style::outline(style::BLACK),
+            Stop::MaxLevel => Style::solid(style::VERMILLION, style::OBJECT_WIDTH * 1.5),
+        }
+    }
+}
+
+/// Why square `s` is a leaf, or None when it was split: the rule splits while `spread ≥
+/// threshold` and `level < K`, so a leaf either fell under the threshold or reached level K.
+fn stop_of(s: &SquareRecord, pixel: &PixelTrace) -> Option<Stop> {
+    if s.split {
+        None
+    } else if s.spread < pixel.threshold {
+        Some(Stop::Threshold)
+    } else {
+        Some(Stop::MaxLevel)
+    }
+}
+
 /// The height of a 2D pixel's bar, in pixel widths: its bottom edge holds the samples.
 const BAR: f64 = 0.02;
 
@@ -166,7 +239,12 @@ fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
     let full = if V::DIM == 2 { per_side } else { per_side * per_side };
     let corners = if V::DIM == 2 { 2 } else { 4 };
     let reused = pixel.samples.iter().filter(|s| s.reused).count();
-    let rule = if k == 0 {
+    let rule = if pixel.uniform {
+        let shared = if V::DIM == 2 { Label::UniformShared2d } else { Label::UniformShared };
+        let mut lines = vec![input.t(Label::UniformCorners).to_owned()];
+        lines.extend(input.t(shared).lines().map(str::to_owned));
+        lines
+    } else if k == 0 {
         vec![input.t(Label::CornersOnly).to_owned()]
     } else {
         vec![
@@ -176,15 +254,20 @@ fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
     };
     let mut lines = rule;
     let traced = pixel.samples.len();
-    lines.push(format!(
-        "{}: {traced} / {full}, {} {reused}",
-        input.t(Label::SamplesTraced),
-        input.t(Label::Reused)
-    ));
+    if !pixel.uniform {
+        lines.push(format!(
+            "{}: {traced} / {full}, {} {reused}",
+            input.t(Label::SamplesTraced),
+            input.t(Label::Reused)
+        ));
+    }
     // The deepest leaf's colour, the lecture's (CN + CL + CG + CM)/4.
     if let Some(leaf) = pixel.squares.iter().filter(|s| !s.split).max_by_key(|s| s.level) {
         let names: Vec<&str> = leaf.corners.iter().map(|c| pixel.samples[*c].label.as_str()).collect();
         lines.push(format!("({})/{corners} = {}", names.join(" + "), rgb_text(leaf.color)));
+    }
+    if pixel.uniform {
+        return lines;
     }
     let weight = if V::DIM == 2 { "2^{−level}" } else { "4^{−level}" };
     lines.push(format!(

@@ -1,5 +1,7 @@
 //! `heat-map` (lecture "Îmbunătățirea calității imaginii", algorithm.md §8; the cost of §7): the
-//! number of primary rays whose colour entered each pixel of a whole render, for one sampling
+//! number of samples (primary rays) whose colour entered each pixel of a whole render — a corner
+//! shared by neighbours counted in each of them, while the caption counts the rays traced, each
+//! shared corner once — for one sampling
 //! mode, on a colour scale (viridis, readable with any common colour-vision deficiency): 1 with
 //! `center`, 4 with `corners`, 4 to (2^K + 1)² with `adaptive`, where the image changes. The counts
 //! are the render's own (`Rendered::rays_per_pixel`); rows count from the bottom.
@@ -14,6 +16,11 @@ use crate::figure::plane::Planar;
 use crate::figure::style::{self, Rgba};
 use crate::figure::FigureError;
 use crate::sample::Sampling;
+
+/// Up to this many distinct counts get a colour (and a legend line) each.
+const MAX_LISTED: usize = 6;
+/// Otherwise the counts fall into this many equal bins.
+const BINS: u32 = 5;
 
 /// Viridis at five stops, dark (few rays) to light (many).
 const VIRIDIS: [Rgba; 5] = [
@@ -52,13 +59,28 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let (nx, ny) = (cam.nx, cam.ny);
     let lo = counts.per_pixel.iter().copied().min().unwrap_or(0);
     let hi = counts.per_pixel.iter().copied().max().unwrap_or(0);
-    let colour = |n: u32| {
-        if hi > lo {
-            scale_colour(f64::from(n - lo) / f64::from(hi - lo))
+    // Few distinct counts: one colour each. Many: BINS equal bins of counts, one colour each, so
+    // that the legend names every count that occurs and every colour drawn.
+    let mut distinct: Vec<u32> = counts.per_pixel.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    let bins: Vec<(u32, u32)> = if distinct.len() <= MAX_LISTED {
+        distinct.iter().map(|n| (*n, *n)).collect()
+    } else {
+        let width = (hi - lo + 1).div_ceil(BINS);
+        (0..BINS)
+            .map(|k| (lo + k * width, (lo + (k + 1) * width - 1).min(hi)))
+            .filter(|(a, _)| *a <= hi)
+            .collect()
+    };
+    let shade = |k: usize| {
+        if bins.len() > 1 {
+            scale_colour(k as f64 / (bins.len() - 1) as f64)
         } else {
             scale_colour(0.5)
         }
     };
+    let colour = |n: u32| shade(bins.iter().position(|(a, b)| (*a..=*b).contains(&n)).unwrap_or(0));
 
     d.set_title(input.t(Label::TitleHeatMap));
     let mode = match counts.sampling {
@@ -72,25 +94,23 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let sum: u64 = counts.per_pixel.iter().map(|n| u64::from(*n)).sum();
     let rows = if V::DIM == 2 { String::new() } else { format!(" · {}", input.t(Label::RowsFromBottom)) };
     d.set_caption(&format!(
-        "{} {} · {mode} · {}: {} · {}: {}{rows}",
+        "{} {} · {mode} · {} · {}: {} · {}: {}{rows}",
         input.t(Label::Scene),
         crate::figure::labels::escape(&input.traces.scene_name),
+        input.t(Label::HeatMapCounts),
         input.t(Label::RaysTraced),
         counts.traced,
         input.t(Label::MeanPerPixel),
         num(sum as f64 / pixels as f64),
     ));
-    // The legend is the scale: every count when there are few, else five steps.
-    let mut values: Vec<u32> = counts.per_pixel.clone();
-    values.sort_unstable();
-    values.dedup();
-    if values.len() > 6 {
-        values = (0..5).map(|k| lo + (hi - lo) * k / 4).collect();
-        values.dedup();
-    }
-    let unit = input.t(Label::RaysPerPixel);
-    for n in &values {
-        d.legend_entry(&format!("{n} {unit}"), Style::NONE, Sample::Swatch(colour(*n)));
+    // The legend is the scale: every count, or every bin of counts, that a pixel has.
+    let unit = input.t(Label::SamplesUnit);
+    for (k, (a, b)) in bins.iter().enumerate() {
+        if !counts.per_pixel.iter().any(|n| (*a..=*b).contains(n)) {
+            continue;
+        }
+        let range = if a == b { a.to_string() } else { format!("{a}–{b}") };
+        d.legend_entry(&format!("{range} {unit}"), Style::NONE, Sample::Swatch(shade(k)));
     }
     d.legend_place = crate::canvas::LegendPlace::Outside;
 

@@ -1,9 +1,10 @@
 //! What `bvh` and `octree` share (lecture "Scena reprezentată printr-o ierarhie de volume
 //! încadratoare", "Scena divizată în volume încadratoare (3)", algorithm.md §9): the hierarchy's
-//! boxes over the scene, each drawn by what the recorded walk of one primary ray did with it —
-//! entered (numbered in the order the ray entered them), tested and passed by (the ray misses
-//! its box, so its whole subtree is skipped), or never tested — and the tree beside it with the
-//! same marks. Nodes are named A, B, C … in the structure's own numbering.
+//! boxes over the scene, each drawn by what the recorded walk of one primary ray did with it and
+//! why — opened (numbered in the order of their tests), met but skipped because it starts beyond
+//! the nearest hit found (`node_skip`, the lecture's rule), missed (its whole subtree skipped), or
+//! never tested because an ancestor was missed or skipped — and the tree beside it with the same
+//! marks. Nodes are named A, B, C … in the structure's own numbering.
 
 use glam::DVec2;
 
@@ -19,21 +20,130 @@ use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
 use crate::record::event::Event;
 
-/// What the walk did with a node.
+/// What the walk did with a node, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Fate {
-    /// Its box was met: the k-th node entered (from 1).
+    /// Its box was met and opened: the k-th node opened (from 1), in the order of the tests.
     Entered(usize),
+    /// Its box was met, but it starts beyond the nearest hit already found (`node_skip`,
+    /// `t_in > t_best`): left unopened.
+    Skipped,
     /// Its box was tested and missed: its subtree was skipped.
     Missed,
-    /// Never tested.
+    /// Never tested, because an ancestor's box was missed.
+    UnderMissed,
+    /// Never tested, because an ancestor was skipped beyond the nearest hit.
+    UnderSkipped,
+    /// Never tested, for no recorded reason (the walk ended first).
     Untested,
+}
+
+impl Fate {
+    /// Every fate, in the legend's order.
+    const ALL: [Fate; 6] = [
+        Fate::Entered(1),
+        Fate::Skipped,
+        Fate::Missed,
+        Fate::UnderSkipped,
+        Fate::UnderMissed,
+        Fate::Untested,
+    ];
+
+    /// The name a drawn node's tag carries (`node-skipped:G`), for pages and tests.
+    fn class(self) -> &'static str {
+        match self {
+            Fate::Entered(_) => "entered",
+            Fate::Skipped => "skipped",
+            Fate::Missed => "missed",
+            Fate::UnderMissed => "under-missed",
+            Fate::UnderSkipped => "under-skipped",
+            Fate::Untested => "untested",
+        }
+    }
+
+    /// The legend's words for it.
+    fn label(self) -> Label {
+        match self {
+            Fate::Entered(_) => Label::NodeEntered,
+            Fate::Skipped => Label::NodeSkipped,
+            Fate::Missed => Label::NodeMissed,
+            Fate::UnderMissed => Label::NodeUnderMissed,
+            Fate::UnderSkipped => Label::NodeUnderSkipped,
+            Fate::Untested => Label::NodeUntested,
+        }
+    }
+
+    /// Whether the walk never tested the node.
+    fn untested(self) -> bool {
+        matches!(self, Fate::UnderMissed | Fate::UnderSkipped | Fate::Untested)
+    }
+
+    /// The same fate, its order forgotten (to compare kinds).
+    fn kind(self) -> Fate {
+        match self {
+            Fate::Entered(_) => Fate::Entered(1),
+            f => f,
+        }
+    }
 }
 
 /// The entered nodes' colour.
 const ENTERED: Rgba = style::BLUISH_GREEN;
 /// The missed nodes' colour.
 const MISSED: Rgba = style::REDDISH_PURPLE;
+/// The colour of nodes skipped beyond the nearest hit.
+const SKIPPED: Rgba = style::VERMILLION;
+/// The dash of skipped nodes: dots, apart from the missed nodes' dashes.
+const SKIPPED_DASH: crate::canvas::Dash = crate::canvas::Dash { on: 5.0, off: 9.0 };
+
+/// The tree's top, as a fraction of the view's height below its top, under a legend of up to
+/// [`LEGEND_LINES_FREE`] lines.
+const TREE_TOP: f64 = 0.36;
+/// The legend's lines that fit above [`TREE_TOP`].
+const LEGEND_LINES_FREE: usize = 4;
+/// A legend line's height, as a fraction of the view's height (slide-size text).
+const LEGEND_LINE: f64 = 0.06;
+
+/// Each node's fate from the primary ray's search events: a `node_visit` that meets the box
+/// opens the node, unless a `node_skip` names it; a missed box is missed; a node never tested
+/// takes its reason from its nearest tested ancestor.
+fn fates<V>(nodes: &[TreeNode<V>], search: &[&Event<V>]) -> Vec<Fate> {
+    let mut fate: Vec<Option<Fate>> = vec![None; nodes.len()];
+    for e in search {
+        match **e {
+            Event::NodeVisit { node, t_in, t_out, .. } if node < fate.len() && fate[node].is_none() => {
+                fate[node] = Some(if met(t_in, t_out) { Fate::Entered(0) } else { Fate::Missed });
+            }
+            Event::NodeSkip { node, .. } if node < fate.len() => fate[node] = Some(Fate::Skipped),
+            _ => {}
+        }
+    }
+    // Number the opened nodes in the order of their tests.
+    let mut order = 0;
+    for e in search {
+        if let Event::NodeVisit { node, .. } = **e {
+            if let Some(Some(Fate::Entered(k @ 0))) = fate.get_mut(node) {
+                order += 1;
+                *k = order;
+            }
+        }
+    }
+    // A node never tested inherits its reason from its nearest tested ancestor.
+    let mut out: Vec<Fate> = vec![Fate::Untested; nodes.len()];
+    fn down<V>(k: usize, inherited: Fate, nodes: &[TreeNode<V>], fate: &[Option<Fate>], out: &mut [Fate]) {
+        out[k] = fate[k].unwrap_or(inherited);
+        let pass = match out[k] {
+            Fate::Missed | Fate::UnderMissed => Fate::UnderMissed,
+            Fate::Skipped | Fate::UnderSkipped => Fate::UnderSkipped,
+            _ => Fate::Untested,
+        };
+        for &c in &nodes[k].children {
+            down(c, pass, nodes, fate, out);
+        }
+    }
+    down(0, Fate::Untested, nodes, &fate, &mut out);
+    out
+}
 
 /// `A`, `B`, … `Z`, `AA`, … for node number `k`.
 fn letter(k: usize) -> String {
@@ -107,23 +217,12 @@ pub fn draw<V: Planar>(
         return Err(FigureError(format!("{structure}: the scene has no bounded object to build it over")));
     }
     let (scene, log) = (input.scene, &traced.log);
-    // The walk of the primary ray: every node tested, in order.
-    let mut fate = vec![Fate::Untested; nodes.len()];
-    let mut entered = 0;
-    let mut tested = 0;
-    for e in search_events(log, 0) {
-        if let Event::NodeVisit { node, t_in, t_out, .. } = e {
-            tested += 1;
-            if *node < fate.len() && fate[*node] == Fate::Untested {
-                fate[*node] = if met(*t_in, *t_out) {
-                    entered += 1;
-                    Fate::Entered(entered)
-                } else {
-                    Fate::Missed
-                };
-            }
-        }
-    }
+    // The walk of the primary ray: every node tested, in order, and every node skipped.
+    let search: Vec<&Event<V>> = search_events(log, 0).collect();
+    let fate = fates(&nodes, &search);
+    let tested = search.iter().filter(|e| matches!(e, Event::NodeVisit { .. })).count();
+    let entered = fate.iter().filter(|f| matches!(f, Fate::Entered(_))).count();
+    let skipped = fate.iter().filter(|f| **f == Fate::Skipped).count();
     let object_tests = search_events(log, 0).filter(|e| matches!(e, Event::ObjectTest { .. })).count();
     // The `node_visit` events of each node in the primary ray's search: what its box draws.
     let mut visits: Vec<Vec<usize>> = vec![Vec::new(); nodes.len()];
@@ -141,18 +240,21 @@ pub fn draw<V: Planar>(
 
     d.set_title(input.t(title));
     let mut caption = format!(
-        "{} · {}: {tested}, {}: {entered}, {}: {object_tests}",
+        "{} · {}: {tested}, {}: {entered}, ",
         input.traced(traced),
         input.t(Label::NodesTested),
         input.t(Label::NodesEntered),
-        input.t(Label::ObjectsTested)
     );
+    if skipped > 0 {
+        caption.push_str(&format!("{}: {skipped}, ", input.t(Label::NodesSkipped)));
+    }
+    caption.push_str(&format!("{}: {object_tests}", input.t(Label::ObjectsTested)));
     if let Some([a, b]) = axes {
         let names = ["x", "y", "z"];
         caption.push_str(&format!(" · {} {}{}", input.t(Label::AxisPlane), names[a], names[b]));
     }
     d.set_caption(&caption);
-    legend_role_and_fates(d, input);
+    legend_role_and_fates(d, input, &fate);
     // The legend over the tree's column, whose top is kept free for it.
     d.legend_place = crate::canvas::LegendPlace::Inside(crate::canvas::Corner::TopRight);
     // The geometry on the left, the tree in the column on the right.
@@ -183,23 +285,25 @@ pub fn draw<V: Planar>(
         let o = outset * f64::from(deepest - n.depth);
         (lo - DVec2::splat(o), hi + DVec2::splat(o))
     };
-    // Boxes: untested first (faint), then missed, then entered, so the walk reads on top.
+    // Boxes: untested first (faint), then missed, skipped, then entered, so the walk reads on top.
     let anchors = draw_objects(d, scene, &plane, &scene_part, &[], style::BLACK);
-    for pass in [Fate::Untested, Fate::Missed, Fate::Entered(0)] {
+    let passes = [
+        Fate::UnderMissed,
+        Fate::UnderSkipped,
+        Fate::Untested,
+        Fate::Missed,
+        Fate::Skipped,
+        Fate::Entered(1),
+    ];
+    for pass in passes {
         for (k, n) in nodes.iter().enumerate() {
             let f = fate[k];
-            let same = matches!(
-                (pass, f),
-                (Fate::Untested, Fate::Untested)
-                    | (Fate::Missed, Fate::Missed)
-                    | (Fate::Entered(_), Fate::Entered(_))
-            );
-            if !same {
+            if f.kind() != pass {
                 continue;
             }
             let (lo, hi) = drawn(n);
             d.with_events(visits[k].iter().copied(), |d| {
-                d.rect(&format!("node:{}", letter(k)), lo, hi, fate_style(f), None);
+                d.rect(&format!("node-{}:{}", f.class(), letter(k)), lo, hi, fate_style(f), None);
             });
         }
     }
@@ -215,7 +319,7 @@ pub fn draw<V: Planar>(
     // Node names at their boxes' upper-left corners, inside; a box sharing that corner with an
     // ancestor (named first) gets its name on the next line down.
     for (k, n) in nodes.iter().enumerate() {
-        if fate[k] == Fate::Untested && nodes.len() > 40 {
+        if fate[k].untested() && nodes.len() > 40 {
             continue;
         }
         let (lo, hi) = drawn(n);
@@ -234,27 +338,32 @@ pub fn draw<V: Planar>(
     Ok(())
 }
 
-/// The legend: the ray and the three fates.
-fn legend_role_and_fates<V: Planar>(d: &mut Drawing, input: &Input<'_, V>) {
+/// The legend: the ray and the fates that occur (the opened boxes always).
+fn legend_role_and_fates<V: Planar>(d: &mut Drawing, input: &Input<'_, V>, fate: &[Fate]) {
     parts::legend_role(d, RayRole::Primary, input.lang);
-    d.legend_entry(input.t(Label::NodeEntered), fate_style(Fate::Entered(1)), Sample::Line);
-    d.legend_entry(input.t(Label::NodeMissed), fate_style(Fate::Missed), Sample::Line);
-    d.legend_entry(input.t(Label::NodeUntested), fate_style(Fate::Untested), Sample::Line);
+    for f in Fate::ALL {
+        if matches!(f, Fate::Entered(_)) || fate.iter().any(|g| g.kind() == f) {
+            d.legend_entry(input.t(f.label()), fate_style(f), Sample::Line);
+        }
+    }
 }
 
 fn fate_colour(f: Fate) -> Rgba {
     match f {
         Fate::Entered(_) => ENTERED,
+        Fate::Skipped => SKIPPED,
         Fate::Missed => MISSED,
-        Fate::Untested => style::DARK_GREY,
+        Fate::UnderMissed | Fate::UnderSkipped | Fate::Untested => style::DARK_GREY,
     }
 }
 
 fn fate_style(f: Fate) -> Style {
     match f {
         Fate::Entered(_) => Style::solid(ENTERED, style::OBJECT_WIDTH * 1.2),
+        Fate::Skipped => Style::solid(SKIPPED, style::CONSTRUCTION_WIDTH).dashed(SKIPPED_DASH),
         Fate::Missed => Style::solid(MISSED, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH),
-        Fate::Untested => Style::solid(style::LIGHT_GREY, style::GRID_WIDTH),
+        Fate::UnderMissed | Fate::Untested => Style::solid(style::LIGHT_GREY, style::GRID_WIDTH),
+        Fate::UnderSkipped => Style::solid(SKIPPED.with_alpha(0.45), style::GRID_WIDTH).dashed(SKIPPED_DASH),
     }
 }
 
@@ -273,7 +382,7 @@ fn tree<V: Planar>(
     // Only the part of the tree the walk reached, plus the children of what it entered.
     let shown: Vec<bool> = (0..nodes.len())
         .map(|k| {
-            fate[k] != Fate::Untested
+            !fate[k].untested()
                 || nodes
                     .iter()
                     .enumerate()
@@ -298,7 +407,10 @@ fn tree<V: Planar>(
     let depth = nodes.iter().zip(&shown).filter(|(_, s)| **s).map(|(n, _)| n.depth).max().unwrap_or(0);
     let width = view.xmax() - column.x;
     let (left, right) = (column.x + 0.08 * width, view.xmax() - 0.06 * width);
-    let (top, bottom) = (view.ymax() - 0.36 * view.height(), view.ymin() + 0.1 * view.height());
+    // The tree starts under the legend, which grows by one line per fate that occurs.
+    let extra = d.legend.len().saturating_sub(LEGEND_LINES_FREE);
+    let below_legend = TREE_TOP + LEGEND_LINE * f64::from(u32::try_from(extra).unwrap_or(u32::MAX));
+    let (top, bottom) = (view.ymax() - below_legend * view.height(), view.ymin() + 0.1 * view.height());
     let at = |k: usize| {
         let fx = if next > 1.0 { x[k] / (next - 1.0) } else { 0.5 };
         let fy = if depth > 0 { f64::from(nodes[k].depth) / f64::from(depth) } else { 0.0 };
@@ -317,13 +429,15 @@ fn tree<V: Planar>(
             continue;
         }
         let f = fate[k];
-        let fill = match f {
-            Fate::Entered(_) => ENTERED,
-            Fate::Missed => style::WHITE,
-            Fate::Untested => style::WHITE,
-        };
+        let fill = if matches!(f, Fate::Entered(_)) { ENTERED } else { style::WHITE };
         d.with_events(visits[k].iter().copied(), |d| {
-            d.marker("tree-node", at(k), 25.0, fill, fate_style(f).with_width(style::CONSTRUCTION_WIDTH));
+            d.marker(
+                &format!("tree-node-{}", f.class()),
+                at(k),
+                25.0,
+                fill,
+                fate_style(f).with_width(style::CONSTRUCTION_WIDTH),
+            );
             let name = TextOpts::NOTE.size(TextSize::Small).align(Align::CENTER).no_halo();
             d.text("tree-name", at(k), &letter(k), name);
             if let Fate::Entered(order) = f {

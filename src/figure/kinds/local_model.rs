@@ -116,7 +116,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         vec![(DVec2::Y, "N".to_owned(), hit_ev.clone()), (unit(view_dir), "V".to_owned(), view_ev)];
     for (m, t) in lit.iter().enumerate() {
         let Some(l) = t.l else { continue };
-        let role = if t.shadow.is_some_and(|s| s < 1.0) { RayRole::BlockedShadow } else { RayRole::Shadow };
+        let role = t.shadow.map_or(RayRole::Shadow, |s| RayRole::shadow(s, s < 1.0));
         let events = light_ev(t.light);
         d.with_events(events.clone(), |d| {
             d.arrow(role.tag(), i, i + unit(l) * len, role.style());

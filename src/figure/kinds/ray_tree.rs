@@ -2,8 +2,11 @@
 //! tree of one pixel as a graph. Each node is the ray that reached a hit — P, then R_k and T_k
 //! spawned at hit I_k — filled with the colour it returned and ringed in its kind's colour, with
 //! the object it hit (or the background) below it; the shadow rays L_k of each hit are leaves with
-//! their factor s. Rows are the levels n (P is level 1); the depth limit `max_depth` is drawn
-//! under the last level allowed to spawn, and nodes it stopped are marked.
+//! their factor s: free, through
+//! transparent objects (0 < s < 1), stopped by an opaque one (s = 0), or not cast at all because
+//! the light is behind the surface (lum = 0). Rows are the levels n (P is level 1); the depth
+//! limit `max_depth` is drawn under the last level's nodes and their shadow leaves (shadow rays
+//! are cast at every level), and nodes it stopped are marked.
 
 use glam::DVec2;
 
@@ -28,18 +31,34 @@ const ASPECT: f64 = 1.25;
 enum Vertex {
     /// A ray node (index into `log.nodes`).
     Ray(usize),
-    /// Shadow ray `m` (the m-th shadow event) of ray node `parent`: light, s and whether blocked.
-    Shadow { parent: usize, light: usize, s: f64, blocked: bool },
+    /// The shadow ray of ray node `parent` towards `light`: its factor s and its role (free,
+    /// through transparent objects, stopped by an opaque one); `s` is None when it was not cast
+    /// because the light is behind the surface (`lum = 0`).
+    Shadow { parent: usize, light: usize, s: Option<f64>, role: RayRole },
 }
 
-/// The children of ray node `k`: its shadow rays (when shown), then R, then T.
+impl Vertex {
+    /// A shadow leaf never cast (`lum = 0`).
+    fn uncast(&self) -> bool {
+        matches!(self, Vertex::Shadow { s: None, .. })
+    }
+}
+
+/// The children of ray node `k`: one shadow leaf per light (when shown; cast or not), then R,
+/// then T.
 fn children<V>(log: &EventLog<V>, k: usize, shadows: bool) -> Vec<Vertex> {
     let mut out = Vec::new();
     if shadows {
-        for l in log.events.iter().filter(|l| l.ray == Some(k)) {
-            if let Event::ShadowRay { light, occluders, s, .. } = &l.event {
-                out.push(Vertex::Shadow { parent: k, light: *light, s: *s, blocked: !occluders.is_empty() });
-            }
+        for term in &log.nodes[k].lights {
+            let cast = log.events.iter().filter(|l| l.ray == Some(k)).find_map(|l| match &l.event {
+                Event::ShadowRay { light, occluders, s, .. } if *light == term.light => {
+                    Some(RayRole::shadow(*s, !occluders.is_empty()))
+                }
+                _ => None,
+            });
+            let role = cast.unwrap_or(RayRole::Shadow);
+            let s = cast.and(term.shadow);
+            out.push(Vertex::Shadow { parent: k, light: term.light, s, role });
         }
     }
     out.extend(log.nodes[k].children.iter().map(|c| Vertex::Ray(*c)));
@@ -157,14 +176,20 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         roles.push(RayRole::Transmitted);
     }
     if shadows {
-        for (blocked, role) in [(false, RayRole::Shadow), (true, RayRole::BlockedShadow)] {
-            if graph.iter().any(|(v, _, _)| matches!(v, Vertex::Shadow { blocked: b, .. } if *b == blocked)) {
+        for role in [RayRole::Shadow, RayRole::BlockedShadow, RayRole::OpaqueShadow] {
+            if graph
+                .iter()
+                .any(|(v, _, _)| matches!(v, Vertex::Shadow { s: Some(_), role: r, .. } if *r == role))
+            {
                 roles.push(role);
             }
         }
     }
     for role in roles {
         legend_role(d, role, input.lang);
+    }
+    if graph.iter().any(|(v, _, _)| v.uncast()) {
+        d.legend_entry(input.t(Label::ShadowNotCast), uncast_style(), Sample::Dot(style::WHITE));
     }
     if !stopped.is_empty() {
         d.legend_entry(input.t(Label::StoppedByDepth), stop_style(), Sample::Dot(style::WHITE));
@@ -184,17 +209,20 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     // Where it lies depends on the view's scale and the view on where it lies: refit until they
     // agree (three fits move it by well under a pixel).
     let mut limit_y = -(f64::from(traced.max_depth) + 0.5) * row_h;
-    let last_row = -f64::from(traced.max_depth) * row_h;
-    let row_below = graph.iter().any(|(_, p, _)| (p.y - (last_row - row_h)).abs() < 0.25 * row_h);
     if !stopped.is_empty() {
         for _ in 0..3 {
             let px = d.px_scale() / d.picture_scale();
-            // A deep tree writes its words beside the nodes: then only a stopped node's ring is
-            // below. Else the lowest word is a ray node's object (a shadow leaf's `s = …` sits
-            // higher, under a smaller node).
-            let below_row = if deep { STOP_RADIUS + STOP_CLEAR } else { UNDER_WORD };
-            let room = if row_below { row_h - LIMIT_ABOVE_ROW * px } else { f64::INFINITY };
-            limit_y = last_row - (below_row * px).min(room);
+            // Every vertex lies above the line, the last level's shadow leaves too (a shadow ray
+            // is cast at every level, the limit stops only R and T): the line
+            // runs under the lowest one's word. A deep tree writes its words beside the nodes:
+            // then only a stopped node's ring (or a leaf's disc) reaches down.
+            let reach = |v: &Vertex| match (v, deep) {
+                (Vertex::Ray(_), true) => STOP_RADIUS + STOP_CLEAR,
+                (Vertex::Ray(_), false) => UNDER_WORD,
+                (Vertex::Shadow { .. }, true) => SHADOW_NODE + STOP_CLEAR,
+                (Vertex::Shadow { .. }, false) => SHADOW_WORD_BELOW + WORD_BOX + STOP_CLEAR,
+            };
+            limit_y = graph.iter().map(|(v, p, _)| p.y - reach(v) * px).fold(f64::INFINITY, f64::min);
             let mut with_limit = points.clone();
             with_limit.push(DVec2::new(left, limit_y - LIMIT_TEXT * px));
             d.fit_view(&with_limit, 0.03);
@@ -233,10 +261,13 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let px = d.px_scale() / d.picture_scale();
     for (v, p, parent) in &graph {
         let Some(from) = parent else { continue };
-        let role = match v {
-            Vertex::Ray(k) => parts::role(log.nodes[*k].start.kind),
-            Vertex::Shadow { blocked: true, .. } => RayRole::BlockedShadow,
-            Vertex::Shadow { .. } => RayRole::Shadow,
+        let (role, stroke) = match v {
+            Vertex::Ray(k) => {
+                let role = parts::role(log.nodes[*k].start.kind);
+                (role, role.style())
+            }
+            Vertex::Shadow { s: None, .. } => (RayRole::Shadow, uncast_style()),
+            Vertex::Shadow { role, .. } => (*role, role.style()),
         };
         let under_word = from.y - UNDER_WORD * px;
         #[allow(clippy::float_cmp)] // a child straight below has its parent's very x
@@ -246,7 +277,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             *from
         };
         d.with_events(events_of(v), |d| {
-            d.segment(role.tag(), start, *p, role.style());
+            let tag = if v.uncast() { "ray:shadow-not-cast" } else { role.tag() };
+            d.segment(tag, start, *p, stroke);
         });
     }
     for (v, p, _) in &graph {
@@ -264,15 +296,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                     });
                 }
             }
-            Vertex::Shadow { blocked, .. } => {
-                let role = if *blocked { RayRole::BlockedShadow } else { RayRole::Shadow };
-                d.marker(
-                    "node:shadow",
-                    *p,
-                    SHADOW_NODE,
-                    style::WHITE,
-                    Style::solid(role.color(), style::RAY_WIDTH * 0.8),
-                );
+            Vertex::Shadow { s: None, .. } => {
+                d.marker("node:shadow", *p, SHADOW_NODE, style::WHITE, uncast_style());
+            }
+            Vertex::Shadow { role, .. } => {
+                let ring = Style { width: style::RAY_WIDTH * 0.8, ..role.style() };
+                d.marker("node:shadow", *p, SHADOW_NODE, style::WHITE, ring);
             }
         });
     }
@@ -303,7 +332,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             Vertex::Shadow { parent, light, s, .. } => {
                 let name = names.shadow_name(*parent, *light);
                 d.text("name", *p, &name, beside.offset(-22.0, 0.0));
-                let s_text = format!("s = {}", num(*s));
+                let s_text = match s {
+                    Some(s) => format!("s = {}", num(*s)),
+                    None => "lum = 0".to_owned(),
+                };
                 d.text(
                     "object",
                     *p,
@@ -325,9 +357,6 @@ const WORD_BELOW: f64 = 34.0;
 const SHADOW_WORD_BELOW: f64 = 20.0;
 /// The height of the box of a word under a node (small text), in reference pixels.
 const WORD_BOX: f64 = 41.0;
-/// The fewest reference pixels from the depth-limit line down to the next row's centre line: half
-/// the box of a shadow leaf's name, 59 tall, and a gap.
-const LIMIT_ABOVE_ROW: f64 = 32.0;
 /// The reference pixels that the limit's words take under its line.
 const LIMIT_TEXT: f64 = 52.0;
 
@@ -339,6 +368,13 @@ const UNDER_WORD: f64 = WORD_BELOW + WORD_BOX + 5.0;
 /// gap kept outside it (by the node's name, by the limit line).
 const STOP_RADIUS: f64 = 40.0;
 const STOP_CLEAR: f64 = 6.0;
+
+/// A shadow leaf that was not cast (`lum = 0`, the light behind the surface): thin, grey,
+/// dotted.
+fn uncast_style() -> Style {
+    Style::solid(style::DARK_GREY, style::CONSTRUCTION_WIDTH)
+        .dashed(crate::canvas::Dash { on: 4.0, off: 8.0 })
+}
 
 /// The mark of a node stopped by the depth limit: a dashed vermillion ring.
 fn stop_style() -> Style {

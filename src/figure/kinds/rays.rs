@@ -56,19 +56,21 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         from: DVec2,
         to: DVec2,
         block: Option<DVec2>,
+        role: RayRole,
     }
     let shadows: Vec<Shadow> = log
         .events
         .iter()
         .enumerate()
         .filter_map(|(index, l)| match &l.event {
-            Event::ShadowRay { light, origin, direction, occluders, .. } => Some(Shadow {
+            Event::ShadowRay { light, origin, direction, occluders, s, .. } => Some(Shadow {
                 event: index,
                 from: plane.point(*origin),
                 to: plane.point(scene.lights[*light].position),
                 block: (!occluders.is_empty())
                     .then(|| shadow_block_t(log, index).map(|t| plane.point(*origin + *direction * t)))
                     .flatten(),
+                role: RayRole::shadow(*s, !occluders.is_empty()),
             }),
             _ => None,
         })
@@ -96,11 +98,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             legend_role(d, role, lang);
         }
     }
-    if shadows.iter().any(|s| s.block.is_none()) {
-        legend_role(d, RayRole::Shadow, lang);
-    }
-    if shadows.iter().any(|s| s.block.is_some()) {
-        legend_role(d, RayRole::BlockedShadow, lang);
+    for role in [RayRole::Shadow, RayRole::BlockedShadow, RayRole::OpaqueShadow] {
+        if shadows.iter().any(|s| s.role == role) {
+            legend_role(d, role, lang);
+        }
     }
     // Hit points and the observer are named on the drawing (I_k, O); the lights need a word.
     legend_points(d, lang, false, !scene.lights.is_empty(), false);
@@ -133,7 +134,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         d.with_events(log.ray_events(s.node), |d| draw_ray(d, role, s.from, to));
     }
     for s in &shadows {
-        let role = if s.block.is_some() { RayRole::BlockedShadow } else { RayRole::Shadow };
+        let role = s.role;
         d.with_events([s.event], |d| {
             d.segment(role.tag(), s.from, s.to, role.style());
         });
@@ -157,7 +158,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for s in &shadows {
         if let Some(b) = s.block {
             d.with_events([s.event], |d| {
-                d.marker("occluder-point", b, style::DOT_RADIUS, RayRole::BlockedShadow.color(), Style::NONE);
+                d.marker("occluder-point", b, style::DOT_RADIUS, s.role.color(), Style::NONE);
             });
         }
     }

@@ -86,11 +86,13 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         plane_note(V::DIM, Label::PlaneOfNL, Some(&hit_name), lang)
     ));
     legend_role(d, parts::role(node.start.kind), lang);
-    if shadows.iter().any(|s| s.occluders.is_empty()) {
-        legend_role(d, RayRole::Shadow, lang);
+    let role_of = |s: &Shadow<'_, V>| RayRole::shadow(s.s, !s.occluders.is_empty());
+    for role in [RayRole::Shadow, RayRole::BlockedShadow, RayRole::OpaqueShadow] {
+        if shadows.iter().any(|s| role_of(s) == role) {
+            legend_role(d, role, lang);
+        }
     }
     if shadows.iter().any(|s| !s.occluders.is_empty()) {
-        legend_role(d, RayRole::BlockedShadow, lang);
         d.legend_entry(
             input.t(Label::OccluderPoint),
             Style::NONE,
@@ -122,7 +124,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let hit_ev: Vec<usize> = log.ended_by(node_index).into_iter().collect();
     d.with_events(log.ray_events(node_index), |d| draw_ray(d, parts::role(node.start.kind), incoming, i));
     for s in &shadows {
-        let role = if s.occluders.is_empty() { RayRole::Shadow } else { RayRole::BlockedShadow };
+        let role = role_of(s);
         d.with_events([s.event], |d| {
             d.segment(
                 role.tag(),

@@ -21,7 +21,13 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         return Err(FigureError("the object has no box (--bounds aabb)".into()));
     };
     let slabs: Vec<Slab<V>> = (0..V::DIM)
-        .map(|a| Slab { normal: V::axis(a), lo: b.min[a], hi: b.max[a], name: axis_name(a).to_owned() })
+        .map(|a| Slab {
+            normal: V::axis(a),
+            lo: b.min[a],
+            hi: b.max[a],
+            name: axis_name(a).to_owned(),
+            row: a,
+        })
         .collect();
     slabs::draw(input, d, Label::TitleSlabTest, &slabs)
 }

@@ -46,6 +46,8 @@ pub struct Slab<V> {
     pub hi: f64,
     /// Its name in labels (`x` → I_x, t_{ix}).
     pub name: String,
+    /// Its place in the legend and among the interval rows (the lecture's order).
+    pub row: usize,
 }
 
 /// The colour of slab `k`.
@@ -196,7 +198,9 @@ pub fn draw<V: Planar>(
         let (colour, label) = if t.hit { (HIT_RAY, Label::RayMeets) } else { (MISS_RAY, Label::RayMisses) };
         d.legend_entry(input.t(label), Style::solid(colour, style::RAY_WIDTH), Sample::Arrow);
     }
-    for (k, s) in slabs.iter().enumerate() {
+    let mut in_rows: Vec<(usize, &Slab<V>)> = slabs.iter().enumerate().collect();
+    in_rows.sort_by_key(|(_, s)| s.row);
+    for (k, s) in in_rows {
         let text = format!("{} {}", input.t(Label::SlabPlanes), s.name);
         d.legend_entry(
             &text,
@@ -320,7 +324,7 @@ pub fn draw<V: Planar>(
                 head,
             );
             for (s, iv) in t.intervals.iter().enumerate().take(slabs.len()) {
-                let y = top - row_h * (s as f64 + 1.0);
+                let y = top - row_h * (slabs[s].row as f64 + 1.0);
                 let name =
                     TextOpts::NOTE.align(Align::LEFT_OF).offset(-10.0, 0.0).color(slab_colour(s)).no_halo();
                 d.text("interval-name", DVec2::new(left, y), &slabs[s].name, name);
