@@ -239,7 +239,8 @@ impl<V: Dim> Accel<V> {
         // The BVH, the default, walks inline, in the recursion's own frame. The other structures'
         // walks are out of line (`#[inline(never)]` on each), so that the recursion's hot code
         // stays compact: 2–5 % faster on Whitted's scene in every sampling mode, and within the
-        // noise (±2 %) on the sphere lattice and the mesh (bench/README.md, "Code layout").
+        // noise (±2 %) on the sphere lattice and the mesh (35eb3bd; bench/README.md, "Decisions
+        // that were measured").
         match &self.structure {
             Structure::List => {}
             Structure::Bounds(v) => v.walk(scene, ray, visitor, stats, rec),

@@ -17,14 +17,16 @@
 //!
 //! Modules: `drawing` (the [`Drawing`] and its builders), `items` (the display list's entries),
 //! `view` (world rectangle, pixel rectangle, transform), `label` (text options and label
-//! placement), `legend`, `page` (the layout of title, caption, plot area and legend), `style`
-//! (colours, strokes, sizes), `text` (the embedded font, the label markup, text layout), and the
-//! back ends `skia` (PNG) and `svg`. Nothing here imports from the rest of the crate.
+//! placement), `legend`, `listing` (the drawing as text, [`Drawing::to_text`]), `page` (the
+//! layout of title, caption, plot area and legend), `style` (colours, strokes, sizes), `text`
+//! (the embedded font, the label markup, text layout), and the back ends `skia` (PNG) and `svg`.
+//! Nothing here imports from the rest of the crate.
 
 pub mod drawing;
 pub mod items;
 pub mod label;
 pub mod legend;
+pub mod listing;
 pub mod page;
 pub mod skia;
 pub mod style;

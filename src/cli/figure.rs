@@ -4,7 +4,7 @@
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::trace::LangArg;
+use super::trace::{pixel_of, LangArg};
 use super::{load_scene, output, print_out, write_file, Failure};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -29,11 +29,14 @@ pub struct FigureArgs {
     scene: Option<PathBuf>,
     /// The pixel: I,J (column from the left, row from the BOTTOM); in 2D, I. Without it (and
     /// without --ray) the figure picks a telling pixel and says which in its caption.
-    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray", allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse::pixel, conflicts_with_all = ["ray", "object"], allow_hyphen_values = true)]
     pixel: Option<PixelArg>,
     /// A ray given by hand: OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D); traced as a primary ray.
-    #[arg(long, value_parser = parse::ray, allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse::ray, conflicts_with = "object", allow_hyphen_values = true)]
     ray: Option<(Vec<f64>, Vec<f64>)>,
+    /// The pixel that shows the object of this name (as `whitted trace --object`).
+    #[arg(long, value_name = "NAME")]
+    object: Option<String>,
     /// The file to write: .png or .svg (default: KIND.png in the current folder).
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
@@ -82,9 +85,10 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
     let format = Format::of(&output, scene_path)?;
     let (width, height) = canvas(args.size)?;
     let scene = load_scene(scene_path)?;
+    let pixel = pixel_of(&scene, args.pixel, args.object.as_deref())?;
     let request = Request {
         kind,
-        target: Target { pixel: args.pixel, ray: args.ray.clone() },
+        target: Target { pixel, ray: args.ray.clone() },
         tracing: Tracing {
             depth: args.depth,
             sampling: args.sampling.sampling_or(default_aa(kind))?,

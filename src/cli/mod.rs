@@ -42,8 +42,9 @@ enum Command {
     Figure(figure::FigureArgs),
     /// Draw every lesson's figures (lessons/) in both languages, PNG and SVG, with index pages.
     Lessons(lessons::LessonsArgs),
-    /// Measure what accuracy costs: time, rays and tests per setting (sampling, depth, structure)
-    /// and the error against a reference image; a Markdown table (or --json), plots with --out.
+    /// Measure what accuracy costs: per sweep (sampling, depth, structure), each setting's rays,
+    /// tests and time against its error to a reference differing in that sweep only; Markdown
+    /// tables (or --json), plots with --out.
     Tradeoff(tradeoff::TradeoffArgs),
 }
 

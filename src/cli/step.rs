@@ -2,12 +2,15 @@
 //! who follows a pixel's computation number by number. Each answer on stdin moves: Enter (or `n`)
 //! to the next step, `b` back, a number to that step, `a` everything left, `q` to quit. Input is
 //! read a line at a time, so a terminal and a pipe work alike; the end of input ends the session.
+//! Each step shown is headed by where it stands in the ray tree (`P → T₁ → R₂ @ glass, level 3`),
+//! so a jump lands somewhere named; an answer read from a pipe is echoed after its prompt, so a
+//! transcript shows what was typed (a terminal echoes it itself).
 
 use super::trace::{narration, TraceWhat};
 use super::Failure;
 use clap::Args;
-use std::io::{BufRead, Write};
-use whitted::doc::narrate::{steps, Lang};
+use std::io::{BufRead, IsTerminal, Write};
+use whitted::doc::narrate::{Lang, Step};
 
 /// Options of `whitted step`: those of `whitted trace` without `--json`.
 #[derive(Args, Debug)]
@@ -18,11 +21,12 @@ pub struct StepArgs {
 
 /// Runs `whitted step`.
 pub fn run(args: &StepArgs) -> Result<(), Failure> {
-    let steps = steps(&narration(&args.what)?);
+    let steps = narration(&args.what)?.steps();
     let stdin = std::io::stdin();
+    let echo = !stdin.is_terminal();
     let mut out = std::io::stdout().lock();
     // A closed stdout (`| head`) ends the session quietly, as for the other commands.
-    let _ = session(&steps, args.what.lang(), stdin.lock(), &mut out);
+    let _ = session(&steps, args.what.lang(), echo, stdin.lock(), &mut out);
     Ok(())
 }
 
@@ -74,22 +78,40 @@ impl Words {
     }
 }
 
+/// One step as shown: its place in the ray tree, then its text.
+fn show(out: &mut impl Write, step: &Step) -> std::io::Result<()> {
+    if !step.place.is_empty() {
+        writeln!(out, "── {}", step.place)?;
+    }
+    writeln!(out, "{}", step.text)
+}
+
 /// Shows `steps` one at a time on `out`, moving as `input` says, until the last step is passed,
-/// `q`, or the end of input.
-fn session(steps: &[String], lang: Lang, input: impl BufRead, out: &mut impl Write) -> std::io::Result<()> {
+/// `q`, or the end of input; with `echo` (input not a terminal), each answer is written after its
+/// prompt.
+fn session(
+    steps: &[Step],
+    lang: Lang,
+    echo: bool,
+    input: impl BufRead,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
     let words = Words::of(lang);
     let n = steps.len();
     writeln!(out, "{n} {}. {}\n", words.steps, words.help)?;
     let Some(first) = steps.first() else { return Ok(()) };
-    writeln!(out, "{first}")?;
+    show(out, first)?;
     let mut at = 0;
     let mut lines = input.lines();
     loop {
         write!(out, "[{}/{n}] > ", at + 1)?;
         out.flush()?;
         let answer = lines.next().transpose()?;
-        // A piped answer is not echoed: end the prompt's line either way.
-        writeln!(out)?;
+        // A terminal has echoed the answer and its Enter already; a pipe has not.
+        match (&answer, echo) {
+            (Some(typed), true) => writeln!(out, "{}", typed.trim_end())?,
+            _ => writeln!(out)?,
+        }
         let Some(answer) = answer else { return Ok(()) };
         match parse(&answer) {
             Move::Next if at + 1 < n => at += 1,
@@ -105,7 +127,7 @@ fn session(steps: &[String], lang: Lang, input: impl BufRead, out: &mut impl Wri
             }
             Move::All => {
                 for step in &steps[at + 1..] {
-                    writeln!(out, "{step}")?;
+                    show(out, step)?;
                 }
                 return Ok(());
             }
@@ -115,7 +137,7 @@ fn session(steps: &[String], lang: Lang, input: impl BufRead, out: &mut impl Wri
                 continue;
             }
         }
-        writeln!(out, "{}", steps[at])?;
+        show(out, &steps[at])?;
     }
 }
 
@@ -123,10 +145,27 @@ fn session(steps: &[String], lang: Lang, input: impl BufRead, out: &mut impl Wri
 mod tests {
     use super::*;
 
+    fn three() -> Vec<Step> {
+        let step = |number: usize, text: &str, place: &str| Step {
+            number,
+            text: text.to_owned(),
+            events: Vec::new(),
+            place: place.to_owned(),
+        };
+        vec![
+            step(1, "1. one", "pixel (0)"),
+            step(2, "2. two\n     detail", "P @ glass, level 1"),
+            step(3, "   3. three", "P → T₁ @ glass, level 2"),
+        ]
+    }
+
     fn run_with(input: &str) -> String {
-        let steps: Vec<String> = ["1. one", "2. two\n     detail", "   3. three"].map(String::from).to_vec();
+        run_echo(input, false)
+    }
+
+    fn run_echo(input: &str, echo: bool) -> String {
         let mut out = Vec::new();
-        session(&steps, Lang::En, input.as_bytes(), &mut out).unwrap();
+        session(&three(), Lang::En, echo, input.as_bytes(), &mut out).unwrap();
         String::from_utf8(out).unwrap()
     }
 
@@ -147,5 +186,19 @@ mod tests {
         assert!(run_with("\n\n\n").ends_with("(the last step)\n"));
         assert!(run_with("9\nx\nq\n").contains("(steps are numbered 1 to 3)"));
         assert!(run_with("x\n").contains(Words::of(Lang::En).help));
+    }
+
+    #[test]
+    fn each_step_says_where_it_stands_and_a_pipe_is_echoed() {
+        let shown = run_echo("3\nb\nq\n", true);
+        assert!(shown.contains("── P → T₁ @ glass, level 2\n   3. three"), "{shown}");
+        assert!(shown.contains("── pixel (0)\n1. one"), "{shown}");
+        // The answers after their prompts, as a terminal would have shown them.
+        assert!(
+            shown.contains("[1/3] > 3\n") && shown.contains("[3/3] > b\n") && shown.contains("[2/3] > q\n"),
+            "{shown}"
+        );
+        // Without echo (a terminal), the prompt's line is only ended.
+        assert!(run_with("3\n").contains("[1/3] > \n"));
     }
 }

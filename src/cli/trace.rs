@@ -7,10 +7,11 @@ use super::sampling::SamplingArgs;
 use super::{load_scene, print_notes, print_out, Failure};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
-use whitted::doc::narrate::Lang;
+use whitted::doc::narrate::{Lang, Narration};
 use whitted::request::parse::{self, PixelArg};
-use whitted::request::target::Target;
+use whitted::request::target::{object_pixel, Target};
 use whitted::request::trace::{document_text, Trace};
+use whitted::scene::AnyScene;
 
 /// The narration's language.
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -38,12 +39,16 @@ pub struct TraceWhat {
     /// The scene file (JSON).
     scene: PathBuf,
     /// The pixel: I,J (column from the left, row from the BOTTOM); in 2D, I (or I,0).
-    #[arg(long, value_parser = parse::pixel, conflicts_with = "ray", required_unless_present = "ray",
-          allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse::pixel, conflicts_with_all = ["ray", "object"],
+          required_unless_present_any = ["ray", "object"], allow_hyphen_values = true)]
     pixel: Option<PixelArg>,
     /// A ray given by hand: OX,OY,OZ:DX,DY,DZ (OX,OY:DX,DY in 2D); traced as a primary ray.
-    #[arg(long, value_parser = parse::ray, allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse::ray, conflicts_with = "object", allow_hyphen_values = true)]
     ray: Option<(Vec<f64>, Vec<f64>)>,
+    /// The pixel that shows the object of this name: of the pixels whose primary ray hits it
+    /// first, the one nearest their centroid.
+    #[arg(long, value_name = "NAME")]
+    object: Option<String>,
     /// Override the scene's max_depth (0 = ray casting).
     #[arg(long, value_parser = parse::depth, allow_hyphen_values = true)]
     depth: Option<u32>,
@@ -85,16 +90,41 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// The numbered narration of what `what` asks for (`whitted step` shows it a step at a time).
-pub fn narration(what: &TraceWhat) -> Result<String, Failure> {
-    traced(what, false)
+/// The numbered narration of what `what` asks for, with each step's events and place (`whitted
+/// step` shows it a step at a time).
+pub fn narration(what: &TraceWhat) -> Result<Narration, Failure> {
+    let (scene, trace) = prepared(what)?;
+    Ok(trace.narration(&scene, what.lang())?.narration)
 }
 
-/// The trace document (`json`) or the narration.
+/// The trace document (`json`) or the narration's text.
 fn traced(what: &TraceWhat, json: bool) -> Result<String, Failure> {
+    if !json {
+        return Ok(narration(what)?.text);
+    }
+    let (scene, trace) = prepared(what)?;
+    document_text(&trace.document(&scene)?)
+}
+
+/// The `--pixel` that `--object NAME` stands for, said on stderr; else `pixel` as given.
+pub fn pixel_of(
+    scene: &AnyScene,
+    pixel: Option<PixelArg>,
+    object: Option<&str>,
+) -> Result<Option<PixelArg>, Failure> {
+    let Some(name) = object else { return Ok(pixel) };
+    let (i, j) = object_pixel(scene, name)?;
+    let at = j.map_or_else(|| i.to_string(), |j| format!("{i},{j}"));
+    print_notes(&[format!("--object {name}: --pixel {at}")]);
+    Ok(Some((i, j)))
+}
+
+/// The scene and the trace `what` asks for, checked, with the notes on ignored options said.
+fn prepared(what: &TraceWhat) -> Result<(AnyScene, Trace), Failure> {
     let scene = load_scene(&what.scene)?;
+    let pixel = pixel_of(&scene, what.pixel, what.object.as_deref())?;
     let trace = Trace {
-        target: Target { pixel: what.pixel, ray: what.ray.clone() },
+        target: Target { pixel, ray: what.ray.clone() },
         depth: what.depth,
         sampling: what.sampling.sampling()?,
         accel: what.accel.choice(),
@@ -102,9 +132,5 @@ fn traced(what: &TraceWhat, json: bool) -> Result<String, Failure> {
     };
     // The target and the structure are checked first, and what the structure ignores is said.
     print_notes(&trace.check(&scene)?);
-    if json {
-        document_text(&trace.document(&scene)?)
-    } else {
-        Ok(trace.narration(&scene, what.lang())?.narration.text)
-    }
+    Ok((scene, trace))
 }

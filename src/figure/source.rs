@@ -4,8 +4,8 @@
 //! pixel and is given none gets a telling one, found by scanning recorded traces of a grid of
 //! pixels for the events it draws (a refraction, a blocked shadow ray, a large ray tree).
 
-use crate::accel::{Accel, AccelKind, AccelOptions};
-use crate::bounds::VolumeKind;
+use crate::accel::{Accel, AccelKind, AccelOptions, Layout};
+use crate::bounds::{kdop, BoundingVolume, VolumeKind};
 use crate::geom::ray::Ray;
 use crate::geom::slab::culling_hit;
 use crate::geom::Vector;
@@ -616,8 +616,8 @@ pub fn bound_test_index<V>(log: &EventLog<V>, object: usize) -> Option<usize> {
 }
 
 /// `slab-test` and `kay-kajiya`: a pixel whose primary ray meets an object's volume and one whose
-/// primary ray misses the same volume by a little (its gap max t_i − min t_e near a tenth of its
-/// distance), and that object. A given pixel is the first
+/// primary ray misses the same volume by a visible margin (its [`clearance`] nearest a quarter of
+/// the volume's size, and at least an eighth), and that object. A given pixel is the first
 /// of the two (its hit object, or the first volume it meets, is the one drawn).
 fn bound_pair<V: Dim>(rec: &Recording<'_, V>, aim: &Aim<V>) -> Result<(Vec<Traced<V>>, usize), FigureError> {
     let first = match aim {
@@ -647,19 +647,112 @@ fn bound_pair<V: Dim>(rec: &Recording<'_, V>, aim: &Aim<V>) -> Result<(Vec<Trace
     let Some(focus) = focus else {
         return Err(FigureError(missing(aim, "bounding volume it meets (give a pixel whose ray meets one)")));
     };
-    // The partner: a near miss of the same volume (the lecture's blue ray).
+    // The partner: a miss of the same volume (the lecture's blue ray) that passes it by a
+    // visible margin, as near as possible to a quarter of the volume's size.
+    let volume = match rec.accel.layout() {
+        Layout::Volumes(entries) => entries.iter().find(|(p, _)| p.object() == focus).map(|(_, v)| *v),
+        _ => None,
+    };
+    // In 3D the figure draws the plane of the two axes the first ray moves most along, through
+    // the volume's centre (`kinds::slabs`): the miss must show there, so the clearance is that of
+    // the ray moved into that plane (its component along the dropped axis set to the centre's).
+    let dropped = first
+        .log
+        .nodes
+        .first()
+        .map(|n| n.start.direction)
+        .filter(|_| V::DIM == 3)
+        .map(|d| (0..V::DIM).fold(0, |m, a| if d[a].abs() < d[m].abs() { a } else { m }));
     let near_miss = rec.best_pixel(|i, j| {
         let t = rec.pixel(i, j, Pick::Given);
         let (_, t_in, t_out, hit) = bound_test_of(&t.log, focus)?;
         let finite = t_in.is_finite() && t_out.is_finite() && t_out > 0.0;
-        // A clear miss, but a near one: the gap max t_i − min t_e about a tenth of the distance.
-        (!hit && finite).then(|| -((t_in - t_out) / t_out.abs().max(1e-12) - 0.1).abs())
+        let ray = &t.log.nodes.first()?.start;
+        let (mut origin, mut direction) = (ray.origin, ray.direction);
+        if let (Some(a), Some(v)) = (dropped, volume) {
+            origin[a] = volume_centre(&v)[a];
+            direction[a] = 0.0;
+            direction = direction.try_unit()?;
+        }
+        let (gap, size) = clearance(&volume?, origin, direction)?;
+        let share = gap / size;
+        (!hit && finite && share >= MISS_CLEARANCE_MIN).then_some(-(share - MISS_CLEARANCE).abs())
     });
     let mut traces = vec![first];
     if let Some((i, j)) = near_miss {
         traces.push(rec.pixel(i, j, Pick::VolumeMiss));
     }
     Ok((traces, focus))
+}
+
+/// The clearance `bound_pair` aims its missing ray at, as a share of the volume's size: far
+/// enough to be seen as a miss at slide size, near enough to be a near miss.
+const MISS_CLEARANCE: f64 = 0.25;
+/// The least clearance a missing ray of `bound_pair` may have (a ray within a hair of the
+/// volume looks like a hit).
+const MISS_CLEARANCE_MIN: f64 = 0.12;
+
+/// A volume's centre: its sphere's, its box's, or a k-DOP's along its first slabs (the axes).
+fn volume_centre<V: Dim>(volume: &BoundingVolume<V>) -> V {
+    match volume {
+        BoundingVolume::Sphere { center, .. } => *center,
+        BoundingVolume::Aabb(b) => b.centroid(),
+        BoundingVolume::Kdop(k) => {
+            let mut c = V::ZERO;
+            for a in 0..V::DIM {
+                c[a] = (k.lo[a] + k.hi[a]) / 2.0;
+            }
+            c
+        }
+    }
+}
+
+/// How far the ray `origin + t·direction`, `t ≥ 0`, passes outside `volume`, and the volume's
+/// size (its widest slab): `min_t max_k max(lo_k − n_k·r(t), n_k·r(t) − hi_k) / |n_k|` (the
+/// largest overshoot of a slab, a lower bound of the distance), or for a sphere the distance
+/// from its centre to the ray less its radius. The overshoot is convex in t (a maximum of
+/// linear functions), so a ternary search finds its least value. None for an empty volume.
+#[must_use]
+pub fn clearance<V: Dim>(volume: &BoundingVolume<V>, origin: V, direction: V) -> Option<(f64, f64)> {
+    /// Halvings of the ternary search: (2/3)^200 of the range is far below any drawn length.
+    const STEPS: usize = 200;
+    let slabs: Vec<(V, f64, f64)> = match volume {
+        BoundingVolume::Sphere { center, radius } => {
+            let t = (*center - origin).dot(direction).max(0.0);
+            let gap = (origin + direction * t - *center).length() - radius;
+            return Some((gap, 2.0 * radius));
+        }
+        BoundingVolume::Aabb(b) => (0..V::DIM).map(|a| (V::axis(a), b.min[a], b.max[a])).collect(),
+        BoundingVolume::Kdop(k) => {
+            (0..kdop::slab_count::<V>()).map(|s| (kdop::normal::<V>(s), k.lo[s], k.hi[s])).collect()
+        }
+    };
+    if slabs.iter().any(|(_, lo, hi)| !(lo <= hi)) {
+        return None;
+    }
+    let size = slabs.iter().map(|(n, lo, hi)| (hi - lo) / n.length()).fold(0.0, f64::max);
+    let over = |t: f64| {
+        let p = origin + direction * t;
+        slabs
+            .iter()
+            .map(|(n, lo, hi)| (lo - n.dot(p)).max(n.dot(p) - hi) / n.length())
+            .fold(f64::MIN, f64::max)
+    };
+    // Beyond the farthest corner's distance, every overshoot only grows.
+    let reach = slabs
+        .iter()
+        .map(|(n, lo, hi)| (n.dot(origin).abs() + lo.abs().max(hi.abs())) / n.length())
+        .sum::<f64>();
+    let (mut a, mut b) = (0.0, 2.0 * reach + 1.0);
+    for _ in 0..STEPS {
+        let (m1, m2) = (a + (b - a) / 3.0, b - (b - a) / 3.0);
+        if over(m1) <= over(m2) {
+            b = m2;
+        } else {
+            a = m1;
+        }
+    }
+    Some((over(0.5 * (a + b)), size))
 }
 
 /// `bvh` and `octree`: a primary ray that enters several nodes and passes others by.

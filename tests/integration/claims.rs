@@ -61,3 +61,67 @@ fn every_lesson_figure_states_its_point_and_shows_it_in_both_languages() {
     }
     assert!(failed.is_empty(), "{}", failed.join("\n"));
 }
+
+/// The old scenes and pixels that did not show their point (issue "taught right", item 1), each
+/// with the claim that now fails on it: the grid pitfall whose first voxel already held the
+/// nearer sphere (its box leaked into it, the ray ran along a cell boundary), the 3D slab chart
+/// of a near-axis ray, the flat heat map of corner sampling, the BVH of one node, and Whitted's
+/// shadow figure whose primary ray was drawn through the glass sphere.
+#[test]
+fn the_old_scenes_and_pixels_fail_their_claims() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/claims");
+    let old = r#"{ "name": "old", "title": { "en": "old", "ro": "vechi" }, "figures": [
+        { "kind": "grid-dda", "scene": "pitfall-old.json", "grid": [4, 4, 4],
+          "claims": [ { "kind": "grid-pitfall", "min": 1 } ],
+          "caption": { "en": "", "ro": "" } },
+        { "kind": "slab-test", "scene": "../../../scenes/whitted.json",
+          "claims": [ { "kind": "intervals", "min": 5 } ], "caption": { "en": "", "ro": "" } },
+        { "kind": "heat-map", "scene": "../../../lessons/scenes/whitted_small.json", "aa": "corners",
+          "claims": [ { "kind": "heat-values", "min": 3 } ], "caption": { "en": "", "ro": "" } },
+        { "kind": "bvh", "scene": "../../../scenes/whitted.json",
+          "claims": [ { "kind": "nodes", "min": 5 } ], "caption": { "en": "", "ro": "" } },
+        { "kind": "shadows", "scene": "../../../scenes/whitted.json", "pixel": [292, 227],
+          "claims": [ { "kind": "false-crossings", "max": 0 } ], "caption": { "en": "", "ro": "" } } ] }"#;
+    let failed = failures(&dir, old, Lang::En);
+    let expected = [
+        "old figure 1 (grid-dda): claim grid-pitfall (voxels from the early find to the accepted hit): wanted ≥ 1, measured 0",
+        "old figure 2 (slab-test): claim intervals",
+        "old figure 3 (heat-map): claim heat-values: wanted ≥ 3, measured 1",
+        "old figure 4 (bvh): claim nodes: wanted ≥ 5, measured 1",
+        "old figure 5 (shadows): claim false-crossings: wanted ≤ 0, measured 2",
+    ];
+    assert_eq!(failed.len(), expected.len(), "{}", failed.join("\n"));
+    for (line, want) in failed.iter().zip(expected) {
+        assert!(line.starts_with(want), "{line}\nwanted it to start with {want}");
+    }
+}
+
+#[test]
+fn lessons_writes_nothing_and_exits_1_when_a_claim_fails() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let tmp = std::env::temp_dir().join(format!("whitted-claims-{}", std::process::id()));
+    let lessons = tmp.join("lessons");
+    std::fs::create_dir_all(&lessons).unwrap();
+    let scene = root.join("scenes/whitted.json");
+    let text = format!(
+        r#"{{ "name": "one", "title": {{ "en": "t", "ro": "t" }}, "figures": [
+            {{ "kind": "bvh", "scene": "{}", "claims": [ {{ "kind": "nodes", "min": 5 }} ],
+               "caption": {{ "en": "", "ro": "" }} }} ] }}"#,
+        scene.display()
+    );
+    std::fs::write(lessons.join("one.json"), text).unwrap();
+    let out = tmp.join("out");
+    let (code, _, err) = crate::support::whitted(&[
+        "lessons",
+        "--lessons",
+        lessons.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--lang",
+        "en",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("one figure 1 (bvh): claim nodes: wanted ≥ 5, measured 1"), "{err}");
+    assert!(!out.join("en/one-1-bvh.png").exists() && !out.join("index.html").exists());
+    std::fs::remove_dir_all(&tmp).ok();
+}

@@ -1,6 +1,7 @@
-//! The diagrams (issue 6 item 5): a snapshot of each kind's display list on fixture scenes; every
-//! SVG parses and holds one tagged group per item; every PNG has its size, is not blank and shows
-//! the colour of each ray kind its trace holds; labels come in both languages.
+//! The diagrams (issue 6 item 5): a snapshot of each kind's display list on fixture scenes, one
+//! test per kind, as the library lists it (`Drawing::to_text`); every SVG parses and holds one
+//! tagged group per item; every PNG has its size, is not blank and shows the colour of each ray
+//! kind its trace holds; labels come in both languages.
 
 use crate::support::{fixture, SceneText};
 use glam::DVec2;
@@ -75,78 +76,51 @@ fn fixtures(kind: FigureKind) -> &'static [&'static str] {
     }
 }
 
-/// A coordinate for snapshots: 3 decimals, no `-0`.
-fn c(x: f64) -> String {
-    let s = format!("{x:.3}");
-    if s == "-0.000" {
-        "0.000".into()
-    } else {
-        s
+/// Snapshots the display list of `kind` on each of its fixtures, as the library lists it
+/// (`Drawing::to_text`), in `snapshots/integration__figures__figure@KIND@FIXTURE.snap`.
+fn display_list_snapshots(kind: FigureKind) {
+    for name in fixtures(kind) {
+        let d = figure(kind, name, Lang::En, (1920, 1080));
+        insta::with_settings!({ snapshot_suffix => format!("{}@{name}", kind.name()), omit_expression => true }, {
+            insta::assert_snapshot!("figure", d.to_text());
+        });
     }
 }
 
-fn p(v: DVec2) -> String {
-    format!("({}, {})", c(v.x), c(v.y))
-}
-
-fn colour(rgba: Rgba) -> String {
-    if rgba.a == 255 {
-        rgba.hex()
-    } else {
-        format!("{}@{}", rgba.hex(), rgba.a)
-    }
-}
-
-/// One line per item: tag, geometry (world coordinates, rounded), stroke.
-fn item_line(item: &whitted::canvas::Item) -> String {
-    let st = &item.style;
-    let stroke = if st.strokes() {
-        format!(" {} w{}{}", colour(st.color), c(st.width), if st.dash.is_some() { " dashed" } else { "" })
-    } else {
-        String::new()
+/// One display-list test per kind, so that a failing test's name says which kind broke; and
+/// `SNAPSHOT_KINDS`, the kinds so covered.
+macro_rules! display_list_tests {
+    ($($test:ident: $kind:ident),* $(,)?) => {
+        const SNAPSHOT_KINDS: &[FigureKind] = &[$(FigureKind::$kind),*];
+        $(
+            #[test]
+            fn $test() {
+                display_list_snapshots(FigureKind::$kind);
+            }
+        )*
     };
-    let fill = |f: &Option<Rgba>| f.map(|f| format!(" fill {}", colour(f))).unwrap_or_default();
-    let geometry = match &item.shape {
-        Shape::Line { points } => {
-            format!("line {}", points.iter().map(|q| p(*q)).collect::<Vec<_>>().join(" "))
-        }
-        Shape::Arrow { from, to, .. } => format!("arrow {} → {}", p(*from), p(*to)),
-        Shape::Circle { center, radius, fill: f } => {
-            format!("circle {} r {}{}", p(*center), c(*radius), fill(f))
-        }
-        Shape::Dot { center, radius, fill: f } => {
-            format!("dot {} r{}px fill {}", p(*center), c(*radius), colour(*f))
-        }
-        Shape::Polygon { points, fill: f } => {
-            format!("polygon {}{}", points.iter().map(|q| p(*q)).collect::<Vec<_>>().join(" "), fill(f))
-        }
-        Shape::Rect { min, max, fill: f } => format!("rect {} {}{}", p(*min), p(*max), fill(f)),
-        Shape::Text(t) => format!("text {:?} at {} + {}px", t.text, p(t.anchor), p(t.offset)),
-    };
-    format!("{}: {geometry}{stroke}", item.tag)
 }
 
-/// The display list as JSON for a snapshot.
-fn dump(d: &Drawing) -> serde_json::Value {
-    serde_json::json!({
-        "title": d.title,
-        "caption": d.caption,
-        "view": [c(d.view.xmin()), c(d.view.xmax()), c(d.view.ymin()), c(d.view.ymax())],
-        "legend": d.legend.iter().map(|e| e.label.clone()).collect::<Vec<_>>(),
-        "items": d.items.iter().map(item_line).collect::<Vec<_>>(),
-    })
+display_list_tests! {
+    display_list_uv_map: UvMap,
+    display_list_projections: Projections,
+    display_list_rays: Rays,
+    display_list_refraction: Refraction,
+    display_list_local_model: LocalModel,
+    display_list_ray_tree: RayTree,
+    display_list_shadows: Shadows,
+    display_list_slab_test: SlabTest,
+    display_list_kay_kajiya: KayKajiya,
+    display_list_bvh: Bvh,
+    display_list_grid_dda: GridDda,
+    display_list_octree: Octree,
+    display_list_adaptive: Adaptive,
+    display_list_heat_map: HeatMap,
 }
 
 #[test]
-fn display_list_snapshots() {
-    for kind in DRAWN {
-        for name in fixtures(kind) {
-            let d = figure(kind, name, Lang::En, (1920, 1080));
-            insta::with_settings!({ snapshot_suffix => format!("{}@{name}", kind.name()), omit_expression => true }, {
-                insta::assert_json_snapshot!("figure", dump(&d));
-            });
-        }
-    }
+fn every_kind_has_its_display_list_test() {
+    assert_eq!(SNAPSHOT_KINDS, DRAWN, "one display_list_* test per FigureKind, in FigureKind::ALL's order");
 }
 
 #[test]
@@ -246,7 +220,7 @@ fn refraction_draws_the_total_internal_reflection_of_a_given_ray() {
     assert!(texts.iter().any(|t| t.contains(Label::NoT.text(Lang::En))), "{texts:?}");
     // No T ray is drawn for a total internal reflection.
     assert_eq!(d.tagged(RayRole::Transmitted.tag()).count(), 0);
-    insta::assert_json_snapshot!("figure_refraction_tir", dump(&d));
+    insta::assert_snapshot!("figure_refraction_tir", d.to_text());
 }
 
 #[test]
@@ -526,7 +500,7 @@ fn assert_finite_items(d: &Drawing, what: &str) {
             Shape::Rect { min, max, .. } => finite(min) && finite(max),
             Shape::Text(t) => finite(&t.anchor) && finite(&t.offset),
         };
-        assert!(ok, "{what}: {}", item_line(item));
+        assert!(ok, "{what}: {}", item.to_text());
     }
 }
 

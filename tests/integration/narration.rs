@@ -1,9 +1,10 @@
 //! The narration (`whitted trace` without `--json`) as a student reads it: insta snapshots of
 //! the fixtures in both languages, one per family of events (refraction and shadows through
 //! glass, a 2D lens, total internal reflection, a grid walk, bounding volumes, an orthographic
-//! box), so that every change of wording or number is a reviewed diff.
+//! box), so that every change of wording or number is a reviewed diff; the names it shares with
+//! the figures, each step's place in the ray tree, `--object` and `whitted step` over a pipe.
 
-use crate::support::{fixture, fixture_path};
+use crate::support::{fixture, fixture_path, whitted};
 use whitted::accel::AccelKind;
 use whitted::bounds::VolumeKind;
 use whitted::doc::narrate::Lang;
@@ -12,6 +13,7 @@ use whitted::request::target::Target;
 use whitted::request::trace::Trace;
 use whitted::sample::Sampling;
 use whitted::scene::load::load_str;
+use whitted::scene::AnyScene;
 
 /// One narrated case: a fixture, what is traced, the structure.
 struct Case {
@@ -93,4 +95,105 @@ fn narrations_of_the_fixtures_in_both_languages() {
             });
         }
     }
+}
+
+/// Every ray and hit the figures name (`record::names`) is named in the narration, in its own
+/// heading, and every step's place ends with the level of a ray of the tree.
+#[test]
+fn the_narration_names_rays_and_hits_as_the_figures_do() {
+    use glam::DVec3;
+    use whitted::accel::Accel;
+    use whitted::record::names::Names;
+    use whitted::record::EventLog;
+    use whitted::trace::Tracer;
+    let text = fixture("glass.json");
+    let AnyScene::Space(scene) = load_str(&text).unwrap() else { panic!("3D") };
+    let (u, v) = scene.camera.pixel_center(4, 3);
+    let accel = Accel::build(&scene, AccelKind::Bvh);
+    let mut tracer = Tracer::new(&scene, &accel, EventLog::<DVec3>::new());
+    tracer.trace_primary(&scene.camera.primary_ray(u, v), &[u, v]);
+    let names = Names::of(&tracer.recorder);
+    let told = narrate(&cases()[0], Lang::En);
+    assert_eq!(names.ray_text(0), "P");
+    for (node, ray) in tracer.recorder.nodes.iter().enumerate() {
+        let name = names.ray_text(node);
+        let title = format!(" {name} — ");
+        assert!(told.text.contains(&title), "no heading `{title}`");
+        if let Some(hit) = names.hit_text(node) {
+            assert!(told.text.contains(&format!("Nearest hit of {name}: {hit} on")), "{name}: {hit}");
+            for term in ray.lights.iter().filter(|t| t.lum > 0.0) {
+                let shadow = names.shadow_text(node, term.light);
+                assert!(told.text.contains(&format!("shadow ray {shadow}\n")), "{shadow}");
+            }
+        }
+    }
+    // The markup the figures draw spells the same names.
+    assert_eq!(names.ray[1], "R_1");
+    assert_eq!(names.ray_text(1), "R₁");
+    let steps = told.steps();
+    assert_eq!(steps.len(), told.places.len());
+    assert_eq!(steps[0].place, "pixel (4, 3)");
+    assert!(steps.iter().any(|s| s.place == "P → T₁ → R₂ @ glass, level 3"), "{:?}", told.places);
+    for step in &steps {
+        assert!(step.place == "pixel (4, 3)" || step.place.starts_with("P"), "{}", step.place);
+    }
+}
+
+/// A grid walk tells each cell before the tests made in it, and still names each test's event.
+#[test]
+fn a_grid_cell_is_told_before_its_tests() {
+    let told = narrate(&cases()[4], Lang::En);
+    let cell = told.text.find("Grid cell [0, 0, 2]").expect("the cell");
+    let a = told.text.find("Intersection test of P with “A”").expect("the test of A");
+    assert!(cell < a, "{}", told.text);
+    let steps = told.steps();
+    let k = steps.iter().position(|s| s.text.contains("Grid cell")).unwrap();
+    // The log recorded the test before the cell; the narration tells the cell first.
+    assert!(steps[k + 1].text.contains("“A”") && steps[k + 1].events[0] < steps[k].events[0]);
+}
+
+#[test]
+fn object_picks_the_pixel_that_shows_it() {
+    let glass = fixture_path("glass.json");
+    let (code, out, err) = whitted(&["trace", &glass, "--object", "glass"]);
+    assert_eq!(code, 0, "{err}");
+    let at = err
+        .lines()
+        .find_map(|l| l.strip_prefix("whitted: --object glass: --pixel "))
+        .expect("the pixel said");
+    let (_, by_pixel, _) = whitted(&["trace", &glass, "--pixel", at]);
+    assert_eq!(out, by_pixel);
+    assert!(out.contains("Nearest hit of P: I₁ on “glass”"), "{out}");
+    let (code, _, err) = whitted(&["trace", &glass, "--object", "chair"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--object: no object is named `chair`; the named objects: floor, mirror, glass"),
+        "{err}"
+    );
+    let (code, _, err) = whitted(&["trace", &glass, "--object", "glass", "--pixel", "1,1"]);
+    assert_eq!(code, 2, "{err}");
+    let svg = std::env::temp_dir().join(format!("whitted-object-{}.svg", std::process::id()));
+    let (code, _, err) =
+        whitted(&["figure", "rays", &glass, "--object", "mirror", "-o", &svg.display().to_string()]);
+    let _ = std::fs::remove_file(&svg);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("--object mirror: --pixel "), "{err}");
+}
+
+#[test]
+fn step_over_a_pipe_echoes_the_answers_and_says_where_each_step_stands() {
+    use std::io::Write;
+    let glass = fixture_path("glass.json");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_whitted"))
+        .args(["step", &glass, "--pixel", "4,3", "--lang", "ro"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child.stdin.take().unwrap().write_all(b"44\nb\nq\n").unwrap();
+    let out = child.wait_with_output().unwrap();
+    let shown = String::from_utf8_lossy(&out.stdout);
+    assert!(shown.contains("[1/84] > 44\n── P → T₁ → R₂ → R₃ @ glass, nivelul 4\n"), "{shown}");
+    assert!(shown.contains("[44/84] > b\n") && shown.contains("[43/84] > q\n"), "{shown}");
+    assert!(shown.contains("── pixelul (4, 3)\n1. Pixelul"), "{shown}");
 }

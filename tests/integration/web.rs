@@ -91,6 +91,9 @@ fn trace_documents_and_narrations_equal_the_command_line() {
                     let named = step["events"].as_array().unwrap();
                     assert!(!named.is_empty(), "{file} {arg}: step {} names no event", k + 1);
                     assert!(named.iter().all(|e| e.as_u64().unwrap() < events as u64), "{step}");
+                    // Where `whitted step` says it stands: the pixel, or a path from P.
+                    let place = step["place"].as_str().unwrap();
+                    assert!(place.starts_with("pix") || place.starts_with("P"), "{file} {arg}: {place}");
                 }
                 let expected = format!(
                     "whitted trace {file} --pixel {arg}{}",

@@ -257,7 +257,7 @@ fn narrate_op(f: &Fields<'_>) -> Result<Answer, Failure> {
         .narration
         .steps()
         .into_iter()
-        .map(|s| json!({"step": s.number, "text": s.text, "events": s.events}))
+        .map(|s| json!({"step": s.number, "text": s.text, "events": s.events, "place": s.place}))
         .collect();
     let mut answer = json!({
         "command": command(name(f)?, &trace.target, &options, lang),

@@ -63,6 +63,15 @@ impl<'a, V: Dim> Writer<'a, V> {
             lines.push(line);
         }
         lines.push(format!("Ia·Ka = {} · {} = {}", rgb(self.scene.ambient), rgb(ka), rgb(ambient)));
+        if !hit.entering {
+            lines.push(
+                self.t(
+                    "the ray is inside the object: the model uses N_f = −N for N",
+                    "raza este în interiorul obiectului: modelul folosește N_f = −N în locul lui N",
+                )
+                .to_owned(),
+            );
+        }
         let shadows: Vec<Indexed<'a, V>> =
             self.events_of(index).into_iter().filter(|(_, e)| matches!(e, Event::ShadowRay { .. })).collect();
         let events = hit_event.into_iter().chain(shadows.iter().map(|(k, _)| *k)).collect();
