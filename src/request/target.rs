@@ -113,11 +113,13 @@ pub fn object_pixel(scene: &AnyScene, name: &str) -> Result<PixelArg, Failure> {
 }
 
 fn pixel_showing<V: Dim>(scene: &Scene<V>, name: &str) -> Result<PixelArg, Failure> {
-    let named: Vec<usize> =
-        (0..scene.objects.len()).filter(|&k| scene.objects[k].name.as_deref() == Some(name)).collect();
+    // A name per language answers to either (`--object oglindă` or `--object mirror`).
+    let named: Vec<usize> = (0..scene.objects.len())
+        .filter(|&k| scene.objects[k].name.as_ref().is_some_and(|n| n.en == name || n.ro == name))
+        .collect();
     if named.is_empty() {
         let mut names: Vec<&str> = Vec::new();
-        for n in scene.objects.iter().filter_map(|o| o.name.as_deref()) {
+        for n in scene.objects.iter().filter_map(|o| o.name.as_ref().map(|n| n.en.as_str())) {
             if !names.contains(&n) {
                 names.push(n);
             }
