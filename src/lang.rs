@@ -11,6 +11,9 @@ pub enum Lang {
     Ro,
 }
 
+/// The languages' codes, the fields of a [`Both`] written as JSON (`{"en": …, "ro": …}`).
+pub const CODES: &[&str] = &["en", "ro"];
+
 impl Lang {
     /// The language's code, as `lang` attributes and the JSON keys of a [`Both`] write it.
     #[must_use]

@@ -162,6 +162,12 @@ impl Reader {
             self.err(path, format!("must be an object, got {}", type_name(v)));
             return None;
         };
+        self.keys(map, path, known);
+        Some(map)
+    }
+
+    /// Reports the keys of `map` not in `known` (with a suggestion) and the keys written twice.
+    pub fn keys(&mut self, map: &Map<'_>, path: &str, known: &[&str]) {
         for key in map.duplicates() {
             self.err(join(path, key), "written more than once in this object; keep one");
         }
@@ -174,7 +180,6 @@ impl Reader {
                 self.err(join(path, key), hint);
             }
         }
-        Some(map)
     }
 
     /// A finite number at most [`MAX_MAGNITUDE`] in magnitude.

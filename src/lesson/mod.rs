@@ -22,10 +22,13 @@
 
 pub mod claim;
 
-use crate::json::{self, Map, Value};
-
+use crate::accel::grid::MAX_CELLS_PER_AXIS;
 use crate::figure::FigureKind;
+use crate::json::reader::{ReadError, Reader};
+use crate::json::{self, Map, Value};
+use crate::lang::{Lang, CODES};
 use crate::sample::Sampling;
+use crate::scene::load::MAX_DEPTH;
 
 pub use crate::lang::Both;
 
@@ -92,8 +95,7 @@ impl Lesson {
 /// # Errors
 /// The list of problems: invalid JSON, a missing or unknown field, a wrong type, an unknown kind.
 pub fn parse(text: &str) -> Result<Lesson, Vec<String>> {
-    let value = json::parse(text)
-        .map_err(|e| vec![format!("invalid JSON at line {}, column {}: {}", e.line, e.column, e.message)])?;
+    let value = json::parse(text).map_err(|e| vec![ReadError::syntax(&e).to_string()])?;
     let mut errors = Vec::new();
     let Some(root) = value.as_object() else {
         return Err(vec!["a lesson is a JSON object".into()]);
@@ -131,14 +133,20 @@ pub fn parse(text: &str) -> Result<Lesson, Vec<String>> {
     }
 }
 
-/// Reports every field of `map` not in `known`, and every field written twice.
+/// Runs `read` with the scenes' all-errors [`Reader`] and adds what it found to `errors`, so a
+/// lesson words a problem as a scene does.
+fn with_reader<T>(errors: &mut Vec<String>, read: impl FnOnce(&mut Reader) -> T) -> T {
+    let mut r = Reader::default();
+    let value = read(&mut r);
+    errors.extend(r.into_errors().iter().map(ToString::to_string));
+    value
+}
+
+/// Reports every field of `map` not in `known` (with the closest known one), and every field
+/// written twice; `path` is the object's, ending in `.` (empty at the top).
 fn unknown(map: &Map<'_>, path: &str, known: &[&str], errors: &mut Vec<String>) {
-    for key in map.duplicates() {
-        errors.push(format!("{path}{key}: written more than once in this object; keep one"));
-    }
-    for key in map.keys().filter(|k| !known.contains(k)) {
-        errors.push(format!("{path}{key}: unknown field; the fields are {}", known.join(", ")));
-    }
+    let path = path.strip_suffix('.').unwrap_or(path);
+    with_reader(errors, |r| r.keys(map, path, known));
 }
 
 /// `{ "en": …, "ro": … }`.
@@ -147,15 +155,11 @@ fn both(value: Option<&Value>, path: &str, errors: &mut Vec<String>) -> Both {
         errors.push(format!("{path}: must be {{ \"en\": \"…\", \"ro\": \"…\" }}"));
         return Both::default();
     };
-    unknown(map, &format!("{path}."), &["en", "ro"], errors);
-    let mut get = |lang: &str| match map.get(lang).and_then(Value::as_str) {
-        Some(s) => s.to_owned(),
-        None => {
-            errors.push(format!("{path}.{lang}: must be a string"));
-            String::new()
-        }
-    };
-    Both { en: get("en"), ro: get("ro") }
+    with_reader(errors, |r| {
+        r.keys(map, path, CODES);
+        let mut get = |lang: Lang| r.required_string(map, path, lang.code()).unwrap_or_default().to_owned();
+        Both { en: get(Lang::En), ro: get(Lang::Ro) }
+    })
 }
 
 /// One figure spec at `path`.
@@ -219,16 +223,10 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
     if pixel.is_some() && ray.is_some() {
         errors.push(format!("{path}: give pixel or ray, not both"));
     }
-    let depth = match map.get("depth") {
-        None => None,
-        Some(d) => match d.as_u64().and_then(|n| u32::try_from(n).ok()).filter(|n| *n <= 64) {
-            Some(n) => Some(n),
-            None => {
-                errors.push(format!("{path}.depth: must be an integer in [0, 64]"));
-                None
-            }
-        },
-    };
+    let depth = map.get("depth").and_then(|d| {
+        let n = with_reader(errors, |r| r.integer(d, &format!("{path}.depth"), 0, MAX_DEPTH));
+        n.and_then(|n| u32::try_from(n).ok())
+    });
     let sampling = sampling(map, path, errors);
     let grid = match map.get("grid") {
         None => None,
@@ -236,12 +234,14 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
             let cells: Option<Vec<usize>> = g.as_array().and_then(|a| {
                 a.iter()
                     .map(|x| {
-                        x.as_u64().and_then(|n| usize::try_from(n).ok()).filter(|n| (1..=256).contains(n))
+                        x.as_u64()
+                            .and_then(|n| usize::try_from(n).ok())
+                            .filter(|n| (1..=MAX_CELLS_PER_AXIS).contains(n))
                     })
                     .collect()
             });
             if cells.as_ref().is_none_or(|c| !(2..=3).contains(&c.len())) {
-                errors.push(format!("{path}.grid: must be 2 or 3 cell counts in [1, 256]"));
+                errors.push(format!("{path}.grid: must be 2 or 3 cell counts in [1, {MAX_CELLS_PER_AXIS}]"));
             }
             cells
         }
@@ -274,7 +274,6 @@ fn sampling(map: &Map<'_>, path: &str, errors: &mut Vec<String>) -> Option<Sampl
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::Lang;
 
     const GOOD: &str = r#"{ "name": "rays", "title": { "en": "Rays", "ro": "Raze" },
         "figures": [ { "kind": "rays", "scene": "s.json", "pixel": [3], "aa": "adaptive", "max_level": 3,
@@ -306,5 +305,26 @@ mod tests {
         {
             assert!(all.contains(expected), "{expected} in {all}");
         }
+    }
+
+    #[test]
+    fn a_lesson_is_told_its_errors_in_the_words_of_a_scene() {
+        // The scene loader's reader: a suggestion for a typo, a key written twice, the value found.
+        let bad = r#"{ "name": "rays", "title": { "en": "x", "ro": 2 }, "figurs": [],
+            "figures": [ { "kind": "rays", "scene": "s.json", "depth": 65, "depht": 1, "depth": 2,
+                           "caption": { "en": "a", "ro": "b", "ro": "c" } } ] }"#;
+        assert_eq!(
+            parse(bad).unwrap_err(),
+            [
+                "figurs: unknown field `figurs`; did you mean `figures`?",
+                "title.ro: must be a string, got a number",
+                "figures[0].depth: written more than once in this object; keep one",
+                "figures[0].depht: unknown field `depht`; did you mean `depth`?",
+                "figures[0].depth: must be an integer in [0, 64], got 65",
+                "figures[0].caption.ro: written more than once in this object; keep one",
+            ]
+        );
+        let e = parse("{ \"name\": ").unwrap_err();
+        assert!(e[0].starts_with("invalid JSON at line 1, column"), "{e:?}");
     }
 }

@@ -65,7 +65,7 @@ pub const TYPES_2D: &[&str] = &["sphere", "plane", "box", "triangle", "segment",
 /// The fields every object may have besides its geometry.
 pub const OBJECT: &[&str] = &["type", "name", "material"];
 /// The fields of an object's `name` given per language (both required).
-pub const NAME: &[&str] = &["en", "ro"];
+pub const NAME: &[&str] = crate::lang::CODES;
 
 /// The geometry fields of an object of type `ty`, if it is a type of either dimension.
 #[must_use]
