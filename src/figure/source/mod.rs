@@ -7,10 +7,8 @@
 use crate::accel::{Accel, AccelKind, AccelOptions, Layout};
 use crate::bounds::{kdop, BoundingVolume, VolumeKind};
 use crate::geom::ray::Ray;
-use crate::geom::slab::culling_hit;
-use crate::geom::Vector;
 use crate::record::event::{Event, RayKind};
-use crate::record::{overflow_message, EventLog, RayNode};
+use crate::record::{overflow_message, EventLog};
 use crate::render::{check_fits, render, RenderConfig};
 use crate::sample::{trace_pixel, PixelTrace, Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD};
 use crate::scene::camera::Projection;
@@ -20,6 +18,9 @@ use crate::shape::Dim;
 use crate::trace::Tracer;
 
 use super::{FigureError, FigureKind};
+
+mod logs;
+pub use logs::*;
 
 /// What to trace for a figure: the pixel or ray asked for, or none (the figure picks).
 #[derive(Clone, Debug, PartialEq)]
@@ -278,25 +279,6 @@ fn has<V>(log: &EventLog<V>, test: impl Fn(&Event<V>) -> bool) -> bool {
     log.events.iter().any(|l| test(&l.event))
 }
 
-/// The first node with a hit (the primary ray's, when it hits).
-#[must_use]
-pub fn first_hit<V>(log: &EventLog<V>) -> Option<usize> {
-    log.nodes.iter().position(|n| n.end.as_ref().is_some_and(|e| e.hit.is_some()))
-}
-
-/// The events of node `node`, in order.
-pub fn node_events<V>(log: &EventLog<V>, node: usize) -> impl Iterator<Item = &Event<V>> {
-    log.events.iter().filter(move |l| l.ray == Some(node)).map(|l| &l.event)
-}
-
-/// The angle of incidence at a node's hit, in degrees: between `−D` and the facing normal.
-#[must_use]
-pub fn incidence_deg<V: Vector>(node: &RayNode<V>) -> Option<f64> {
-    let hit = node.end.as_ref()?.hit?;
-    let cos = node.start.direction.dot(hit.normal).abs().min(1.0);
-    Some(cos.acos().to_degrees())
-}
-
 /// The tracer, set up once for all the pixels a figure traces.
 struct Recording<'a, V: Dim> {
     scene: &'a Scene<V>,
@@ -471,34 +453,6 @@ fn projections<V: Dim>(rec: &Recording<'_, V>, aim: &Aim<V>) -> Vec<Traced<V>> {
         .collect()
 }
 
-/// The node whose refraction shows best: θᵢ near 40°, the primary hit first.
-#[must_use]
-pub fn refraction_node<V: Dim>(log: &EventLog<V>) -> Option<(usize, f64)> {
-    log.nodes
-        .iter()
-        .enumerate()
-        .filter(|(k, _)| node_events(log, *k).any(|e| matches!(e, Event::Refract { .. })))
-        .filter_map(|(k, n)| {
-            let theta = incidence_deg(n)?;
-            let primary = if n.start.kind == RayKind::Primary { 30.0 } else { 0.0 };
-            Some((k, primary + 60.0 - (theta - 40.0).abs()))
-        })
-        .fold(None, |best: Option<(usize, f64)>, (k, s)| match best {
-            Some((_, b)) if b >= s => best,
-            _ => Some((k, s)),
-        })
-}
-
-/// The first node (in pre-order, nearest the root) with a total internal reflection.
-#[must_use]
-pub fn tir_node<V>(log: &EventLog<V>) -> Option<usize> {
-    log.events
-        .iter()
-        .filter(|l| matches!(l.event, Event::TotalInternalReflection { .. }))
-        .filter_map(|l| l.ray)
-        .min()
-}
-
 /// `refraction`: the score of [`refraction_node`].
 fn refraction_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
     refraction_node(log).map(|(_, s)| s)
@@ -507,34 +461,6 @@ fn refraction_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
 /// A total internal reflection anywhere in the trace.
 fn tir_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
     has(log, |e| matches!(e, Event::TotalInternalReflection { .. })).then_some(1.0)
-}
-
-/// The node whose shadow rays show best: a blocked one, best at the primary hit and through
-/// transparent objects (`0 < s < 1`, the product of kt), then opaque (`s = 0`); else the first
-/// node with a shadow ray.
-#[must_use]
-pub fn shadow_node<V>(log: &EventLog<V>) -> Option<(usize, f64)> {
-    let blocked = log
-        .events
-        .iter()
-        .filter_map(|l| match &l.event {
-            Event::ShadowRay { occluders, s, .. } if !occluders.is_empty() => {
-                let at_primary = if l.ray == Some(0) { 10.0 } else { 0.0 };
-                let transparent = if *s > 0.0 { 5.0 } else { 0.0 };
-                Some((l.ray?, at_primary + transparent + occluders.len() as f64))
-            }
-            _ => None,
-        })
-        .fold(None, |best: Option<(usize, f64)>, (k, s)| match best {
-            Some((_, b)) if b >= s => best,
-            _ => Some((k, s)),
-        });
-    blocked.or_else(|| {
-        log.events
-            .iter()
-            .find(|l| matches!(l.event, Event::ShadowRay { .. }))
-            .and_then(|l| Some((l.ray?, 0.0)))
-    })
 }
 
 /// `shadows`: the score of a blocked shadow ray of [`shadow_node`] (none when nothing blocks).
@@ -574,45 +500,6 @@ fn lit_score<V: Dim>(scene: &Scene<V>, log: &EventLog<V>) -> Option<f64> {
             2.0 * kind + 3.0 * highlight + 2.0 - (t.n_dot_l - 0.6).abs() - (n_dot_v - 0.8).abs()
         })
         .reduce(f64::max)
-}
-
-/// The events of root `root`'s search for its nearest hit: those of its node before its `hit`
-/// or `miss` (the shadow rays' tests come after).
-pub fn search_events<V>(log: &EventLog<V>, root: usize) -> impl Iterator<Item = &Event<V>> {
-    node_events(log, root).take_while(|e| !matches!(e, Event::Hit { .. } | Event::Miss { .. }))
-}
-
-/// [`search_events`] with each event's index in `log.events` (the trace document's index).
-pub fn search_indexed<V>(log: &EventLog<V>, root: usize) -> impl Iterator<Item = (usize, &Event<V>)> {
-    (log.events.iter().enumerate())
-        .filter(move |(_, l)| l.ray == Some(root))
-        .map(|(k, l)| (k, &l.event))
-        .take_while(|(_, e)| !matches!(e, Event::Hit { .. } | Event::Miss { .. }))
-}
-
-/// Whether a recorded box interval counts as met, by the structures' own closed rule.
-#[must_use]
-pub fn met(t_in: f64, t_out: f64) -> bool {
-    culling_hit(t_in, t_out)
-}
-
-/// The `bound_test` of object `object` in root 0's search: `(intervals, t_in, t_out, hit)`.
-#[must_use]
-pub fn bound_test_of<V>(log: &EventLog<V>, object: usize) -> Option<(&[[f64; 2]], f64, f64, bool)> {
-    search_events(log, 0).find_map(|e| match e {
-        Event::BoundTest { object: Some(o), intervals, t_in, t_out, hit, .. } if o.index == object => {
-            Some((intervals.as_slice(), *t_in, *t_out, *hit))
-        }
-        _ => None,
-    })
-}
-
-/// The index in `log.events` of [`bound_test_of`]'s event.
-#[must_use]
-pub fn bound_test_index<V>(log: &EventLog<V>, object: usize) -> Option<usize> {
-    search_indexed(log, 0)
-        .find(|(_, e)| matches!(e, Event::BoundTest { object: Some(o), .. } if o.index == object))
-        .map(|(k, _)| k)
 }
 
 /// `slab-test` and `kay-kajiya`: a pixel whose primary ray meets an object's volume and one whose
@@ -776,29 +663,4 @@ fn grid_score<V>(log: &EventLog<V>) -> Option<f64> {
     let steps = search_events(log, 0).filter(|e| matches!(e, Event::VoxelStep { .. })).count();
     let pitfall = grid_pitfall(log).is_some();
     (steps > 1).then(|| if pitfall { 100.0 } else { 0.0 } + steps.min(12) as f64)
-}
-
-/// The lecture's pitfall in root 0's grid walk: the first step whose cell found a hit (an
-/// accepted `object_test` of an object the cell lists) lying beyond the cell's exit `min tMax`:
-/// `(step, object, t, exit)`. Unbounded objects, tested before the walk, do not count.
-#[must_use]
-pub fn grid_pitfall<V>(log: &EventLog<V>) -> Option<(usize, usize, f64, f64)> {
-    let mut found: Vec<(usize, f64)> = Vec::new();
-    let mut step = 0;
-    for e in search_events(log, 0) {
-        match e {
-            Event::ObjectTest { object, accepted: Some(t), .. } => found.push((object.index, *t)),
-            Event::VoxelStep { t_max, objects, .. } => {
-                let exit = t_max.iter().copied().fold(f64::INFINITY, f64::min);
-                let listed = |o: usize| objects.iter().any(|x| x.index == o);
-                if let Some((object, t)) = found.iter().find(|(o, t)| listed(*o) && *t > exit) {
-                    return Some((step, *object, *t, exit));
-                }
-                found.clear();
-                step += 1;
-            }
-            _ => {}
-        }
-    }
-    None
 }
