@@ -41,7 +41,12 @@ impl Drawing {
     /// [−1, 1]², or `None` if either size is 0.
     #[must_use]
     pub fn new(width: u32, height: u32) -> Option<Self> {
-        (width > 0 && height > 0).then_some(Self {
+        (width > 0 && height > 0).then(|| Self::blank(width, height))
+    }
+
+    /// An empty drawing of `width` × `height` pixels showing [−1, 1]².
+    fn blank(width: u32, height: u32) -> Self {
+        Self {
             width,
             height,
             view: View::SQUARE,
@@ -52,24 +57,13 @@ impl Drawing {
             title: None,
             label_area: None,
             events: Vec::new(),
-        })
+        }
     }
 
     /// An empty drawing on the reference slide canvas, 1920 × 1080.
     #[must_use]
     pub fn slide() -> Self {
-        Self {
-            width: style::REFERENCE_WIDTH,
-            height: style::REFERENCE_HEIGHT,
-            view: View::SQUARE,
-            items: Vec::new(),
-            legend: Vec::new(),
-            legend_place: LegendPlace::Auto,
-            caption: None,
-            title: None,
-            label_area: None,
-            events: Vec::new(),
-        }
+        Self::blank(style::REFERENCE_WIDTH, style::REFERENCE_HEIGHT)
     }
 
     /// Canvas width in pixels.
@@ -262,11 +256,7 @@ mod tests {
     use crate::canvas::label::LEADER_FROM;
     use crate::canvas::{Align, Corner, HAlign, PxRect, VAlign};
 
-    // A figure's strokes, as the canvas sees them: colours and widths, nothing of rays.
-    const BLUE_LINE: Style = Style::solid(style::BLUE, 6.0);
-    const RED_LINE: Style = Style::solid(style::VERMILLION, 6.0);
-    const OUTLINE: Style = Style::solid(style::BLACK, 4.0);
-    const FILL: Rgba = Rgba { a: 64, ..style::SKY_BLUE };
+    use crate::canvas::style::test_strokes::{BLUE_LINE, FILL, OUTLINE, RED_LINE};
 
     pub(super) fn v(x: f64, y: f64) -> DVec2 {
         DVec2::new(x, y)

@@ -359,11 +359,7 @@ mod tests {
     use super::*;
     use crate::canvas::{TextOpts, View};
 
-    // A figure's strokes, as the canvas sees them: colours and widths, nothing of rays.
-    const BLUE_LINE: Style = Style::solid(style::BLUE, 6.0);
-    const RED_LINE: Style = Style::solid(style::VERMILLION, 6.0);
-    const OUTLINE: Style = Style::solid(style::BLACK, 4.0);
-    const FILL: Rgba = Rgba { a: 64, ..style::SKY_BLUE };
+    use crate::canvas::style::test_strokes::{BLUE_LINE, FILL, OUTLINE, RED_LINE};
 
     fn demo() -> Drawing {
         let mut d = Drawing::new(640, 360).unwrap();

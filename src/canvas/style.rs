@@ -231,3 +231,16 @@ mod tests {
         assert!((WHITE.opacity() - 1.0).abs() < 1e-12);
     }
 }
+
+/// The strokes the canvas's own tests draw with: colours and widths, nothing of rays.
+#[cfg(test)]
+pub(crate) mod test_strokes {
+    use super::{Dash, Rgba, Style, BLACK, BLUE, BLUISH_GREEN, DARK_GREY, SKY_BLUE, VERMILLION};
+
+    pub(crate) const BLUE_LINE: Style = Style::solid(BLUE, 6.0);
+    pub(crate) const RED_LINE: Style = Style::solid(VERMILLION, 6.0);
+    pub(crate) const GREEN_LINE: Style = Style::solid(BLUISH_GREEN, 6.0);
+    pub(crate) const OUTLINE: Style = Style::solid(BLACK, 4.0);
+    pub(crate) const DASHED: Style = Style::solid(DARK_GREY, 3.5).dashed(Dash { on: 18.0, off: 12.0 });
+    pub(crate) const FILL: Rgba = Rgba { a: 64, ..SKY_BLUE };
+}

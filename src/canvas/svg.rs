@@ -356,15 +356,9 @@ fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &Le
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
-    use crate::canvas::style::Dash;
     use crate::canvas::{TextOpts, View};
 
-    // A figure's strokes, as the canvas sees them: colours and widths, nothing of rays.
-    const BLUE_LINE: Style = Style::solid(style::BLUE, 6.0);
-    const GREEN_LINE: Style = Style::solid(style::BLUISH_GREEN, 6.0);
-    const OUTLINE: Style = Style::solid(style::BLACK, 4.0);
-    const DASHED: Style = Style::solid(style::DARK_GREY, 3.5).dashed(Dash { on: 18.0, off: 12.0 });
-    const FILL: Rgba = Rgba { a: 64, ..style::SKY_BLUE };
+    use crate::canvas::style::test_strokes::{BLUE_LINE, DASHED, FILL, GREEN_LINE, OUTLINE};
 
     fn demo() -> Drawing {
         let mut d = Drawing::new(960, 540).unwrap();
