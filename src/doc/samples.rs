@@ -23,8 +23,9 @@
 //!
 //! The pixel is traced alone: corners it shares with neighbouring pixels are traced here too.
 
-use super::narrate::{num, rays_line, Lang, Narration};
+use super::narrate::{rays_line, Lang, Narration};
 use super::{color, event, float, node, stats, Namer, TraceTarget};
+use crate::format::narration_number;
 use crate::record::event::Event;
 use crate::record::stats::Stats;
 use crate::record::EventLog;
@@ -104,7 +105,7 @@ pub fn sampled_document<V: Dim>(
 }
 
 fn rgb(c: Rgb) -> String {
-    format!("({}, {}, {})", num(c.0[0]), num(c.0[1]), num(c.0[2]))
+    format!("({}, {}, {})", narration_number(c.0[0]), narration_number(c.0[1]), narration_number(c.0[2]))
 }
 
 /// The narration of a pixel traced with samples: the rule, each sample, each square and the mean.
@@ -161,7 +162,7 @@ pub fn sample_narration<V>(
                 "   split a square while max over R, G, B of (max − min of its corners) ≥",
                 "   se subdivizează un pătrat cât timp max pe R, G, B din (max − min al colțurilor) ≥",
             ),
-            num(pixel.threshold),
+            narration_number(pixel.threshold),
             t("and its level is below", "și nivelul său este sub"),
             pixel.max_level
         )
@@ -174,7 +175,7 @@ pub fn sample_narration<V>(
         pixel.samples.len()
     );
     for s in &pixel.samples {
-        let uv: Vec<String> = s.uv.iter().map(|x| num(*x)).collect();
+        let uv: Vec<String> = s.uv.iter().map(|x| narration_number(*x)).collect();
         let reused = if s.reused { t(", reused", ", refolosit") } else { "" };
         let _ = writeln!(
             out,
@@ -199,7 +200,7 @@ pub fn sample_narration<V>(
             q.level,
             what,
             labels.join(", "),
-            num(q.spread),
+            narration_number(q.spread),
             rgb(q.color),
             if q.split {
                 t("mean of its parts", "media părților")

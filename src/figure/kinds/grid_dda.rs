@@ -10,12 +10,14 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::Layout;
 use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
-use crate::figure::labels::{self, Label};
-use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, num, text_column};
+use crate::figure::labels::Label;
+use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, text_column};
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{first_hit, grid_pitfall, search_indexed};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
+use crate::format::markup_escape;
+use crate::format::slide_number;
 use crate::record::event::Event;
 
 /// The most cells drawn along one axis of the page: the heuristic's own cap per axis. Denser
@@ -187,9 +189,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     )];
     for (k, s) in steps.iter().enumerate().take(LISTED) {
         let cell: Vec<String> = s.cell.iter().map(ToString::to_string).collect();
-        let t_max: Vec<String> = s.t_max.iter().map(|t| num(*t)).collect();
+        let t_max: Vec<String> = s.t_max.iter().map(|t| slide_number(*t)).collect();
         let objects: Vec<String> =
-            s.objects.iter().map(|o| labels::escape(&scene.object_label(*o, input.lang))).collect();
+            s.objects.iter().map(|o| markup_escape(&scene.object_label(*o, input.lang))).collect();
         let objects = if objects.is_empty() { "—".to_owned() } else { objects.join(", ") };
         lines.push(format!("{}: ({}) · ({}) · {objects}", k + 1, cell.join(", "), t_max.join(", ")));
     }
@@ -202,17 +204,22 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             "{} {}: {}",
             input.t(Label::PitfallIn),
             step + 1,
-            labels::escape(&scene.object_label(object, input.lang))
+            markup_escape(&scene.object_label(object, input.lang))
         ));
-        lines.push(format!("   t = {} > {} = {}", num(t), input.t(Label::CellExitT), num(exit)));
+        lines.push(format!(
+            "   t = {} > {} = {}",
+            slide_number(t),
+            input.t(Label::CellExitT),
+            slide_number(exit)
+        ));
         lines.extend(input.t(Label::PitfallRule).split('\n').map(str::to_owned));
     }
     if let Some(h) = hit {
         lines.push(format!(
             "{}: {} (t = {})",
             input.t(Label::HitPoint),
-            labels::escape(&scene.object_label(h.object.index, input.lang)),
-            num(h.t)
+            markup_escape(&scene.object_label(h.object.index, input.lang)),
+            slide_number(h.t)
         ));
     }
     text_column(

@@ -19,6 +19,7 @@ use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{Target, Traced};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
+use crate::format::markup_escape;
 use crate::scene::camera::{Camera, Projection};
 
 /// One primary ray on the page: where it starts and where it ends (a hit, or the far edge).
@@ -135,7 +136,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.set_caption(&format!(
         "{} {}{row} · {} i = {} · {}{}",
         input.t(Label::Scene),
-        crate::figure::labels::escape(&input.traces.scene_name),
+        markup_escape(&input.traces.scene_name),
         input.t(Label::Columns),
         columns.join(", "),
         input.t(Label::PrimaryOnly),

@@ -10,12 +10,13 @@ use super::Input;
 use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{
-    self, deg, draw_arc, label_outward, legend_normal, legend_role, num, object_name, text_column, Names,
+    self, deg, draw_arc, label_outward, legend_normal, legend_role, object_name, text_column, Names,
 };
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{node_events, refraction_node, tir_node, Traced};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
+use crate::format::slide_number;
 use crate::record::event::Event;
 
 /// What one panel shows: a hit and the recorded rays leaving it.
@@ -226,7 +227,7 @@ fn panel<V: Planar>(
         let o = TextOpts::LABEL.align(Align { h: HAlign::Left, v: VAlign::Middle });
         d.text("label", at(DVec2::new(x, y)), text, o);
     };
-    let (above, below) = (format!("n_1 = {}", num(c.n1)), format!("n_2 = {}", num(c.n2)));
+    let (above, below) = (format!("n_1 = {}", slide_number(c.n1)), format!("n_2 = {}", slide_number(c.n2)));
     n_text(-1.45, 1.05, &above, d);
     n_text(-1.45, -1.05, &below, d);
     d.text("label", at(DVec2::new(0.0, 1.3)), "N", TextOpts::LABEL.align(Align::ABOVE).offset(0.0, 4.0));
@@ -261,8 +262,18 @@ fn panel<V: Planar>(
         Some(tt) => format!("θ_i = {}, θ_t = {}", deg(theta_i), deg(tt)),
         None => format!("θ_i = {}", deg(theta_i)),
     });
-    lines.push(format!("η = n_1/n_2 = {}/{} = {}", num(c.n1), num(c.n2), num(eta)));
-    lines.push(format!("n_1·sin θ_i = {} · sin {} = {}", num(c.n1), deg(theta_i), num(c.n1 * theta_i.sin())));
+    lines.push(format!(
+        "η = n_1/n_2 = {}/{} = {}",
+        slide_number(c.n1),
+        slide_number(c.n2),
+        slide_number(eta)
+    ));
+    lines.push(format!(
+        "n_1·sin θ_i = {} · sin {} = {}",
+        slide_number(c.n1),
+        deg(theta_i),
+        slide_number(c.n1 * theta_i.sin())
+    ));
     if let Some(t) = c.t {
         let cos_t = (-t.dot(c.n_f)).clamp(-1.0, 1.0);
         let theta_t = cos_t.acos();
@@ -273,17 +284,17 @@ fn panel<V: Planar>(
         });
         lines.push(format!(
             "n_2·sin θ_t = {} · sin {} = {}",
-            num(c.n2),
+            slide_number(c.n2),
             deg(theta_t),
-            num(c.n2 * theta_t.sin())
+            slide_number(c.n2 * theta_t.sin())
         ));
         lines.push("T = η·L − (cos θ_t + η·(L·N))·N, L = D".to_owned());
-        lines.push(format!("L·N = {}, cos θ_t = {}", num(c.d.dot(c.n_f)), num(cos_t)));
+        lines.push(format!("L·N = {}, cos θ_t = {}", slide_number(c.d.dot(c.n_f)), slide_number(cos_t)));
     }
     if let Some(k) = c.k {
         let critical = (c.n2 / c.n1).clamp(-1.0, 1.0).asin();
         lines.push(format!("{} θ_c = asin(n_2/n_1) = {}", input.t(Label::CriticalAngle), deg(critical)));
-        lines.push(format!("k = 1 − η^2·(1 − (L·N)^2) = {} < 0", num(k)));
+        lines.push(format!("k = 1 − η^2·(1 − (L·N)^2) = {} < 0", slide_number(k)));
         lines.push(format!("{}: {}", labels::Label::Tir.text(input.lang), input.t(Label::NoT)));
     }
     if c.r.is_some() {
