@@ -8,6 +8,7 @@ use glam::DVec2;
 
 use super::drawing::Drawing;
 use super::items::{Mark, Text};
+use super::legend::PlacedLegend;
 use super::style::{self, Rgba, TextSize};
 use super::text::{self, Weight};
 use super::view::{PxRect, Transform};
@@ -305,7 +306,7 @@ impl Drawing {
     /// Moves `label` down, a line at a time, off the earlier labels and no lower than world
     /// height `floor` (see [`Drawing::text`]).
     pub(super) fn place_stacked(&self, label: &mut Text, floor: f64) {
-        let (tf, _, _) = self.placed_legend();
+        let tf = self.placed_legend().transform;
         let boxes = self.text_boxes(&tf);
         // One line down: the label's own height and a gap of 2 reference pixels, so that
         // labels on neighbouring lines never touch.
@@ -336,7 +337,7 @@ impl Drawing {
     /// [`LEADER_FROM`]. A spot costs [`COVER_COST`], [`LINE_COST`], [`OUTSIDE_COST`],
     /// [`LEADER_CROSSING_COST`] and [`RING_COST`] per what each counts; the cheapest wins.
     pub(super) fn place_clear(&self, label: &mut Text, leader: bool, steps: &[f64]) {
-        let (tf, plot, _) = self.placed_legend();
+        let PlacedLegend { transform: tf, plot, .. } = self.placed_legend();
         let segments = self.segments(&tf);
         let mut boxes = self.text_boxes(&tf);
         // Other points' markers are data: a name must not hide one (its own point is the anchor).

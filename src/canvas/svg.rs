@@ -355,7 +355,7 @@ fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &Le
                 );
             }
             LegendIcon::Arrow => {
-                let head = tf.ref_px(style::ARROW_HEAD.max(4.5 * entry.style.width));
+                let head = tf.ref_px(style::arrow_head(entry.style.width));
                 arrow(out, tf, a, z, head, &entry.style);
             }
             LegendIcon::Dot(fill) => {
