@@ -135,14 +135,30 @@ fn reference_name(sweep: Sweep, setting: &Setting, lang: Lang) -> String {
     }
 }
 
-/// The title of a sweep's plot, the caption's note on its reference and the legend's note on
-/// the points' names; none for the structures, whose error is 0 by design (nothing to plot).
-fn words(sweep: Sweep) -> Option<(Label, Label, Label)> {
+/// The words of a sweep's plot.
+struct SweepWords {
+    /// The plot's title.
+    title: Label,
+    /// The caption's note on the reference.
+    reference: Label,
+    /// The legend's note on the points' names.
+    points: Label,
+}
+
+/// The words of a sweep's plot; none for the structures, whose error is 0 by design (nothing
+/// to plot).
+fn words(sweep: Sweep) -> Option<SweepWords> {
     match sweep {
-        Sweep::Sampling => {
-            Some((Label::TitleTradeoffSampling, Label::ReferenceSampling, Label::PointsSampling))
-        }
-        Sweep::Depth => Some((Label::TitleTradeoffDepth, Label::ReferenceDepth, Label::PointsDepth)),
+        Sweep::Sampling => Some(SweepWords {
+            title: Label::TitleTradeoffSampling,
+            reference: Label::ReferenceSampling,
+            points: Label::PointsSampling,
+        }),
+        Sweep::Depth => Some(SweepWords {
+            title: Label::TitleTradeoffDepth,
+            reference: Label::ReferenceDepth,
+            points: Label::PointsDepth,
+        }),
         Sweep::Accel => None,
     }
 }
@@ -164,7 +180,7 @@ pub fn draw(
     let t = |label: Label| label.text(lang);
     let (sweep, rows) = (measured.sweep, &measured.rows);
     let reference = &measured.reference;
-    let (title, reference_note, points_note) =
+    let SweepWords { title, reference: reference_note, points: points_note } =
         words(sweep).ok_or_else(|| FigureError("a structure changes no pixel: no error to plot".into()))?;
     d.set_title(t(title));
     d.set_caption(&format!(

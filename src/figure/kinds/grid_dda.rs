@@ -13,7 +13,7 @@ use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, V
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, text_column};
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{first_hit, grid_pitfall, search_indexed};
+use crate::figure::source::{first_hit, grid_pitfall, search_indexed, GridPitfall};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
 use crate::format::markup_escape;
@@ -158,7 +158,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             });
         }
     }
-    if let Some((_, _, t, _)) = pitfall {
+    if let Some(GridPitfall { t, .. }) = pitfall {
         d.marker("pitfall", ray_at(t), 22.0, style::WHITE.with_alpha(0.0), pitfall_ring());
     }
     if let Some(h) = hit {
@@ -198,7 +198,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     if steps.len() > LISTED {
         lines.push("…".to_owned());
     }
-    if let Some((step, object, t, exit)) = pitfall {
+    if let Some(GridPitfall { step, object, t, exit }) = pitfall {
         lines.push(String::new());
         lines.push(format!(
             "{} {}: {}",

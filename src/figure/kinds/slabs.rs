@@ -15,7 +15,7 @@ use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, V
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, clip_line, object_name};
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{bound_test_index, bound_test_of, FigureTrace, Target};
+use crate::figure::source::{bound_test_index, bound_test_of, BoundTestOf, FigureTrace, Target};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
 use crate::format::markup_escape;
@@ -146,7 +146,7 @@ pub fn draw<V: Planar>(
         .traces
         .iter()
         .filter_map(|traced| {
-            let (intervals, t_in, t_out, hit) = bound_test_of(&traced.log, focus)?;
+            let BoundTestOf { intervals, t_in, t_out, hit } = bound_test_of(&traced.log, focus)?;
             let root = traced.log.nodes.first()?;
             let main = std::ptr::eq(traced, &input.traces.traces[0]);
             let events = if main {
