@@ -202,20 +202,7 @@ impl<'a, V: Dim> Writer<'a, V> {
     }
 }
 
-/// The numbered narration of a traced primary ray.
-#[must_use]
-pub fn narrate<V: Dim>(
-    scene: &Scene<V>,
-    log: &EventLog<V>,
-    stats: &Stats,
-    target: &TraceTarget,
-    max_depth: u32,
-    lang: Lang,
-) -> String {
-    narration(scene, log, stats, target, max_depth, lang).text
-}
-
-/// [`narrate`] with the events and the place of each step.
+/// The numbered narration of a traced primary ray: its text, and each step's events and place.
 #[must_use]
 pub fn narration<V: Dim>(
     scene: &Scene<V>,
