@@ -4,7 +4,7 @@
 //! box), so that every change of wording or number is a reviewed diff; the names it shares with
 //! the figures, each step's place in the ray tree, `--object` and `whitted step` over a pipe.
 
-use crate::support::{fixture, fixture_path, whitted};
+use crate::support::{fixture, fixture_path, whitted, Scratch};
 use whitted::accel::AccelKind;
 use whitted::bounds::VolumeKind;
 use whitted::doc::narrate::Lang;
@@ -172,10 +172,9 @@ fn object_picks_the_pixel_that_shows_it() {
     );
     let (code, _, err) = whitted(&["trace", &glass, "--object", "glass", "--pixel", "1,1"]);
     assert_eq!(code, 2, "{err}");
-    let svg = std::env::temp_dir().join(format!("whitted-object-{}.svg", std::process::id()));
+    let dir = Scratch::new();
     let (code, _, err) =
-        whitted(&["figure", "rays", &glass, "--object", "mirror", "-o", &svg.display().to_string()]);
-    let _ = std::fs::remove_file(&svg);
+        whitted(&["figure", "rays", &glass, "--object", "mirror", "-o", &dir.arg("object.svg")]);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("--object mirror: --pixel "), "{err}");
 }
