@@ -3,7 +3,7 @@
 
 use std::path::Path;
 use whitted::accel::AccelOptions;
-use whitted::figure::source::Tracing;
+use whitted::figure::source::TraceOptions;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::claim::Verdict;
 use whitted::lesson::{self, FigureSpec};
@@ -19,10 +19,10 @@ fn verdicts(dir: &Path, spec: &FigureSpec, lang: Lang) -> Vec<Verdict> {
     let request = Request {
         kind: spec.kind,
         target: Target { pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))), ray: spec.ray.clone() },
-        tracing: Tracing {
+        tracing: TraceOptions {
             depth: spec.depth,
             sampling: spec.sampling.unwrap_or(Sampling::Center),
-            accel: AccelOptions { grid: spec.grid.clone(), ..Tracing::SCENE.accel },
+            accel: AccelOptions { grid: spec.grid.clone(), ..TraceOptions::SCENE.accel },
         },
         opts: Options::slide(lang),
     };

@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Drawing, Sample, Style};
+use crate::canvas::{Drawing, LegendIcon, Pen};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     self, label_outward, legend_normal, num, object_name, rgb_text, sub, swatch, text_column, Names,
@@ -67,11 +67,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.set_caption(&caption);
     let view_role = parts::role(node.start.kind);
     legend_normal(d, input.lang);
-    d.legend_entry(input.t(Label::VectorV), view_role.style(), Sample::Arrow);
-    d.legend_entry(input.t(Label::VectorL), RayRole::Shadow.style(), Sample::Arrow);
-    d.legend_entry(input.t(Label::VectorH), h_style(), Sample::Arrow);
+    d.legend_entry(input.t(Label::VectorV), view_role.style(), LegendIcon::Arrow);
+    d.legend_entry(input.t(Label::VectorL), RayRole::Shadow.style(), LegendIcon::Arrow);
+    d.legend_entry(input.t(Label::VectorH), h_style(), LegendIcon::Arrow);
     if let Some(local) = end.local {
-        d.legend_entry("I_{local}", style::outline(style::BLACK), Sample::Swatch(swatch(local)));
+        d.legend_entry("I_{local}", style::outline(style::BLACK), LegendIcon::Swatch(swatch(local)));
     }
     let column = parts::fit_with_column(d, &[DVec2::new(-1.5, -0.45), DVec2::new(1.5, 1.5)], 0.02, 0.5);
 
@@ -81,7 +81,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         "object",
         i + DVec2::new(-1.5, -0.4),
         i + DVec2::new(1.5, 0.0),
-        Style::NONE,
+        Pen::NONE,
         Some(style::OBJECT_FILL),
     );
     d.segment("surface", i + DVec2::new(-1.5, 0.0), i + DVec2::new(1.5, 0.0), style::object());
@@ -182,6 +182,6 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
 }
 
 /// The bisector H: black, a little thinner than a ray.
-fn h_style() -> Style {
-    Style::solid(style::BLACK, style::RAY_WIDTH * 0.8)
+fn h_style() -> Pen {
+    Pen::solid(style::BLACK, style::RAY_WIDTH * 0.8)
 }
