@@ -1,6 +1,6 @@
 //! The command line: exit codes and one-line errors naming the field or argument (issue 3, item 8).
 
-use crate::support::{fixture_path as fixture, whitted, SceneText, Scratch};
+use crate::support::{fixture_path as fixture, whitted, whitted_with_input, SceneText, Scratch};
 use serde_json::json;
 
 #[test]
@@ -363,23 +363,15 @@ fn tradeoff_measures_each_sweep_against_a_reference_that_differs_in_it_only() {
 
 #[test]
 fn step_shows_the_trace_narration_a_step_at_a_time() {
-    use std::io::Write;
     let glass = fixture("glass.json");
     let (_, narration, _) = whitted(&["trace", &glass, "--pixel", "4,3"]);
     let run = |input: &str| {
-        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_whitted"))
-            .args(["step", &glass, "--pixel", "4,3"])
-            .stdin(std::process::Stdio::piped())
-            .stdout(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
-        let out = child.wait_with_output().unwrap();
-        (out.status.code(), String::from_utf8_lossy(&out.stdout).into_owned())
+        let (code, out, _) = whitted_with_input(&["step", &glass, "--pixel", "4,3"], input);
+        (code, out)
     };
     // Enter twice: steps 1, 2 and 3, no more; then the end of input ends the session.
     let (code, out) = run("\n\n");
-    assert_eq!(code, Some(0));
+    assert_eq!(code, 0);
     assert!(out.contains("1. Pixel (i, j) = (4, 3)") && out.contains("\n3. P — primary ray"), "{out}");
     assert!(!out.contains("\n   4. "), "{out}");
     // `a`: the first step, then all the rest: the whole narration, every line of it.

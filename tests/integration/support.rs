@@ -201,6 +201,27 @@ pub fn whitted(args: &[&str]) -> (i32, String, String) {
     )
 }
 
+/// Runs the `whitted` binary with `input` on its stdin (the answers `whitted step` reads):
+/// (exit code, stdout, stderr).
+pub fn whitted_with_input(args: &[&str], input: &str) -> (i32, String, String) {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run whitted");
+    child.stdin.take().unwrap().write_all(input.as_bytes()).expect("write whitted's input");
+    let out = child.wait_with_output().expect("run whitted");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
 /// A folder of one test's own, for the scenes it writes and the files the binary writes: fresh
 /// (a rerun never finds an earlier run's files) and removed when dropped, also when the test
 /// fails (`tempfile::TempDir`).
