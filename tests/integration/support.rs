@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests: write a scene ([`SceneText`]) or edit a fixture
 //! ([`fixture_with`]), load it, trace a pixel or a ray with `EventLog`, build the trace document,
-//! run the `whitted` binary.
+//! run the `whitted` binary ([`whitted`], [`whitted_with_input`]) on files in a [`Scratch`]
+//! folder, removed when the test ends.
 
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
