@@ -62,6 +62,33 @@ fn every_lesson_figure_states_its_point_and_shows_it_in_both_languages() {
     assert!(failed.is_empty(), "{}", failed.join("\n"));
 }
 
+/// Numbers keep the decimal point in both languages (docs/algorithm.md, the lecture's `i + 0.5`):
+/// a Romanian caption that wrote 0,5 beside a figure that writes 0.5 would teach two notations.
+#[test]
+fn every_lesson_writes_numbers_with_the_decimal_point_in_both_languages() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "json") {
+            continue;
+        }
+        let lesson = lesson::parse(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let captions = lesson.figures.iter().map(|f| &f.caption);
+        for words in [&lesson.title, &lesson.text].into_iter().chain(captions) {
+            for text in [&words.en, &words.ro] {
+                let chars: Vec<char> = text.chars().collect();
+                let comma =
+                    chars.windows(3).any(|w| w[0].is_ascii_digit() && w[1] == ',' && w[2].is_ascii_digit());
+                if comma {
+                    found.push(format!("{}: {text}", path.display()));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "a decimal comma:\n{}", found.join("\n"));
+}
+
 /// The old scenes and pixels that did not show their point (issue "taught right", item 1), each
 /// with the claim that now fails on it: the grid pitfall whose first voxel already held the
 /// nearer sphere (its box leaked into it, the ray ran along a cell boundary), the 3D slab chart
