@@ -130,9 +130,9 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
 #[test]
 fn lessons_writes_nothing_and_exits_1_when_a_claim_fails() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let tmp = std::env::temp_dir().join(format!("whitted-claims-{}", std::process::id()));
+    let tmp = crate::support::Scratch::new();
     let lessons = tmp.join("lessons");
-    std::fs::create_dir_all(&lessons).unwrap();
+    std::fs::create_dir(&lessons).unwrap();
     let scene = root.join("scenes/whitted.json");
     let text = format!(
         r#"{{ "name": "one", "title": {{ "en": "t", "ro": "t" }}, "figures": [
@@ -154,5 +154,4 @@ fn lessons_writes_nothing_and_exits_1_when_a_claim_fails() {
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("one figure 1 (bvh): claim nodes: wanted ≥ 5, measured 1"), "{err}");
     assert!(!out.join("en/one-1-bvh.png").exists() && !out.join("index.html").exists());
-    std::fs::remove_dir_all(&tmp).ok();
 }
