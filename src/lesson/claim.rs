@@ -14,8 +14,8 @@ use crate::accel::Layout;
 use crate::canvas::{Drawing, Item, Mark};
 use crate::figure::plane::Planar;
 use crate::figure::source::{
-    first_hit, grid_pitfall, incidence_deg, met, refraction_node, search_events, tir_node, FigureInput,
-    GridPitfall,
+    first_hit, grid_pitfall, incidence_deg, met, refraction_node, search_events, tir_node, vectors_apart_deg,
+    FigureInput, GridPitfall,
 };
 use crate::json::Value;
 use crate::record::event::{Event, RayKind};
@@ -83,6 +83,9 @@ pub enum Measure {
     /// `specular`: the largest specular term `Isrc·fat·s·ks·(N·H)^n` (any channel, any light)
     /// at the main trace's first hit: a highlight the `local-model` figure can show.
     Specular,
+    /// `apart`: the smallest angle in degrees between two of the vectors the `local-model`
+    /// figure draws at the main trace's first hit (N, V, and each light's L and H).
+    Apart,
     /// `samples`: the samples traced for the `adaptive` figure's pixel.
     Samples,
     /// `leaf-levels`: how many different levels the pixel's unsplit squares have.
@@ -116,7 +119,7 @@ pub enum Measure {
 
 impl Measure {
     /// The kinds' names in a lesson file, in this order.
-    pub const KINDS: [&'static str; 15] = [
+    pub const KINDS: [&'static str; 16] = [
         "events",
         "level",
         "shadows",
@@ -132,6 +135,7 @@ impl Measure {
         "intervals",
         "false-crossings",
         "off-centre",
+        "apart",
     ];
 
     /// The claim's name with its parameter: `events voxel_step`, `shadows blocked`.
@@ -155,6 +159,7 @@ impl Measure {
             Self::Intervals => "intervals (shortest, % of the t axis)".into(),
             Self::FalseCrossings => name(13),
             Self::OffCentre => "off-centre (% of the image)".into(),
+            Self::Apart => "apart (least angle between N, V, L, H, °)".into(),
         }
     }
 }
@@ -287,6 +292,7 @@ pub fn parse(value: Option<&Value>, path: &str, errors: &mut Vec<String>) -> Vec
             "intervals" => Some(Measure::Intervals),
             "false-crossings" => Some(Measure::FalseCrossings),
             "off-centre" => Some(Measure::OffCentre),
+            "apart" => Some(Measure::Apart),
             _ => {
                 errors.push(format!("{at}.kind: must be one of {}", Measure::KINDS.join(", ")));
                 None
@@ -371,6 +377,7 @@ pub fn measure<V: Planar>(
             let node = &log.nodes[first_hit(log)?];
             node.lights.iter().flat_map(|t| t.specular.0).reduce(f64::max)
         }
+        Measure::Apart => vectors_apart_deg(&log?.nodes[first_hit(log?)?]),
         Measure::Samples => count(main?.samples.as_ref()?.samples.len()),
         Measure::LeafLevels => {
             let squares = &main?.samples.as_ref()?.squares;

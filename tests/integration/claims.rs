@@ -93,7 +93,8 @@ fn every_lesson_writes_numbers_with_the_decimal_point_in_both_languages() {
 /// with the claim that now fails on it: the grid pitfall whose first voxel already held the
 /// nearer sphere (its box leaked into it, the ray ran along a cell boundary), the 3D slab chart
 /// of a near-axis ray, the flat heat map of corner sampling, the BVH of one node, and Whitted's
-/// shadow figure whose primary ray was drawn through the glass sphere.
+/// shadow figure whose primary ray was drawn through the glass sphere, and the 2D local model
+/// whose L and N lay 3.25° apart.
 #[test]
 fn the_old_scenes_and_pixels_fail_their_claims() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/claims");
@@ -108,7 +109,9 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
         { "kind": "bvh", "scene": "../../../scenes/whitted.json",
           "claims": [ { "kind": "nodes", "min": 5 } ], "caption": { "en": "", "ro": "" } },
         { "kind": "shadows", "scene": "../../../scenes/whitted.json", "pixel": [292, 227],
-          "claims": [ { "kind": "false-crossings", "max": 0 } ], "caption": { "en": "", "ro": "" } } ] }"#;
+          "claims": [ { "kind": "false-crossings", "max": 0 } ], "caption": { "en": "", "ro": "" } },
+        { "kind": "local-model", "scene": "../../../scenes/flat.json", "pixel": [20],
+          "claims": [ { "kind": "apart", "min": 10 } ], "caption": { "en": "", "ro": "" } } ] }"#;
     let failed = failures(&dir, old, Lang::En);
     let expected = [
         "old figure 1 (grid-dda): claim grid-pitfall (voxels from the early find to the accepted hit): wanted ≥ 1, measured 0",
@@ -116,6 +119,7 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
         "old figure 3 (heat-map): claim heat-values: wanted ≥ 3, measured 1",
         "old figure 4 (bvh): claim nodes: wanted ≥ 5, measured 1",
         "old figure 5 (shadows): claim false-crossings: wanted ≤ 0, measured 2",
+        "old figure 6 (local-model): claim apart (least angle between N, V, L, H, °): wanted ≥ 10, measured 3.25",
     ];
     assert_eq!(failed.len(), expected.len(), "{}", failed.join("\n"));
     for (line, want) in failed.iter().zip(expected) {
@@ -126,9 +130,9 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
 #[test]
 fn lessons_writes_nothing_and_exits_1_when_a_claim_fails() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let tmp = std::env::temp_dir().join(format!("whitted-claims-{}", std::process::id()));
+    let tmp = crate::support::Scratch::new();
     let lessons = tmp.join("lessons");
-    std::fs::create_dir_all(&lessons).unwrap();
+    std::fs::create_dir(&lessons).unwrap();
     let scene = root.join("scenes/whitted.json");
     let text = format!(
         r#"{{ "name": "one", "title": {{ "en": "t", "ro": "t" }}, "figures": [
@@ -150,5 +154,4 @@ fn lessons_writes_nothing_and_exits_1_when_a_claim_fails() {
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("one figure 1 (bvh): claim nodes: wanted ≥ 5, measured 1"), "{err}");
     assert!(!out.join("en/one-1-bvh.png").exists() && !out.join("index.html").exists());
-    std::fs::remove_dir_all(&tmp).ok();
 }

@@ -3,7 +3,7 @@
 //! tagged group per item; every PNG has its size, is not blank and shows the colour of each ray
 //! kind its trace holds; labels come in both languages.
 
-use crate::support::{fixture, SceneText};
+use crate::support::{fixture, fixture_path, whitted, SceneText, Scratch};
 use glam::DVec2;
 use whitted::canvas::{skia, svg};
 use whitted::canvas::{Drawing, LegendIcon, Mark};
@@ -377,13 +377,6 @@ fn a_figure_reads_the_trace_it_was_given() {
     assert!(err.0.contains("has no refraction or total internal reflection"), "{err}");
 }
 
-fn whitted(args: &[&str]) -> (i32, String, String) {
-    let out =
-        std::process::Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
-    let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
-    (out.status.code().unwrap_or(-1), text(&out.stdout), text(&out.stderr))
-}
-
 #[test]
 fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
     let (code, out, _) = whitted(&["figure", "--list"]);
@@ -391,9 +384,8 @@ fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
     assert_eq!(out.lines().count(), 14);
     assert!(out.lines().any(|l| l.starts_with("ray-tree")));
 
-    let dir = std::env::temp_dir().join(format!("whitted-figure-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let scene = format!("{}/tests/data/scenes/lens_2d.json", env!("CARGO_MANIFEST_DIR"));
+    let dir = Scratch::new();
+    let scene = fixture_path("lens_2d.json");
     let svg_path = dir.join("rays.svg");
     let (code, _, err) = whitted(&[
         "figure",
@@ -434,7 +426,8 @@ fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
 
 #[test]
 fn the_lessons_command_writes_both_languages_and_the_pages() {
-    let out = std::env::temp_dir().join(format!("whitted-lessons-{}", std::process::id()));
+    let scratch = Scratch::new();
+    let out = scratch.join("course");
     let lessons = format!("{}/lessons", env!("CARGO_MANIFEST_DIR"));
     let args = [
         "lessons",

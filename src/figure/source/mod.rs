@@ -482,12 +482,22 @@ fn rich_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
     Some(100.0 * roles as f64 - log.nodes.len().min(60) as f64)
 }
 
+/// The least angle between two of N, V, L, H that `local-model`'s pick accepts, in degrees: closer
+/// vectors would be drawn one over the other at slide size.
+pub const MIN_APART_DEG: f64 = 10.0;
+
+/// The score `local-model`'s pick adds when N, V, L, H are [`MIN_APART_DEG`] apart: more than the
+/// other terms together (at most 2 + 2 + 3 + 2), so a pixel that keeps them apart always wins.
+const APART_WEIGHT: f64 = 10.0;
+
 /// `local-model`: the primary hit lit by a light, on an opaque object with a highlight (ks > 0)
 /// if there is one and a visible specular term, with N·L near 0.6 and N·V near 0.8, so that N,
 /// L, H and V fan out.
 fn lit_score<V: Dim>(scene: &Scene<V>, log: &EventLog<V>) -> Option<f64> {
     let node = log.nodes.first()?;
     let hit = node.end.as_ref()?.hit?;
+    // Vectors drawn one over the other outweigh every other merit.
+    let apart = if vectors_apart_deg(node)? >= MIN_APART_DEG { APART_WEIGHT } else { 0.0 };
     let material = scene.material_of(hit.object.index);
     let kind = if material.transmits() { 0.0 } else { 1.0 } + if material.ks > 0.0 { 1.0 } else { 0.0 };
     let n_dot_v = node.start.direction.dot(hit.normal).abs();
@@ -497,7 +507,7 @@ fn lit_score<V: Dim>(scene: &Scene<V>, log: &EventLog<V>) -> Option<f64> {
         .map(|t| {
             // A visible highlight: the specular term (N·H)^n·ks·… of at least 0.2 counts fully.
             let highlight = (t.specular.0.iter().copied().fold(0.0, f64::max) * 5.0).min(1.0);
-            2.0 * kind + 3.0 * highlight + 2.0 - (t.n_dot_l - 0.6).abs() - (n_dot_v - 0.8).abs()
+            apart + 2.0 * kind + 3.0 * highlight + 2.0 - (t.n_dot_l - 0.6).abs() - (n_dot_v - 0.8).abs()
         })
         .reduce(f64::max)
 }
