@@ -10,6 +10,11 @@
 //! and memory never holds the whole refined lattice. Each sample's colour depends
 //! only on its lattice point and each pixel sums its squares in a fixed order, so the image and the
 //! counts are the same for any number of threads.
+//!
+//! With `center` sampling each pixel row is one rayon job. No job waits at a barrier: rows are
+//! written in place into the image, and a job's size comes from `job_rows` (small jobs, so that a
+//! thread out of work takes the next one). Nothing large is written serially: an edge row is
+//! allocated by the thread that first traces it, the blank image by every thread (`Image::new`).
 
 use crate::accel::Accel;
 use crate::image::Image;

@@ -6,6 +6,10 @@
 //! editor; and the static index per language (`index_html`) that shows every lesson's figures
 //! with their captions and the command that regenerates each. Reads values and returns text;
 //! `cli::lessons` writes the files.
+//!
+//! `word` holds every word of the pages in both languages, handed to the script as JSON;
+//! `module_script` carries the WebAssembly module in base64, since a page opened from disk may not
+//! fetch; `play_page` offers the lessons' scenes as examples.
 
 use serde_json::{Map, Value};
 

@@ -1,22 +1,12 @@
-//! What accuracy costs, measured (product.md `whitted tradeoff`): one scene rendered under many
-//! settings, each compared with a reference that differs from it in one thing only, so that a
-//! row's error is the error of what it varies. Three sweeps around the scene's own render
-//! (centre sampling, the scene's `max_depth`, the BVH):
+//! What accuracy costs, measured: one scene rendered under many settings, each compared with a
+//! reference that differs from it in one thing only, so that a row's error is the error of what
+//! it varies. The three sweeps (sampling, depth, structure), their references and the output are
+//! product.md "whitted tradeoff"; the constants below hold their numbers.
 //!
-//! - sampling (§8): every mode at the scene's `max_depth`, against adaptive sampling with threshold
-//!   0 and K = 3 (all 81 lattice points of a pixel's area, area-weighted) at that same depth;
-//! - depth (§6): `max_depth` 0 … 8 (and the scene's own) with centre sampling, against centre
-//!   sampling at `max_depth` 16 (or the scene's own if deeper);
-//! - structure (§7, §9): every structure against brute force (`none`). A structure changes which
-//!   objects a ray is tested against, never which one it hits first, so its error is 0: the
-//!   sweep checks it and shows what the structures do change, the tests per ray.
-//!
-//! The cost of a setting is counted (rays by kind, tests by kind: the render's own stats) and
-//! timed (`runs` renders: min, median, max). The Pareto front of a sweep is decided on the rays
-//! traced, which do not depend on the machine nor on its load. The errors are taken on the
-//! linear colours clamped to [0, 1], what the image file shows before its 8-bit rounding: the root
-//! mean square and the largest difference over pixels and channels, and the share of pixels with
-//! a channel off by more than 1/255.
+//! A setting's cost is counted (rays and tests by kind, the render's own stats) and timed
+//! ([`Timing`] over `runs` renders). The Pareto front is decided on the rays traced, which neither
+//! the machine nor its load changes. The errors are taken on the linear colours clamped to
+//! [0, 1], what the image file shows before its 8-bit rounding ([`compare`]).
 
 use crate::accel::{Accel, AccelKind, AccelOptions};
 use crate::clock::Stopwatch;

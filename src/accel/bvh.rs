@@ -17,6 +17,8 @@
 //! nearer is visited first, the farther kept on a stack with its entry `t_in`; a node is skipped
 //! when its entry lies beyond the best hit so far ([`super::beyond`]), so the walk stops as soon
 //! as the nearest hit is closer than the next node.
+//!
+//! A tree that is one leaf (a small scene) is visited without the stack.
 
 use super::{beyond, node_skip, node_visit, prim_bounds, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;

@@ -2,24 +2,11 @@
 //! cut into equal cells, each listing the primitives whose box overlaps it, walked cell by cell
 //! by the DDA of Amanatides & Woo (1987), one code for 2D and 3D.
 //!
-//! **Resolution** (unless `--grid` gives it): about [`CELLS_PER_PRIM`]·N cells, as cubic as the
-//! box allows: along each axis of non-zero extent `n_a = round(e_a·s)` with
-//! `s = (λ·N / Π e_a)^(1/D)` over those D axes, clamped to `[1, MAX_CELLS_PER_AXIS]`; an axis of
-//! zero extent (a flat scene) gets one cell.
-//!
-//! **Insertion**: a primitive goes into every cell its (closed) box overlaps, the box grown by
-//! `10⁻⁹` of a cell plus `2⁻³⁶` of the grid's largest coordinate; so a box touching a cell
-//! boundary is in both cells (numerics I7), and a primitive that is in no visited cell lies
-//! strictly beyond them by more than any rounding of its t.
-//!
-//! **Walk**: clip the ray to the grid's box (exit widened, §11), canonicalise `−0` to `+0`
-//! (numerics I2), find the start cell from the entry point, clamped to the grid (I4); per axis
-//! `tMax` (the t of the next boundary) and `tDelta = w/|D_a|` (∞ on a parallel axis, I1); then
-//! repeatedly: test the cell's primitives not yet tested by this ray (the mailbox), stop once the
-//! best hit lies within the cell (`t ≤` the cell's exit, the lecture's pitfall, I6) or the ray
-//! leaves the grid, else step along the axis with the smallest tMax, **ties in the order x, y,
-//! z** (algorithm.md §11; pbrt steps the later axis, numerics I3), `tMax += tDelta`. At most
-//! `Σ n_a + 3` cells are visited, so even a NaN ray ends (I9).
+//! The resolution aims at [`CELLS_PER_PRIM`] cells per primitive ([`heuristic_resolution`]),
+//! unless `--grid` gives it. A primitive goes into every cell its slightly grown box overlaps, so
+//! a box on a cell boundary is in both cells (numerics I7). The walk ([`Grid::walk`]) stops once
+//! the best hit lies within the current cell, the lecture's pitfall (I6), and steps on ties in
+//! the order x, y, z (I3).
 
 use super::{object_ref, prim_bounds, Mailbox, Prim, Visitor};
 use crate::bounds::aabb::Aabb;
@@ -51,7 +38,10 @@ pub struct Grid<V> {
     prims: Vec<Prim>,
 }
 
-/// The heuristic resolution for `count` primitives in `bounds`.
+/// The heuristic resolution for `count` primitives in `bounds`: about [`CELLS_PER_PRIM`]·N
+/// cells, as cubic as the box allows. Along each axis of non-zero extent `n_a = round(e_a·s)`
+/// with `s = (λ·N / Π e_a)^(1/D)` over those D axes, clamped to `[1, MAX_CELLS_PER_AXIS]`; an
+/// axis of zero extent (a flat scene) gets one cell.
 #[must_use]
 pub fn heuristic_resolution<V: Vector>(bounds: &Aabb<V>, count: usize) -> Vec<usize> {
     let e = bounds.extent();
@@ -153,7 +143,10 @@ impl<V: Dim> Grid<V> {
         self.n[..V::DIM].to_vec()
     }
 
-    /// The cell range `[lo, hi]` per axis that a box overlaps, grown by the insertion slack.
+    /// The cell range `[lo, hi]` per axis that a box overlaps, grown by the insertion slack: the
+    /// (closed) box grown by `10⁻⁹` of a cell plus `2⁻³⁶` of the grid's largest coordinate. So a
+    /// box touching a cell boundary is in both cells (numerics I7), and a primitive that is in no
+    /// visited cell lies strictly beyond them by more than any rounding of its t.
     fn cell_range(&self, b: &Aabb<V>) -> ([usize; 3], [usize; 3]) {
         let m = self.bounds.min.max_abs().max(self.bounds.max.max_abs());
         let world_pad = m * (1.0 / (1u64 << 36) as f64);
@@ -182,6 +175,15 @@ impl<V: Dim> Grid<V> {
     }
 
     /// The Amanatides–Woo walk, handing each visited cell's untested primitives to the visitor.
+    ///
+    /// Clip the ray to the grid's box (exit widened, §11), canonicalise `−0` to `+0` (numerics
+    /// I2), find the start cell from the entry point, clamped to the grid (I4). Per axis `tMax` is
+    /// the t of the next boundary and `tDelta = w/|D_a|` (∞ on a parallel axis, I1). Then
+    /// repeatedly: test the cell's primitives not yet tested by this ray (the mailbox); stop once
+    /// the best hit lies within the cell (`t ≤` the cell's exit, the lecture's pitfall, I6) or the
+    /// ray leaves the grid; else step along the axis with the smallest tMax, **ties in the order
+    /// x, y, z** (algorithm.md §11; pbrt steps the later axis, numerics I3), `tMax += tDelta`. At
+    /// most `Σ n_a + 3` cells are visited, so even a NaN ray ends (I9).
     #[inline(never)]
     pub fn walk<R: Recorder<V>, W: Visitor<V>>(
         &self,

@@ -11,6 +11,13 @@
 //! [`Nearest`] keeps the nearest hit by `(t, object, triangle)`, so the order of visits never
 //! changes the answer; [`Shadow`] collects occluders with `0 < t < d_L`. A structure may skip
 //! whatever starts beyond the visitor's [`Visitor::bound`] (with the slack of [`beyond`]).
+//!
+//! `test_prim` is the one counted, recorded object test (`test_prim_t` when only t is needed);
+//! `node_skip` records a prune by `beyond`; `Mailbox` keeps a primitive from being tested twice by
+//! one ray. `Shadow` ends at an opaque occluder, takes each transparent one once and reports them
+//! in index order, collected in an inline `PrimSet`. `Layout` and `TreeNode` show a built
+//! structure's volumes, nodes or cells to the figures. The unbounded objects are kept as copies,
+//! tested through `Visitor::visit_plane`.
 
 pub mod bvh;
 pub mod grid;

@@ -13,6 +13,14 @@ use super::view::View;
 
 /// A figure: the display list, the world rectangle it shows, its canvas size, and its legend,
 /// title and caption.
+///
+/// The canvas is laid out once, by [`Drawing::frame`], for both back ends: a title band at the
+/// top, a caption band at the bottom, the plot area between them, and the legend box in a clear
+/// corner of the plot area, in a column to its right or in a band under it ([`LegendPlace`]).
+/// Build in this order: the title, caption and legend (and [`LegendPlace::Outside`] or
+/// [`LegendPlace::Below`] if the legend will not fit inside), then the view, then the items and
+/// labels; a label placed with `TextOpts::avoid_overlap` is placed against the transform in
+/// force when it is added.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Drawing {
     width: u32,

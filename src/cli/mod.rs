@@ -1,5 +1,9 @@
 //! The command line: the only code that knows clap, files, stdout/stderr and exit codes.
 //! `Cli` and `Command` are the interface of product.md; their doc comments are the `--help` text.
+//!
+//! It is thin: between clap and the output each command calls `whitted::request`, as `web/` does,
+//! so both word every error alike. One file per command; the cargo feature `cli` (default on)
+//! brings clap and indicatif.
 #![allow(clippy::print_stdout)]
 
 mod accel;

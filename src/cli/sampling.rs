@@ -1,5 +1,5 @@
 //! `--aa center|corners|adaptive`, `--threshold X`, `--max-level K` (product.md; algorithm.md §8),
-//! shared by `render` and `trace`, turned into a validated `Sampling` once.
+//! shared by `render`, `trace` and `figure`, turned into a validated `Sampling` once.
 
 use super::{print_notes, Failure};
 use clap::{Args, ValueEnum};

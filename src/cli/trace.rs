@@ -1,6 +1,8 @@
 //! `whitted trace`: one pixel (or one ray) traced with `EventLog` (`request::trace`); `--json`
 //! prints the trace document, otherwise the numbered narration (`doc::narrate`) in English or
 //! Romanian. With `--aa corners|adaptive` the pixel's samples are traced instead of its centre.
+//!
+//! `TraceWhat` and `narration` are shared with `step`.
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;

@@ -3,6 +3,10 @@
 //! scene, and draws what the code *did* onto a [`crate::canvas::Drawing`] (the display list) in
 //! the lecture's notation (`labels`, `parts`, `plane`), one file per diagram (`kinds`), each ray
 //! kind in its colour (`style`); the canvas draws the list to PNG or SVG.
+//!
+//! `FigureKind` is the closed list of product.md "Diagrams", with a line each; `Options` and `draw`
+//! make one; `Lang` is the narration's. The items of a `Drawing` carry the main trace's event
+//! indices (`Drawing::with_events`), so a page can light up what a narration step explains.
 
 pub mod kinds;
 pub mod labels;

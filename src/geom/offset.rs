@@ -1,5 +1,7 @@
 //! The self-intersection policy (algorithm.md §3, §11 "The spawn offset"): a secondary or shadow
 //! ray starts at the hit point pushed off the surface, along ±N_f, on the side it travels to.
+//!
+//! The offset is `δ = 2⁻⁴⁴·M`, M the largest magnitude at hand ([`offset_distance`]).
 
 use super::Vector;
 

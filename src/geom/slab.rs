@@ -1,5 +1,8 @@
 //! The slab test (algorithm.md §9 "Axis-aligned box", "Kay–Kajiya slabs"; §11 policies): per slab
 //! `[t_near, t_far]`, their intersection `[max t_near, min t_far]`, closed, NaN-proof.
+//!
+//! `RecipRay` with `slab_interval_recip` is the same slab by reciprocals, for the traversals that
+//! test many boxes with one ray.
 
 use super::ray::Ray;
 use super::Vector;

@@ -6,6 +6,9 @@
 //!
 //! A claim is a [`Measure`] (a closed set, one number each) and the range `[min, max]` it must
 //! fall in (either end may be left out, not both).
+//!
+//! `measure` reads the `FigureInput` and the `Drawing`; a `Verdict` carries the message.
+//! `request::figure::figure_checked` makes a figure and checks its claims.
 
 use glam::DVec2;
 

@@ -1,25 +1,10 @@
-//! A lesson (product.md "Lessons"): one section of the lecture as a small JSON file naming its
-//! figures — each a kind, a scene, optionally a pixel or a ray and a depth, and a caption in both
-//! languages. Reads text and returns values; the pages that show the lessons are `site`'s, and
-//! the command line (`cli::lessons`) reads the files and writes the outputs.
+//! A lesson: one section of the lecture as a small JSON file naming its figures, each a kind, a
+//! scene and a caption in both languages, with the claims the figure must show. The format, every
+//! field and its limits are product.md "Lessons"; [`claim`] checks the claims.
 //!
-//! # Format
-//!
-//! ```json
-//! { "name": "secondary-rays",
-//!   "title": { "en": "Secondary rays R and T", "ro": "Razele secundare R și T" },
-//!   "text":  { "en": "At the hit I …", "ro": "În punctul I …" },
-//!   "figures": [
-//!     { "kind": "refraction", "scene": "scenes/glass.json", "pixel": [4, 2], "depth": 4,
-//!       "caption": { "en": "…", "ro": "…" } } ] }
-//! ```
-//! `scene` is relative to the lesson file; `pixel` is `[i, j]` (`[i]` in 2D), `ray` is
-//! `{ "origin": [...], "direction": [...] }`; `aa` is `center`, `corners` or `adaptive` (with
-//! `threshold`, default 0.1, and `max_level`, default 2) for `adaptive` and `heat-map`; `grid`
-//! (cells per axis) for `grid-dda`; a figure's `title` (both languages) replaces the kind's when
-//! the lesson says it better (the aliasing lesson's projections); `text`, `pixel`, `ray`, `depth`,
-//! `aa`, `grid` and `title` may be left out. An unknown field is an error. `claims` lists what the figure must show, each checked on
-//! its traces before anything is written (module `claim`).
+//! This module reads text and returns values, naming every problem of a file at once ([`parse`],
+//! through `json::reader`). The pages that show the lessons are `site`'s; the command line
+//! (`cli::lessons`) reads the files and writes the outputs.
 
 pub mod claim;
 
@@ -50,7 +35,8 @@ pub struct FigureSpec {
     pub sampling: Option<Sampling>,
     /// The grid's cells per axis (`grid`), for `grid-dda`.
     pub grid: Option<Vec<usize>>,
-    /// A title of the lesson's own in both languages, instead of the kind's (`title`).
+    /// A title of the lesson's own in both languages, instead of the kind's (`title`), where the
+    /// lesson says it better (the aliasing lesson's projections).
     pub title: Option<Both>,
     /// What the figure shows, in both languages.
     pub caption: Both,

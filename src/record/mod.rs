@@ -3,6 +3,9 @@
 //! that only counts (the benchmark's middle point) and the [`EventLog`] that keeps everything:
 //! the events in order and the ray tree. The counters the tracer always keeps, recorder or
 //! not, are [`stats::Stats`].
+//!
+//! `EventLog` keeps the ray tree as a pre-order arena of `RayNode`s, and says which events draw a
+//! node: `spawned_by`, `ended_by`, `ray_events`, `shadow_events`.
 
 pub mod event;
 pub mod names;

@@ -5,6 +5,8 @@
 //!
 //! Each name comes in two spellings: markup for the figures' text (`R_1`, `L_{12}`, see
 //! `figure::labels`) and plain text with Unicode subscripts for the narration (`R₁`, `L₁₂`).
+//!
+//! They live here, beside the log, so that `doc` need not import `figure`.
 
 use super::event::RayKind;
 use super::EventLog;

@@ -1,5 +1,8 @@
 //! Counters of rays by kind and tests by kind: plain integers, always on (pbrt's `STAT_COUNTER`),
 //! merged across threads after a render.
+//!
+//! The tracer counts the rays and `accel`'s tests count the tests; both count whatever the
+//! recorder.
 
 use std::ops::AddAssign;
 

@@ -4,6 +4,11 @@
 //! mean of its leaf squares, each the mean of its 4 corners. In 2D a square is an interval (2 ends,
 //! 2 halves). The samples come from a [`SampleSource`] (the image's shared lattice, or one traced
 //! pixel), so this one recursion serves `render` and `trace`.
+//!
+//! `subdivide` is the one recursion, over a `Rule<N>` (N = 4 corners, 2 on a 2D line, a constant);
+//! `splits` is the convention, and `unsplit` its level-0 decision on references, which a render
+//! takes before the recursion. A `SampleSource` gives `color` and the `corners` a render reads from
+//! its edge rows; a `SquareSink` observes the squares.
 
 use super::corners::corner_mean;
 use crate::scene::material::Rgb;

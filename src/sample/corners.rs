@@ -3,6 +3,9 @@
 //! and a pixel is the mean of its 4 corners. Here also the integer lattice that refines the
 //! corners for the adaptive method: point `(x, y) = (i·2^K + a, j·2^K + b)` is the corner
 //! `(x/2^K, y/2^K)`, so the same corner gets the same bits at every K.
+//!
+//! `Lattice` maps lattice points to (u, v); `Axes` tabulates those u and v once per render;
+//! `corner_mean` is a square's colour.
 
 use crate::geom::Vector;
 use crate::scene::camera::Camera;

@@ -6,6 +6,10 @@
 //! `(x, y) = (i·2^K + a, j·2^K + b)` sits at `u = l + (r − l)·(x/2^K)/Nx`, `v = b + (t − b)·(y/2^K)/Ny`
 //! (`corners`); a pixel's square is split while its corners differ (`adaptive`); `shared` keeps
 //! every lattice sample traced once for the whole image, across threads.
+//!
+//! `Sampling::adaptive` validates the threshold and K (at most `MAX_LEVEL`). `trace_pixel` traces one pixel's
+//! samples with the `EventLog` into a `PixelTrace` (`samples`, `squares`, `color`), its samples
+//! labelled as the lecture does, `CA`, `CB`, ….
 
 pub mod adaptive;
 pub mod corners;

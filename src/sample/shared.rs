@@ -1,24 +1,13 @@
 //! Sharing samples across a whole image (algorithm.md §8: "every sample is traced once and shared
 //! by all squares and pixels that touch it", keyed by integer lattice coordinates, never floats).
 //!
-//! A pixel row is rendered left to right by one thread. Its samples are of four kinds:
-//! - the pixel corners `(i·2^K, j·2^K)`: every one is needed, so the corners of a lattice row are
-//!   traced first, all at once, when the row is made ([`EdgeRow::trace`]), and read as plain
-//!   colours;
-//! - the other points of the lattice row `y = j·2^K` (the pixel row's bottom edge) or
-//!   `(j + 1)·2^K` (its top edge): shared with the pixel row below or above, which another thread
-//!   may render at the same time. They sit in a [`Line`] of [`Point`]s: the first thread to need a
-//!   point traces it, any other waits for that colour;
-//! - the points of the vertical edge `x = i·2^K` between two pixels of the row: carried from
-//!   pixel `i − 1` to pixel `i` (the `left` column of [`Scratch`]);
-//! - the points inside the pixel: private.
-//!
-//! On a 2D scene's image line the pixel's two ends are corners and everything else is inside.
-//! Each pixel memoises what it read in [`Scratch`] (stamped, so nothing is cleared per pixel), and
-//! the number of distinct points it read is its rays-per-pixel count. The edge rows themselves are
-//! made and dropped by [`EdgeRows`]. Memory: the edge rows of the pixel rows in progress and of
-//! those waiting for their second pixel row (see `render`), and per thread one pixel's
-//! `(2^K + 1)²` memo.
+//! One thread renders a pixel row left to right ([`render_row`]). The row's pixel corners are
+//! traced with the lattice row they lie on ([`EdgeRow`]). The other points of its bottom and top
+//! lattice rows are shared with the pixel row below or above, which another thread may render at
+//! the same time: the first thread to need a point traces it, any other waits ([`Line`]). The
+//! points of the edge between two pixels are carried to the next pixel, and those inside a pixel
+//! are private ([`Scratch`]). [`EdgeRows`] makes and drops the edge rows, so memory holds only
+//! those in use (see `render`).
 
 use super::adaptive::{subdivide, unsplit, NoSquares, SampleSource};
 use super::corners::{Axes, Lattice};
@@ -105,7 +94,8 @@ impl Point {
 }
 
 /// A lattice row `y = j·2^K` on a pixel-row boundary: its `Nx + 1` pixel corners, traced when
-/// the row is made, and for K > 0 its finer points, traced on demand.
+/// the row is made, and for K > 0 its finer points, traced on demand. Every corner is needed, so
+/// all are traced at once and read as plain colours.
 #[derive(Debug)]
 pub struct EdgeRow {
     /// The colours of the corners `(i·2^K, y)`, `i = 0 … Nx`.
@@ -213,8 +203,8 @@ struct Memo {
     color: Rgb,
 }
 
-/// One thread's per-pixel memory: a memo of the pixel's `(2^K + 1)^dims` local points, and the left
-/// edge carried from the previous pixel.
+/// One thread's per-pixel memory: a memo of the pixel's `(2^K + 1)^dims` local points (stamped, so
+/// nothing is cleared per pixel), and the left edge carried from the previous pixel.
 #[derive(Debug)]
 pub struct Scratch {
     side: usize,

@@ -1,6 +1,9 @@
 //! What a scene is, after validation (product.md "Scene files", algorithm.md §11 "Validation
 //! instead of sanitising"). The path is JSON text → `load` (every check, every default) →
 //! [`Scene`], valid by construction.
+//!
+//! An `Object` carries its `scale` for the spawn offset, computed at load; `AnyScene` is a 2D or a
+//! 3D scene.
 
 pub mod camera;
 pub mod light;

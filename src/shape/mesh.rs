@@ -4,6 +4,9 @@
 //! 1M-triangle mesh takes about 24 MB. A mesh is one object: its triangles are its parts, found
 //! by the acceleration structures one by one and named by their index in the OBJ.
 //! Degenerate (zero-area) triangles are skipped when the mesh is built and never hit.
+//!
+//! `parse_obj` reads the OBJ through `tobj`, its errors naming their line; `NoMesh` is the empty
+//! mesh type of 2D.
 
 use super::triangle::crossing;
 use super::{Parts, SurfaceHit};

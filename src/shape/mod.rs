@@ -2,6 +2,10 @@
 //! root along a ray (for the trace), the nearest hit with its outward normal, its bounds and its
 //! scale (for the spawn offset). Spheres, planes and boxes are one code for 2D and 3D; the flat
 //! primitives differ by dimension and sit behind [`Dim::Facet`].
+//!
+//! A `Shape` is found through its parts: `parts` and `part_hit` see a mesh's triangles, else the
+//! object itself (`Parts` is a many-part object). A sphere's or plane's hit is kept as its t
+//! (`part_found`, `Found`); its I and N are computed once, for the nearest, by `surface`.
 
 pub mod aabox;
 pub mod mesh;

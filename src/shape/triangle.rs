@@ -2,6 +2,8 @@
 //! translate to the ray origin, shear so the ray is the +z axis, three 2D edge functions — with an
 //! exact re-evaluation where an edge function is 0 and no determinant epsilon.
 //! Outward normal `(b − a) × (c − a)` normalised (counter-clockwise seen from outside, §3).
+//!
+//! `crossing` is shared with meshes.
 
 use super::{Facet, SurfaceHit};
 use crate::geom::diff_of_products;

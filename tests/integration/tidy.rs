@@ -1,7 +1,8 @@
 //! Tidy checks: every source file opens with a `//!` line saying what it owns; every reference
 //! the code and the top-level docs make to `docs/` resolves (a file, an `algorithm.md` section,
 //! a `numerics.md` case, a `product.md` section); algorithm.md's Conventions cannot change
-//! without this project noticing (a stored hash); and only `cli/output.rs` writes files.
+//! without this project noticing (a stored hash); only `cli/output.rs` writes files; the top-level
+//! modules import one way, without a cycle, and `canvas` imports nothing from the crate.
 
 use std::path::{Path, PathBuf};
 

@@ -174,6 +174,9 @@
 
   // ---- A live view --------------------------------------------------------------------------
 
+  // One element with data-whitted="view": a click picks a pixel, which is narrated and drawn; the
+  // narration's steps are shown one at a time (aria-current) with the figure items they name lit;
+  // the options and the scene editor (checked as it is typed) change it; the URL fragment keeps it.
   class View {
     constructor(root, index, engines) {
       this.root = root;

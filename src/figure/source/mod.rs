@@ -3,6 +3,12 @@
 //! runs the tracer; the kinds (`figure::kinds`) only read what it recorded. A kind that needs a
 //! pixel and is given none gets a telling one, found by scanning recorded traces of a grid of
 //! pixels for the events it draws (a refraction, a blocked shadow ray, a large ray tree).
+//!
+//! `record` turns an `Aim` (a pixel, a ray, or `Auto`) and `TraceOptions` (depth, structure,
+//! sampling) into a `FigureInput`: the `FigureTrace` logs (with a pixel's samples for `adaptive`),
+//! a render's `Counts` (for `heat-map`), the built `Accel` whose `layout()` the structure kinds
+//! draw, and the `focus` object of the volume kinds. `Auto` says why it chose its pixel in a
+//! `Pick`.
 
 use crate::accel::{Accel, AccelKind, AccelOptions, Layout};
 use crate::bounds::{kdop, BoundingVolume, VolumeKind};

@@ -8,6 +8,9 @@
 //! [`schema`] holds the fields, limits and defaults on one screen; the sections read the parts:
 //! [`camera`] (eye, frame, window, resolution), [`lights`], [`materials`] (with the colours),
 //! [`objects`] (types, names, materials, shapes); `dim` says what differs between 2D and 3D.
+//!
+//! `load_str_with` takes a `ReadFile` closure for the files a scene names (a mesh's OBJ), so the
+//! library reads no file itself; `build` and the point `vector` are shared by the sections.
 
 mod camera;
 mod dim;
