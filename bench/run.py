@@ -32,13 +32,19 @@ Usage (from the repository root; build first with `cargo build --release`):
     python3 bench/run.py                      # everything, 3 runs each (several minutes)
     python3 bench/run.py --quick --only whitted
     python3 bench/run.py --no-povray          # whitted only
-Raw results: /tmp/whitted-bench/results.json; the tables also go to /tmp/whitted-bench/results.md.
+Results: bench/results/DATE-COMMIT.json (UTC date, short commit, `-dirty` with local changes;
+`-2`, `-3` … for another run of the same day and commit), written by this script and tracked: the
+command line, the commit, the start and end times, the machine (CPU, cores, kernel, load average at the start and
+at the end), every run's raw figures, and the Markdown tables it prints (`tables`). `--results DIR`
+writes elsewhere (a trial run), `--dry-run` prints the commands and where the file would go
+without running anything. The images and a copy of the tables stay in /tmp/whitted-bench.
 """
 import argparse
 import json
 import os
 import platform
 import re
+import shlex
 import statistics
 import struct
 import subprocess
@@ -52,6 +58,7 @@ BENCH = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(BENCH)
 SCENE_DIR = os.path.join(BENCH, "scenes")
 WORK = "/tmp/whitted-bench"
+RESULTS = os.path.join(BENCH, "results")
 WIDTH, HEIGHT = 640, 480
 
 # name, our scene file (in bench/scenes/), POV-Ray's scene file and declarations
@@ -661,21 +668,52 @@ def tables(results):
 # Main
 
 
-def machine_info(binary, povray):
+def git(*args):
+    """A git command's output in the repository, or None when it fails (no git, no repository)."""
+    try:
+        done = subprocess.run(["git", "-C", REPO, *args], capture_output=True, text=True)
+    except OSError:
+        return None
+    return done.stdout.strip() if done.returncode == 0 else None
+
+
+def machine_info(binary, povray, load_start):
+    """Where and when the numbers were measured: the results file's header.
+
+    `load_start` is the load average (1, 5, 15 minutes) read before the first run: on a shared
+    machine it says how much other work the runs competed with."""
     cpu = "unknown CPU"
     with open("/proc/cpuinfo") as fh:
         for line in fh:
             if line.startswith("model name"):
                 cpu = line.split(":", 1)[1].strip()
                 break
-    commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    dirty = subprocess.run(["git", "-C", REPO, "status", "--porcelain", "--untracked-files=no"],
-                           capture_output=True, text=True)
-    rev = commit.stdout.strip() if commit.returncode == 0 else "(no commit)"
-    if dirty.returncode == 0 and dirty.stdout.strip():
-        rev += " + local changes"
-    return {"date": time.strftime("%Y-%m-%d"), "cpu": cpu, "cores": os.cpu_count(), "kernel": platform.release(),
+    commit = git("rev-parse", "HEAD")
+    dirty = bool(git("status", "--porcelain", "--untracked-files=no"))
+    short = commit[:7] if commit else None
+    rev = (short or "(no commit)") + (" + local changes" if dirty else "")
+    now = time.gmtime()
+    return {"date": time.strftime("%Y-%m-%d", now), "started": time.strftime("%Y-%m-%dT%H:%M:%SZ", now),
+            "command": shlex.join(["python3", os.path.relpath(sys.argv[0], REPO)] + sys.argv[1:]),
+            "commit": commit, "dirty": dirty, "cpu": cpu, "cores": os.cpu_count(),
+            "kernel": platform.release(), "load_average_start": [round(x, 2) for x in load_start],
             "povray": povray, "whitted": rev, "binary": binary}
+
+
+def shown(path):
+    """A path as the reader of the log wants it: relative inside the repository, else absolute."""
+    path = os.path.abspath(path)
+    return os.path.relpath(path, REPO) if path.startswith(REPO + os.sep) else path
+
+
+def results_path(folder, machine):
+    """bench/results/DATE-COMMIT.json, numbered on when that name is taken (never overwritten)."""
+    stem = "%s-%s%s" % (machine["date"], (machine["commit"] or "nocommit")[:7], "-dirty" if machine["dirty"] else "")
+    path, n = os.path.join(folder, stem + ".json"), 1
+    while os.path.exists(path):
+        n += 1
+        path = os.path.join(folder, "%s-%d.json" % (stem, n))
+    return path
 
 
 def find_povray_dir(explicit):
@@ -734,7 +772,7 @@ def run_one(prog, cmd, cwd, timeout):
 
 
 def slim(r):
-    """What results.json keeps of a run (POV-Ray's progress lines make its stderr long)."""
+    """What the results file keeps of a run (POV-Ray's progress lines make its stderr long)."""
     keep = {k: v for k, v in r.items() if k not in ("stdout", "stderr")}
     if not r.get("figures"):
         keep["stderr_tail"] = r["stderr"][-2000:]
@@ -770,7 +808,7 @@ def run_round(config, k, timeout, gave_up, notes):
 
 
 def finish_config(config, gave_up, stat):
-    """Summarises the runs of a configuration and drops what results.json does not keep."""
+    """Summarises the runs of a configuration and drops what the results file does not keep."""
     for prog in ("whitted", "povray"):
         side = config[prog]
         side["skipped"] = gave_up[prog] and not side["runs"]
@@ -797,13 +835,20 @@ def main():
     ap.add_argument("--timeout", type=float, default=300, help="seconds before a run is killed (default 300)")
     ap.add_argument("--whitted", default=os.path.join(REPO, "target", "release", "whitted"),
                     help="the whitted binary (default: target/release/whitted)")
+    ap.add_argument("--results", default=RESULTS,
+                    help="folder of the results file DATE-COMMIT.json (default: bench/results, tracked)")
+    ap.add_argument("--dry-run", action="store_true",
+                    help="print the commands and the results file's name, run nothing, write nothing")
     ap.add_argument("--povray-dir", help="folder with the POV-Ray bench scenes "
                                          "(default: bench/povray if present, else ../shared/bench/povray beside the repository)")
     args = ap.parse_args()
+    load_start = os.getloadavg()
     runs = args.runs or (1 if args.quick else 3)
+    if runs < 1:
+        sys.exit("run.py: --runs must be at least 1, got %d" % runs)
 
     binary = os.path.abspath(args.whitted)
-    if not (os.path.isfile(binary) and os.access(binary, os.X_OK)):
+    if not args.dry_run and not (os.path.isfile(binary) and os.access(binary, os.X_OK)):
         sys.exit("run.py: the whitted binary is missing: %s\n"
                  "Build it first, from %s:  cargo build --release" % (binary, REPO))
     with_povray = not args.no_povray
@@ -825,12 +870,15 @@ def main():
                 sys.exit("run.py: no scene matches %r (scenes: %s)" % (want, ", ".join(s[0] for s in SCENES)))
             selected += [s for s in matches if s not in selected]
 
-    ensure_scene_files(selected, with_povray, pov_dir)
-    pov_run_dir = prepare_povray_dir(pov_dir, [s[0] for s in selected]) if with_povray else None
     image_dir = os.path.join(WORK, "images")
-    os.makedirs(image_dir, exist_ok=True)
+    if args.dry_run:
+        pov_run_dir = os.path.join(WORK, "povray")
+    else:
+        ensure_scene_files(selected, with_povray, pov_dir)
+        pov_run_dir = prepare_povray_dir(pov_dir, [s[0] for s in selected]) if with_povray else None
+        os.makedirs(image_dir, exist_ok=True)
 
-    results = {"machine": machine_info(binary, povray), "runs": runs, "stat": args.stat,
+    results = {"machine": machine_info(binary, povray, load_start), "runs": runs, "stat": args.stat,
                "accel_option": args.accel,
                "povray_options": POV_COMMON, "configs": [], "ceilings": [], "images": [], "notes": []}
     for scene, json_file, pov_args in selected:
@@ -856,7 +904,7 @@ def main():
                 for prog, image, _ in jobs:
                     config[prog] = {"cmd": " ".join(commands[prog]), "runs": []}
                     config["images"][prog] = image
-                    if os.path.exists(image):  # no stale image may stand in for a failed run
+                    if os.path.exists(image) and not args.dry_run:  # no stale image may stand in for a failed run
                         os.remove(image)
                 config.setdefault("povray", {"runs": []})
                 configs.append(config)
@@ -865,6 +913,13 @@ def main():
             pair_cmds = [whitted_command(binary, os.path.join(SCENE_DIR, json_file), our_mode, 1,
                                          os.path.join(image_dir, "%s-%s-pair%d.png" % (scene, mode, n)),
                                          args.accel) for n in (0, 1)]
+            if args.dry_run:
+                for config in configs:
+                    for prog, _, cwd in config["jobs"]:
+                        print("%s, %d run(s), in %s:\n  %s" % (config["tag"], runs, cwd,
+                                                               shlex.join(config["commands"][prog])))
+                print("%s-%s, two at once, %d time(s):\n  %s" % (scene, mode, runs, shlex.join(pair_cmds[0])))
+                continue
             for k in range(runs):
                 for config in configs:
                     run_round(config, k, args.timeout, gave_up, results["notes"])
@@ -888,14 +943,23 @@ def main():
             entry["error"] = str(e)
         results["images"].append(entry)
 
-    os.makedirs(WORK, exist_ok=True)
-    with open(os.path.join(WORK, "results.json"), "w") as fh:
-        json.dump(results, fh, indent=1)
+    if args.dry_run:
+        print("results would go to %s" % shown(results_path(args.results, results["machine"])))
+        return
     text = tables(results)
+    results["machine"]["finished"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+    results["machine"]["load_average_end"] = [round(x, 2) for x in os.getloadavg()]
+    results["tables"] = text
+    os.makedirs(args.results, exist_ok=True)
+    path = results_path(args.results, results["machine"])
+    with open(path, "w") as fh:
+        json.dump(results, fh, indent=1)
+        fh.write("\n")
+    os.makedirs(WORK, exist_ok=True)
     with open(os.path.join(WORK, "results.md"), "w") as fh:
         fh.write(text + "\n")
     print(text)
-    log("\nraw results: %s/results.json; tables: %s/results.md; images: %s" % (WORK, WORK, image_dir))
+    log("\nresults: %s; tables: %s/results.md; images: %s" % (shown(path), WORK, image_dir))
 
 
 if __name__ == "__main__":

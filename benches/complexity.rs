@@ -14,7 +14,7 @@ use glam::DVec2;
 use std::fmt::Write;
 use std::time::Instant;
 use whitted::accel::{Accel, AccelKind};
-use whitted::canvas::{Align, Dash, Drawing, Sample, Style, TextOpts, View};
+use whitted::canvas::{Align, Dash, Drawing, LegendIcon, Pen, TextOpts, View};
 use whitted::figure::style::{self, Rgba, TextSize};
 use whitted::render::render_centers;
 use whitted::scene::load::load_str;
@@ -192,8 +192,8 @@ fn plot(rows: &[Row], title: &str, ylabel: &str, value: impl Fn(&Row) -> f64) ->
     if let Some(view) = View::new(0.3, 5.6, -0.6, 4.5) {
         d.set_view(view);
     }
-    let axis = Style::solid(style::DARK_GREY, style::GRID_WIDTH);
-    let grid = Style::solid(Rgba { a: 80, ..style::LIGHT_GREY }, 1.5);
+    let axis = Pen::solid(style::DARK_GREY, style::GRID_WIDTH);
+    let grid = Pen::solid(Rgba { a: 80, ..style::LIGHT_GREY }, 1.5);
     d.line("axis", [at(1.0, ylo), at(5.0, ylo)], axis);
     d.line("axis", [at(1.0, ylo), at(1.0, yhi)], axis);
     for k in 1..=5 {
@@ -237,13 +237,13 @@ fn plot(rows: &[Row], title: &str, ylabel: &str, value: impl Fn(&Row) -> f64) ->
             .collect();
         // `bounds` does as many tests as `none` (bound tests instead of object tests): dashed,
         // so that the line beneath shows.
-        let s = Style::solid(color, style::RAY_WIDTH);
+        let s = Pen::solid(color, style::RAY_WIDTH);
         let s = if *kind == AccelKind::Bounds { s.dashed(Dash { on: 24.0, off: 18.0 }) } else { s };
         d.line(&format!("accel:{}", kind.name()), pts.clone(), s);
         for p in pts {
             d.dot(&format!("accel:{}", kind.name()), p, color);
         }
-        d.legend_entry(kind.name(), s, Sample::Line);
+        d.legend_entry(kind.name(), s, LegendIcon::Line);
     }
     whitted::canvas::skia::to_png(&d).expect("the plot renders")
 }

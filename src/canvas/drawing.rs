@@ -5,10 +5,10 @@
 
 use glam::DVec2;
 
-use super::items::{Item, Shape, Text};
+use super::items::{Item, Mark, Text};
 use super::label::{Placement, TextOpts, FAR_STEPS, NEAR_STEPS};
-use super::legend::{LegendEntry, LegendPlace, Sample};
-use super::style::{self, Rgba, Style};
+use super::legend::{LegendEntry, LegendIcon, LegendPlace};
+use super::style::{self, Pen, Rgba};
 use super::view::View;
 
 /// A figure: the display list, the world rectangle it shows, its canvas size, and its legend,
@@ -128,8 +128,8 @@ impl Drawing {
     }
 
     /// Adds an item (drawing the events of the enclosing [`Drawing::with_events`], if any).
-    pub fn push(&mut self, tag: &str, style: Style, shape: Shape) -> &mut Self {
-        self.items.push(Item { tag: tag.to_owned(), style, shape, events: self.events.clone() });
+    pub fn push(&mut self, tag: &str, pen: Pen, mark: Mark) -> &mut Self {
+        self.items.push(Item { tag: tag.to_owned(), pen, mark, events: self.events.clone() });
         self
     }
 
@@ -150,21 +150,21 @@ impl Drawing {
     }
 
     /// Adds a polyline.
-    pub fn line(&mut self, tag: &str, points: impl IntoIterator<Item = DVec2>, style: Style) -> &mut Self {
+    pub fn line(&mut self, tag: &str, points: impl IntoIterator<Item = DVec2>, style: Pen) -> &mut Self {
         let points = points.into_iter().collect();
-        self.push(tag, style, Shape::Line { points })
+        self.push(tag, style, Mark::Line { points })
     }
 
     /// Adds the segment `a`–`b`.
-    pub fn segment(&mut self, tag: &str, a: DVec2, b: DVec2, style: Style) -> &mut Self {
-        self.push(tag, style, Shape::Line { points: vec![a, b] })
+    pub fn segment(&mut self, tag: &str, a: DVec2, b: DVec2, style: Pen) -> &mut Self {
+        self.push(tag, style, Mark::Line { points: vec![a, b] })
     }
 
     /// Adds an arrow from `from` to `to`, its head sized for the stroke
     /// (`max(ARROW_HEAD, 4.5 × width)` reference pixels).
-    pub fn arrow(&mut self, tag: &str, from: DVec2, to: DVec2, style: Style) -> &mut Self {
+    pub fn arrow(&mut self, tag: &str, from: DVec2, to: DVec2, style: Pen) -> &mut Self {
         let head = style::ARROW_HEAD.max(4.5 * style.width);
-        self.push(tag, style, Shape::Arrow { from, to, head })
+        self.push(tag, style, Mark::Arrow { from, to, head })
     }
 
     /// Adds a circle of world radius `radius`, stroked with `style` and filled with `fill`.
@@ -173,20 +173,20 @@ impl Drawing {
         tag: &str,
         center: DVec2,
         radius: f64,
-        style: Style,
+        style: Pen,
         fill: Option<Rgba>,
     ) -> &mut Self {
-        self.push(tag, style, Shape::Circle { center, radius, fill })
+        self.push(tag, style, Mark::Circle { center, radius, fill })
     }
 
     /// Adds a dot of the standard radius ([`style::DOT_RADIUS`]) filled with `fill`, no outline.
     pub fn dot(&mut self, tag: &str, center: DVec2, fill: Rgba) -> &mut Self {
-        self.marker(tag, center, style::DOT_RADIUS, fill, Style::NONE)
+        self.marker(tag, center, style::DOT_RADIUS, fill, Pen::NONE)
     }
 
     /// Adds a dot of `radius` reference pixels, filled with `fill` and outlined with `outline`.
-    pub fn marker(&mut self, tag: &str, center: DVec2, radius: f64, fill: Rgba, outline: Style) -> &mut Self {
-        self.push(tag, outline, Shape::Dot { center, radius, fill })
+    pub fn marker(&mut self, tag: &str, center: DVec2, radius: f64, fill: Rgba, outline: Pen) -> &mut Self {
+        self.push(tag, outline, Mark::Dot { center, radius, fill })
     }
 
     /// Adds a closed polygon.
@@ -194,16 +194,16 @@ impl Drawing {
         &mut self,
         tag: &str,
         points: impl IntoIterator<Item = DVec2>,
-        style: Style,
+        style: Pen,
         fill: Option<Rgba>,
     ) -> &mut Self {
         let points = points.into_iter().collect();
-        self.push(tag, style, Shape::Polygon { points, fill })
+        self.push(tag, style, Mark::Polygon { points, fill })
     }
 
     /// Adds the world rectangle spanned by corners `a` and `b` (in any order).
-    pub fn rect(&mut self, tag: &str, a: DVec2, b: DVec2, style: Style, fill: Option<Rgba>) -> &mut Self {
-        self.push(tag, style, Shape::Rect { min: a.min(b), max: a.max(b), fill })
+    pub fn rect(&mut self, tag: &str, a: DVec2, b: DVec2, style: Pen, fill: Option<Rgba>) -> &mut Self {
+        self.push(tag, style, Mark::Rect { min: a.min(b), max: a.max(b), fill })
     }
 
     /// Adds a label at `anchor`. With [`TextOpts::avoid_overlap`], the label keeps the requested
@@ -232,12 +232,12 @@ impl Drawing {
             }
             Placement::StackDown { floor } => self.place_stacked(&mut label, floor),
         }
-        let style = Style { color: opts.color, width: 0.0, dash: None };
-        self.push(tag, style, Shape::Text(label))
+        let style = Pen { color: opts.color, width: 0.0, dash: None };
+        self.push(tag, style, Mark::Text(label))
     }
 
     /// Adds a legend row.
-    pub fn legend_entry(&mut self, label: &str, style: Style, sample: Sample) -> &mut Self {
+    pub fn legend_entry(&mut self, label: &str, style: Pen, sample: LegendIcon) -> &mut Self {
         self.legend.push(LegendEntry { label: label.to_owned(), style, sample });
         self
     }
@@ -327,7 +327,7 @@ mod tests {
             .text("label", v(0.0, 0.0), "θ_i", TextOpts::LABEL);
         assert_eq!(d.items.len(), 7);
         assert_eq!(d.tagged("object:1").count(), 1);
-        let Shape::Rect { min, max, .. } = d.tagged("cell").next().unwrap().shape else {
+        let Mark::Rect { min, max, .. } = d.tagged("cell").next().unwrap().mark else {
             panic!("not a rect");
         };
         assert!(min.cmple(max).all());
@@ -363,7 +363,7 @@ mod tests {
     pub(super) fn text_items(d: &Drawing) -> Vec<&Text> {
         d.items
             .iter()
-            .filter_map(|item| if let Shape::Text(t) = &item.shape { Some(t) } else { None })
+            .filter_map(|item| if let Mark::Text(t) = &item.mark { Some(t) } else { None })
             .collect()
     }
 
@@ -373,7 +373,7 @@ mod tests {
         let mut d = Drawing::slide();
         d.set_view(View::new(-1.0, 3.0, -1.0, 1.0).unwrap());
         d.keep_labels_within(v(0.0, 0.0), v(3.0, 1.0));
-        d.marker("point", v(1.0, 0.0), 6.0, style::BLUE, Style::NONE);
+        d.marker("point", v(1.0, 0.0), 6.0, style::BLUE, Pen::NONE);
         d.text(
             "name",
             v(1.0, 0.0),
@@ -390,7 +390,7 @@ mod tests {
         let mut d = Drawing::slide();
         d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
         // A marker just right of the anchor, where the name is asked to go.
-        d.marker("other", v(0.12, 0.0), 6.0, style::BLUE, Style::NONE);
+        d.marker("other", v(0.12, 0.0), 6.0, style::BLUE, Pen::NONE);
         let right = TextOpts::NOTE.align(Align::RIGHT_OF).offset(14.0, 0.0);
         d.text("name", v(0.0, 0.0), "a name", right.avoid_overlap());
         let tf = d.transform();
@@ -409,7 +409,7 @@ mod tests {
         let at = |x: f64, y: f64| v(x * world, y * world);
         for k in -5..=5 {
             let x = 10.0 * f64::from(k);
-            d.segment("hatch", at(x, -50.0), at(x, 50.0), Style::solid(style::BLACK, 1.0));
+            d.segment("hatch", at(x, -50.0), at(x, 50.0), Pen::solid(style::BLACK, 1.0));
         }
         d.text("b", at(40.0, 0.0), "b", TextOpts::NOTE);
         d.text("name", v(0.0, 0.0), "a name", right.avoid_overlap_with_leader());
@@ -472,7 +472,7 @@ mod tests {
         let mut d = Drawing::slide();
         let opts = TextOpts::LABEL.offset(10.0, 20.0).align(Align::ABOVE).avoid_overlap();
         d.text("label", v(0.0, 0.0), "N", opts);
-        let Shape::Text(t) = &d.items[0].shape else { panic!() };
+        let Mark::Text(t) = &d.items[0].mark else { panic!() };
         assert_eq!(t.offset, v(10.0, 20.0));
         assert_eq!(t.align, Align::ABOVE);
     }
@@ -486,7 +486,7 @@ mod tests {
             let y = 9.0 - f64::from(i) * 0.2;
             d.segment("clutter", v(10.0, y), v(16.0, y), style::grid());
         }
-        d.legend_entry("primary", BLUE_LINE, Sample::Line);
+        d.legend_entry("primary", BLUE_LINE, LegendIcon::Line);
         let legend = d.frame().legend.unwrap();
         let plot = d.frame().plot;
         assert!(legend.rect.min.x < (plot.min.x + plot.max.x) / 2.0, "{legend:?}");
@@ -501,7 +501,7 @@ mod tests {
             let x = f64::from(i);
             d.segment("grid", v(x, 0.0), v(x, 9.0), style::grid());
         }
-        d.legend_entry("primary", BLUE_LINE, Sample::Line);
+        d.legend_entry("primary", BLUE_LINE, LegendIcon::Line);
         let full = Drawing::slide().frame().plot;
         let frame = d.frame();
         let legend = frame.legend.unwrap();
@@ -524,7 +524,7 @@ mod tests {
         let wide = |place: LegendPlace| {
             let mut d = Drawing::slide();
             d.set_view(View::new(0.0, 30.0, 0.0, 10.0).unwrap());
-            d.legend_entry("a legend entry with a long label", BLUE_LINE, Sample::Line);
+            d.legend_entry("a legend entry with a long label", BLUE_LINE, LegendIcon::Line);
             d.legend_place = place;
             d
         };

@@ -1,11 +1,11 @@
 //! The display list's entries: an [`Item`] (tag, stroke, the trace events it draws) holds a
-//! [`Shape`] in world coordinates; a label is a [`Text`]; an arrow laid out in pixels for the
+//! [`Mark`] in world coordinates; a label is a [`Text`]; an arrow laid out in pixels for the
 //! back ends is an [`ArrowPx`].
 
 use glam::DVec2;
 
 use super::label::Align;
-use super::style::{Rgba, Style, TextSize};
+use super::style::{Pen, Rgba, TextSize};
 use super::text::Weight;
 
 /// A text item: markup (see [`text`]) placed at a world anchor.
@@ -33,7 +33,7 @@ pub struct Text {
 
 /// The geometry of one display-list item.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Shape {
+pub enum Mark {
     /// An open polyline through world points.
     Line {
         /// The vertices, in order.
@@ -93,9 +93,9 @@ pub struct Item {
     /// items by it and tests count by it.
     pub tag: String,
     /// Stroke (and text colour).
-    pub style: Style,
+    pub pen: Pen,
     /// Geometry.
-    pub shape: Shape,
+    pub mark: Mark,
     /// The indices of the trace events it draws (into the main trace's events, which are the
     /// trace document's): a ray its spawning event and its hit, a test its test… Empty for what
     /// no event drew (objects, lights, axes). The SVG writes them as `data-events`.

@@ -7,7 +7,7 @@
 use glam::DVec2;
 
 use super::drawing::Drawing;
-use super::items::{Shape, Text};
+use super::items::{Mark, Text};
 use super::style::{self, Rgba, TextSize};
 use super::text::{self, Weight};
 use super::view::{PxRect, Transform};
@@ -245,15 +245,15 @@ impl Drawing {
             }
         };
         for item in &self.items {
-            match &item.shape {
-                Shape::Line { points } => chain(points, false, &mut out),
-                Shape::Arrow { from, to, .. } => chain(&[*from, *to], false, &mut out),
-                Shape::Polygon { points, .. } => chain(points, true, &mut out),
-                Shape::Rect { min, max, .. } => {
+            match &item.mark {
+                Mark::Line { points } => chain(points, false, &mut out),
+                Mark::Arrow { from, to, .. } => chain(&[*from, *to], false, &mut out),
+                Mark::Polygon { points, .. } => chain(points, true, &mut out),
+                Mark::Rect { min, max, .. } => {
                     let corners = [*min, DVec2::new(max.x, min.y), *max, DVec2::new(min.x, max.y)];
                     chain(&corners, true, &mut out);
                 }
-                Shape::Circle { center, radius, .. } => {
+                Mark::Circle { center, radius, .. } => {
                     let ring: Vec<DVec2> = (0..48)
                         .map(|i| {
                             let a = std::f64::consts::TAU * f64::from(i) / 48.0;
@@ -263,8 +263,8 @@ impl Drawing {
                     chain(&ring, true, &mut out);
                 }
                 // A leader is a line like any other: a later label keeps off it.
-                Shape::Text(label) => out.extend(Self::place_text(label, tf).leader),
-                Shape::Dot { center, radius, .. } => {
+                Mark::Text(label) => out.extend(Self::place_text(label, tf).leader),
+                Mark::Dot { center, radius, .. } => {
                     let c = tf.to_px(*center);
                     let r = tf.ref_px(*radius);
                     out.push((c - DVec2::splat(r), c + DVec2::splat(r)));
@@ -287,8 +287,8 @@ impl Drawing {
             .items
             .iter()
             .enumerate()
-            .filter_map(|(k, item)| match &item.shape {
-                Shape::Text(label) => {
+            .filter_map(|(k, item)| match &item.mark {
+                Mark::Text(label) => {
                     let placed = Self::place_text(label, &tf);
                     let (above, below) = text::layout(&label.text, placed.size, label.weight).ink();
                     let (x0, x1) = (placed.bbox.min.x, placed.bbox.max.x);
@@ -313,8 +313,8 @@ impl Drawing {
     pub(super) fn text_boxes(&self, tf: &Transform) -> Vec<PxRect> {
         self.items
             .iter()
-            .filter_map(|item| match &item.shape {
-                Shape::Text(label) => Some(Self::place_text(label, tf).bbox),
+            .filter_map(|item| match &item.mark {
+                Mark::Text(label) => Some(Self::place_text(label, tf).bbox),
                 _ => None,
             })
             .collect()
@@ -359,8 +359,8 @@ impl Drawing {
         let segments = self.segments(&tf);
         let mut boxes = self.text_boxes(&tf);
         // Other points' markers are data: a name must not hide one (its own point is the anchor).
-        boxes.extend(self.items.iter().filter_map(|item| match item.shape {
-            Shape::Dot { center, radius, .. } if center != label.anchor => {
+        boxes.extend(self.items.iter().filter_map(|item| match item.mark {
+            Mark::Dot { center, radius, .. } if center != label.anchor => {
                 let (c, r) = (tf.to_px(center), tf.ref_px(radius));
                 Some(PxRect { min: c - DVec2::splat(r), max: c + DVec2::splat(r) })
             }

@@ -1,4 +1,4 @@
-//! The legend: its rows ([`LegendEntry`], each with a [`Sample`] of the line, arrow, dot or
+//! The legend: its rows ([`LegendEntry`], each with a [`LegendIcon`] of the line, arrow, dot or
 //! swatch it explains), where its box goes ([`LegendPlace`]: a clear corner of the plot area, a
 //! column beside it or a band under it), and its box and rows laid out in pixels ([`LegendBox`]).
 
@@ -6,13 +6,13 @@ use glam::DVec2;
 
 use super::drawing::Drawing;
 use super::page::{PlacedLine, LINE_SPACING};
-use super::style::{self, Rgba, Style, TextSize};
+use super::style::{self, Pen, Rgba, TextSize};
 use super::text::{self, Weight};
 use super::view::{PxRect, Transform};
 
 /// What a legend entry's sample looks like.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Sample {
+pub enum LegendIcon {
     /// A short line in the entry's style.
     Line,
     /// A short arrow in the entry's style.
@@ -29,9 +29,9 @@ pub struct LegendEntry {
     /// The text (markup).
     pub label: String,
     /// The sample's stroke.
-    pub style: Style,
+    pub style: Pen,
     /// The sample's kind.
-    pub sample: Sample,
+    pub sample: LegendIcon,
 }
 
 /// A corner of the plot area, for the legend.

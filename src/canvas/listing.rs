@@ -21,7 +21,7 @@ use std::fmt::Write as _;
 use glam::DVec2;
 
 use super::drawing::Drawing;
-use super::items::{Item, Shape};
+use super::items::{Item, Mark};
 use super::style::Rgba;
 
 /// A number of the listing: fixed, 3 decimals, `-0.000` written `0.000`.
@@ -63,25 +63,25 @@ impl Item {
     /// The item's line of [`Drawing::to_text`]: tag, geometry, stroke.
     #[must_use]
     pub fn to_text(&self) -> String {
-        let st = &self.style;
+        let st = &self.pen;
         let stroke = if st.strokes() {
             let dashed = if st.dash.is_some() { " dashed" } else { "" };
             format!(" {} w{}{dashed}", colour(st.color), listing_number(st.width))
         } else {
             String::new()
         };
-        let geometry = match &self.shape {
-            Shape::Line { points: vs } => format!("line {}", points(vs)),
-            Shape::Arrow { from, to, .. } => format!("arrow {} → {}", point(*from), point(*to)),
-            Shape::Circle { center, radius, fill: f } => {
+        let geometry = match &self.mark {
+            Mark::Line { points: vs } => format!("line {}", points(vs)),
+            Mark::Arrow { from, to, .. } => format!("arrow {} → {}", point(*from), point(*to)),
+            Mark::Circle { center, radius, fill: f } => {
                 format!("circle {} r {}{}", point(*center), listing_number(*radius), fill(*f))
             }
-            Shape::Dot { center, radius, fill: f } => {
+            Mark::Dot { center, radius, fill: f } => {
                 format!("dot {} r{}px fill {}", point(*center), listing_number(*radius), colour(*f))
             }
-            Shape::Polygon { points: vs, fill: f } => format!("polygon {}{}", points(vs), fill(*f)),
-            Shape::Rect { min, max, fill: f } => format!("rect {} {}{}", point(*min), point(*max), fill(*f)),
-            Shape::Text(t) => format!("text {:?} at {} + {}px", t.text, point(t.anchor), point(t.offset)),
+            Mark::Polygon { points: vs, fill: f } => format!("polygon {}{}", points(vs), fill(*f)),
+            Mark::Rect { min, max, fill: f } => format!("rect {} {}{}", point(*min), point(*max), fill(*f)),
+            Mark::Text(t) => format!("text {:?} at {} + {}px", t.text, point(t.anchor), point(t.offset)),
         };
         format!("{}: {geometry}{stroke}", self.tag)
     }
@@ -123,22 +123,22 @@ impl Drawing {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::canvas::style::{self, Dash, Style};
+    use crate::canvas::style::{self, Dash, Pen};
     use crate::canvas::{TextOpts, View};
 
     #[test]
     fn every_shape_has_its_line() {
         let mut d = Drawing::slide();
         d.set_title("T").set_view(View::new(-1.0, 2.0, -0.0004, 1.0).unwrap());
-        let line = Style::solid(style::BLUE, 6.0);
+        let line = Pen::solid(style::BLUE, 6.0);
         d.segment("ray", DVec2::ZERO, DVec2::new(1.0, -0.0001), line)
             .arrow("r", DVec2::ZERO, DVec2::Y, line.dashed(Dash { on: 1.0, off: 1.0 }))
-            .circle("o", DVec2::ZERO, 0.5, Style::NONE, Some(style::SKY_BLUE.with_alpha(0.25)))
+            .circle("o", DVec2::ZERO, 0.5, Pen::NONE, Some(style::SKY_BLUE.with_alpha(0.25)))
             .dot("hit", DVec2::X, style::BLACK)
             .polygon("p", [DVec2::ZERO, DVec2::X, DVec2::Y], line, None)
-            .rect("cell", DVec2::ONE, DVec2::ZERO, Style::NONE, Some(style::YELLOW))
+            .rect("cell", DVec2::ONE, DVec2::ZERO, Pen::NONE, Some(style::YELLOW))
             .text("label", DVec2::ZERO, "θ_i \"q\"", TextOpts::LABEL.offset(2.0, -3.0));
-        d.legend_entry("primary", line, crate::canvas::Sample::Line);
+        d.legend_entry("primary", line, crate::canvas::LegendIcon::Line);
         let expected = "title: T\n\
             view: x -1.000 … 2.000, y 0.000 … 1.000\n\
             legend: primary\n\

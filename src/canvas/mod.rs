@@ -35,9 +35,9 @@ pub mod text;
 pub mod view;
 
 pub use drawing::Drawing;
-pub use items::{ArrowPx, Item, Shape, Text};
+pub use items::{ArrowPx, Item, Mark, Text};
 pub use label::{Align, HAlign, PlacedText, Placement, TextOpts, VAlign};
-pub use legend::{Corner, LegendBox, LegendEntry, LegendPlace, LegendRow, Sample};
-pub use page::{Frame, PlacedLine};
-pub use style::{Dash, Rgba, Style, TextSize};
+pub use legend::{Corner, LegendBox, LegendEntry, LegendIcon, LegendPlace, LegendRow};
+pub use page::{PageLayout, PlacedLine};
+pub use style::{Dash, Pen, Rgba, TextSize};
 pub use view::{PxRect, Transform, View};

@@ -1,4 +1,4 @@
-//! The page layout shared by both back ends ([`Drawing::frame`] → [`Frame`]): a title band at the
+//! The page layout shared by both back ends ([`Drawing::frame`] → [`PageLayout`]): a title band at the
 //! top, a caption band at the bottom (wrapped to the canvas width), the plot area between them,
 //! and the view scaled uniformly into the plot area once the legend has its place.
 
@@ -23,7 +23,7 @@ pub struct PlacedLine {
 
 /// The canvas layout shared by the back ends (see the module doc).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Frame {
+pub struct PageLayout {
     /// The world → pixel map.
     pub transform: Transform,
     /// The plot area in pixels.
@@ -110,7 +110,7 @@ impl Drawing {
     }
     /// Lays out the canvas for the back ends: transform, plot area, title, caption and legend.
     #[must_use]
-    pub fn frame(&self) -> Frame {
+    pub fn frame(&self) -> PageLayout {
         let (tf, plot, legend_rect) = self.placed_legend();
         let k = self.px_scale();
         let w = f64::from(self.width());
@@ -142,6 +142,6 @@ impl Drawing {
             .collect();
 
         let legend = legend_rect.map(|rect| self.legend_rows(rect));
-        Frame { transform: tf, plot, title, caption, legend }
+        PageLayout { transform: tf, plot, title, caption, legend }
     }
 }

@@ -14,9 +14,9 @@ use tiny_skia::{
     Transform as SkTransform,
 };
 
-use super::style::{self, Rgba, Style};
+use super::style::{self, Pen, Rgba};
 use super::text::{self, PathSink, Weight};
-use super::{ArrowPx, Drawing, Frame, LegendBox, PlacedLine, Sample, Shape, Transform};
+use super::{ArrowPx, Drawing, LegendBox, LegendIcon, Mark, PageLayout, PlacedLine, Transform};
 
 /// Why a drawing could not become a PNG.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -57,7 +57,7 @@ pub fn render(drawing: &Drawing) -> Result<Pixmap, SkiaError> {
     let mut canvas = Canvas { pixmap: &mut pixmap, tf: frame.transform, clip: None };
     canvas.clip = plot_mask(&frame, width, height);
     for item in &drawing.items {
-        canvas.item(&item.style, &item.shape);
+        canvas.item(&item.pen, &item.mark);
     }
     canvas.chrome(drawing, &frame);
     Ok(pixmap)
@@ -84,7 +84,7 @@ fn narrow(v: f64) -> f32 {
 }
 
 /// A mask that is opaque over the plot area, so shapes stay out of the title and caption bands.
-fn plot_mask(frame: &Frame, width: u32, height: u32) -> Option<Mask> {
+fn plot_mask(frame: &PageLayout, width: u32, height: u32) -> Option<Mask> {
     let mut mask = Mask::new(width, height)?;
     let (l, t) = px(frame.plot.min);
     let (r, b) = px(frame.plot.max);
@@ -135,7 +135,7 @@ struct Canvas<'a> {
 
 impl Canvas<'_> {
     /// The tiny-skia stroke of a style, or `None` when it draws nothing.
-    fn stroke(&self, style: &Style) -> Option<Stroke> {
+    fn stroke(&self, style: &Pen) -> Option<Stroke> {
         if !style.strokes() {
             return None;
         }
@@ -158,7 +158,7 @@ impl Canvas<'_> {
     }
 
     /// Strokes `path` with `style` (clipped to the plot when `clipped`).
-    fn draw_stroke(&mut self, path: &Path, style: &Style, clipped: bool) {
+    fn draw_stroke(&mut self, path: &Path, style: &Pen, clipped: bool) {
         let Some(stroke) = self.stroke(style) else {
             return;
         };
@@ -184,39 +184,39 @@ impl Canvas<'_> {
     }
 
     /// Draws one display-list item.
-    fn item(&mut self, style: &Style, shape: &Shape) {
+    fn item(&mut self, style: &Pen, shape: &Mark) {
         let tf = self.tf;
         match shape {
-            Shape::Line { points } => {
+            Mark::Line { points } => {
                 if let Some(path) = Self::polyline(points.iter().map(|p| tf.to_px(*p)), false) {
                     self.draw_stroke(&path, style, true);
                 }
             }
-            Shape::Arrow { from, to, head } => {
+            Mark::Arrow { from, to, head } => {
                 self.arrow(tf.to_px(*from), tf.to_px(*to), tf.ref_px(*head), style, true);
             }
-            Shape::Circle { center, radius, fill } => {
+            Mark::Circle { center, radius, fill } => {
                 let (x, y) = px(tf.to_px(*center));
                 if let Some(path) = PathBuilder::from_circle(x, y, narrow(tf.len_px(*radius))) {
                     self.shape(&path, style, *fill);
                 }
             }
-            Shape::Dot { center, radius, fill } => {
+            Mark::Dot { center, radius, fill } => {
                 self.dot(tf.to_px(*center), tf.ref_px(*radius), *fill, style, true);
             }
-            Shape::Polygon { points, fill } => {
+            Mark::Polygon { points, fill } => {
                 if let Some(path) = Self::polyline(points.iter().map(|p| tf.to_px(*p)), true) {
                     self.shape(&path, style, *fill);
                 }
             }
-            Shape::Rect { min, max, fill } => {
+            Mark::Rect { min, max, fill } => {
                 let (l, b) = px(tf.to_px(*min));
                 let (r, t) = px(tf.to_px(*max));
                 if let Some(rect) = Rect::from_ltrb(l, t, r, b) {
                     self.shape(&PathBuilder::from_rect(rect), style, *fill);
                 }
             }
-            Shape::Text(label) => {
+            Mark::Text(label) => {
                 let placed = Drawing::place_text(label, &tf);
                 if let Some((a, b)) = placed.leader {
                     if let Some(path) = Self::polyline([a, b], false) {
@@ -230,7 +230,7 @@ impl Canvas<'_> {
     }
 
     /// Fills then strokes a closed path (clipped to the plot).
-    fn shape(&mut self, path: &Path, style: &Style, fill: Option<Rgba>) {
+    fn shape(&mut self, path: &Path, style: &Pen, fill: Option<Rgba>) {
         if let Some(fill) = fill {
             self.fill(path, fill, true);
         }
@@ -238,7 +238,7 @@ impl Canvas<'_> {
     }
 
     /// A round marker of pixel radius `r`.
-    fn dot(&mut self, center: DVec2, r: f64, fill: Rgba, outline: &Style, clipped: bool) {
+    fn dot(&mut self, center: DVec2, r: f64, fill: Rgba, outline: &Pen, clipped: bool) {
         let (x, y) = px(center);
         if let Some(path) = PathBuilder::from_circle(x, y, narrow(r)) {
             self.fill(&path, fill, clipped);
@@ -247,7 +247,7 @@ impl Canvas<'_> {
     }
 
     /// An arrow from pixel `a` to pixel `b` (see [`ArrowPx`]): stroked shaft, filled head.
-    fn arrow(&mut self, a: DVec2, b: DVec2, head: f64, style: &Style, clipped: bool) {
+    fn arrow(&mut self, a: DVec2, b: DVec2, head: f64, style: &Pen, clipped: bool) {
         let Some(arrow) = ArrowPx::new(a, b, head) else {
             return;
         };
@@ -277,7 +277,7 @@ impl Canvas<'_> {
             return;
         };
         if let Some(width) = halo {
-            let halo_style = Style::solid(style::WHITE, width);
+            let halo_style = Pen::solid(style::WHITE, width);
             if let Some(mut stroke) = self.stroke(&halo_style) {
                 // The halo is already in pixels.
                 stroke.width = narrow(width);
@@ -293,7 +293,7 @@ impl Canvas<'_> {
     }
 
     /// The title, caption and legend.
-    fn chrome(&mut self, drawing: &Drawing, frame: &Frame) {
+    fn chrome(&mut self, drawing: &Drawing, frame: &PageLayout) {
         if let Some(title) = &frame.title {
             self.line_of_text(title, Weight::Bold);
         }
@@ -314,25 +314,25 @@ impl Canvas<'_> {
         };
         let path = PathBuilder::from_rect(rect);
         self.fill(&path, style::WHITE.with_alpha(0.92), false);
-        self.draw_stroke(&path, &Style::solid(style::LIGHT_GREY, style::GRID_WIDTH), false);
+        self.draw_stroke(&path, &Pen::solid(style::LIGHT_GREY, style::GRID_WIDTH), false);
         for (entry, row) in drawing.legend.iter().zip(&legend.rows) {
             let (a, z) = (row.sample_from, row.sample_to);
             let mid = (a + z) / 2.0;
             match entry.sample {
-                Sample::Line => {
+                LegendIcon::Line => {
                     if let Some(p) = Self::polyline([a, z], false) {
                         self.draw_stroke(&p, &entry.style, false);
                     }
                 }
-                Sample::Arrow => {
+                LegendIcon::Arrow => {
                     let head = self.tf.ref_px(style::ARROW_HEAD.max(4.5 * entry.style.width));
                     self.arrow(a, z, head, &entry.style, false);
                 }
-                Sample::Dot(fill) => {
+                LegendIcon::Dot(fill) => {
                     let r = self.tf.ref_px(style::DOT_RADIUS * 1.2);
                     self.dot(mid, r, fill, &entry.style, false);
                 }
-                Sample::Swatch(fill) => {
+                LegendIcon::Swatch(fill) => {
                     let half = row.label.size * 0.4;
                     let (sl, st) = px(mid - DVec2::splat(half));
                     let (sr, sb) = px(mid + DVec2::splat(half));
@@ -346,7 +346,7 @@ impl Canvas<'_> {
     }
 
     /// Fills then strokes a closed path, without the plot clip.
-    fn shape_unclipped(&mut self, path: &Path, style: &Style, fill: Rgba) {
+    fn shape_unclipped(&mut self, path: &Path, style: &Pen, fill: Rgba) {
         self.fill(path, fill, false);
         self.draw_stroke(path, style, false);
     }
@@ -369,7 +369,7 @@ mod tests {
             .circle("object:0", DVec2::ZERO, 0.4, OUTLINE, Some(FILL))
             .arrow("ray:primary", DVec2::new(-1.5, -0.5), DVec2::new(-0.4, 0.0), BLUE_LINE)
             .text("label", DVec2::new(1.0, -0.5), "ă â î ș ț θ n_1", TextOpts::LABEL);
-        d.legend_entry("reflected", RED_LINE, Sample::Line);
+        d.legend_entry("reflected", RED_LINE, LegendIcon::Line);
         d
     }
 

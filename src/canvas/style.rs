@@ -1,4 +1,4 @@
-//! The canvas's look: colours (the Okabe–Ito palette), strokes ([`Style`], [`Dash`]) and the
+//! The canvas's look: colours (the Okabe–Ito palette), strokes ([`Pen`], [`Dash`]) and the
 //! sizes of text, margins, arrow heads and dots, all at slide scale.
 //!
 //! Every size here is in *reference pixels*: pixels of the [`REFERENCE_WIDTH`] ×
@@ -146,7 +146,7 @@ pub struct Dash {
 
 /// How an item is stroked (and, for text, coloured).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Style {
+pub struct Pen {
     /// The stroke colour (the text colour for text, the fill for a dot without fill).
     pub color: Rgba,
     /// The stroke width in reference pixels; 0 draws no stroke.
@@ -155,7 +155,7 @@ pub struct Style {
     pub dash: Option<Dash>,
 }
 
-impl Style {
+impl Pen {
     /// No stroke at all: for shapes drawn only by their fill.
     pub const NONE: Self = Self { color: Rgba { r: 0, g: 0, b: 0, a: 0 }, width: 0.0, dash: None };
 
@@ -192,14 +192,14 @@ impl Style {
 
 /// The stroke of a grid or cell boundary: thin light grey.
 #[must_use]
-pub const fn grid() -> Style {
-    Style { color: LIGHT_GREY, width: GRID_WIDTH, dash: None }
+pub const fn grid() -> Pen {
+    Pen { color: LIGHT_GREY, width: GRID_WIDTH, dash: None }
 }
 
 /// The stroke of a label's leader (a label moved away from what it names): thin dark grey.
 #[must_use]
-pub const fn leader() -> Style {
-    Style { color: DARK_GREY, width: GRID_WIDTH, dash: None }
+pub const fn leader() -> Pen {
+    Pen { color: DARK_GREY, width: GRID_WIDTH, dash: None }
 }
 
 #[cfg(test)]
@@ -235,12 +235,12 @@ mod tests {
 /// The strokes the canvas's own tests draw with: colours and widths, nothing of rays.
 #[cfg(test)]
 pub(crate) mod test_strokes {
-    use super::{Dash, Rgba, Style, BLACK, BLUE, BLUISH_GREEN, DARK_GREY, SKY_BLUE, VERMILLION};
+    use super::{Dash, Pen, Rgba, BLACK, BLUE, BLUISH_GREEN, DARK_GREY, SKY_BLUE, VERMILLION};
 
-    pub(crate) const BLUE_LINE: Style = Style::solid(BLUE, 6.0);
-    pub(crate) const RED_LINE: Style = Style::solid(VERMILLION, 6.0);
-    pub(crate) const GREEN_LINE: Style = Style::solid(BLUISH_GREEN, 6.0);
-    pub(crate) const OUTLINE: Style = Style::solid(BLACK, 4.0);
-    pub(crate) const DASHED: Style = Style::solid(DARK_GREY, 3.5).dashed(Dash { on: 18.0, off: 12.0 });
+    pub(crate) const BLUE_LINE: Pen = Pen::solid(BLUE, 6.0);
+    pub(crate) const RED_LINE: Pen = Pen::solid(VERMILLION, 6.0);
+    pub(crate) const GREEN_LINE: Pen = Pen::solid(BLUISH_GREEN, 6.0);
+    pub(crate) const OUTLINE: Pen = Pen::solid(BLACK, 4.0);
+    pub(crate) const DASHED: Pen = Pen::solid(DARK_GREY, 3.5).dashed(Dash { on: 18.0, off: 12.0 });
     pub(crate) const FILL: Rgba = Rgba { a: 64, ..SKY_BLUE };
 }

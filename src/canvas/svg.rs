@@ -1,6 +1,6 @@
 //! The vector back end: a [`Drawing`] → SVG text, for print.
 //!
-//! It reads the same display list through the same [`Frame`] (transform, plot area, title,
+//! It reads the same display list through the same [`PageLayout`] (transform, plot area, title,
 //! caption, legend) as the raster back end, so the two agree. Each display-list item becomes
 //! exactly one `<g data-tag="…" data-events="…">` group (`data-events`: the indices of the trace
 //! events the item draws, space-separated, possibly empty); the title, caption and legend are
@@ -12,9 +12,11 @@ use std::fmt::Write as _;
 
 use glam::DVec2;
 
-use super::style::{self, Rgba, Style};
+use super::style::{self, Pen, Rgba};
 use super::text::{self, Script, Weight};
-use super::{ArrowPx, Drawing, Frame, HAlign, LegendBox, PlacedLine, PxRect, Sample, Shape, Text, Transform};
+use super::{
+    ArrowPx, Drawing, HAlign, LegendBox, LegendIcon, Mark, PageLayout, PlacedLine, PxRect, Text, Transform,
+};
 
 /// The id of the clip path that keeps shapes inside the plot area.
 const CLIP_ID: &str = "plot-area";
@@ -46,7 +48,7 @@ pub fn to_svg(drawing: &Drawing) -> String {
     out.push_str("<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
     let tf = frame.transform;
     for item in &drawing.items {
-        let clip = if matches!(item.shape, Shape::Text(_)) {
+        let clip = if matches!(item.mark, Mark::Text(_)) {
             String::new()
         } else {
             format!(" clip-path=\"url(#{CLIP_ID})\"")
@@ -54,7 +56,7 @@ pub fn to_svg(drawing: &Drawing) -> String {
         let events: Vec<String> = item.events.iter().map(ToString::to_string).collect();
         let _ =
             write!(out, "<g data-tag=\"{}\" data-events=\"{}\"{clip}>", escape(&item.tag), events.join(" "));
-        shape(&mut out, &tf, &item.style, &item.shape);
+        shape(&mut out, &tf, &item.pen, &item.mark);
         out.push_str("</g>\n");
     }
     chrome(&mut out, drawing, &frame);
@@ -93,7 +95,7 @@ pub fn escape(s: &str) -> String {
 }
 
 /// `stroke`, `stroke-width`, dash and opacity attributes of a style (or `stroke="none"`).
-fn stroke_attrs(tf: &Transform, style: &Style) -> String {
+fn stroke_attrs(tf: &Transform, style: &Pen) -> String {
     if !style.strokes() {
         return " stroke=\"none\"".to_owned();
     }
@@ -129,16 +131,16 @@ fn points_attr(points: impl IntoIterator<Item = DVec2>) -> String {
 }
 
 /// The elements of one shape.
-fn shape(out: &mut String, tf: &Transform, style: &Style, shape: &Shape) {
+fn shape(out: &mut String, tf: &Transform, style: &Pen, shape: &Mark) {
     match shape {
-        Shape::Line { points } => {
+        Mark::Line { points } => {
             let pts = points_attr(points.iter().map(|p| tf.to_px(*p)));
             let _ = write!(out, "<polyline points=\"{pts}\" fill=\"none\"{}/>", stroke_attrs(tf, style));
         }
-        Shape::Arrow { from, to, head } => {
+        Mark::Arrow { from, to, head } => {
             arrow(out, tf, tf.to_px(*from), tf.to_px(*to), tf.ref_px(*head), style);
         }
-        Shape::Circle { center, radius, fill } => {
+        Mark::Circle { center, radius, fill } => {
             let c = tf.to_px(*center);
             let _ = write!(
                 out,
@@ -150,20 +152,20 @@ fn shape(out: &mut String, tf: &Transform, style: &Style, shape: &Shape) {
                 stroke_attrs(tf, style)
             );
         }
-        Shape::Dot { center, radius, fill } => {
+        Mark::Dot { center, radius, fill } => {
             dot(out, tf, tf.to_px(*center), tf.ref_px(*radius), *fill, style);
         }
-        Shape::Polygon { points, fill } => {
+        Mark::Polygon { points, fill } => {
             let pts = points_attr(points.iter().map(|p| tf.to_px(*p)));
             let _ =
                 write!(out, "<polygon points=\"{pts}\"{}{}/>", fill_attrs(*fill), stroke_attrs(tf, style));
         }
-        Shape::Rect { min, max, fill } => {
+        Mark::Rect { min, max, fill } => {
             let a = tf.to_px(DVec2::new(min.x, max.y));
             let b = tf.to_px(DVec2::new(max.x, min.y));
             rect(out, tf, &PxRect { min: a, max: b }, *fill, style);
         }
-        Shape::Text(label) => {
+        Mark::Text(label) => {
             let placed = Drawing::place_text(label, tf);
             if let Some((a, b)) = placed.leader {
                 let pts = points_attr([a, b]);
@@ -180,7 +182,7 @@ fn shape(out: &mut String, tf: &Transform, style: &Style, shape: &Shape) {
 }
 
 /// A pixel rectangle.
-fn rect(out: &mut String, tf: &Transform, r: &PxRect, fill: Option<Rgba>, style: &Style) {
+fn rect(out: &mut String, tf: &Transform, r: &PxRect, fill: Option<Rgba>, style: &Pen) {
     let _ = write!(
         out,
         "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"{}{}/>",
@@ -194,7 +196,7 @@ fn rect(out: &mut String, tf: &Transform, r: &PxRect, fill: Option<Rgba>, style:
 }
 
 /// A round marker of pixel radius `r`.
-fn dot(out: &mut String, tf: &Transform, c: DVec2, r: f64, fill: Rgba, outline: &Style) {
+fn dot(out: &mut String, tf: &Transform, c: DVec2, r: f64, fill: Rgba, outline: &Pen) {
     let _ = write!(
         out,
         "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{}{}/>",
@@ -207,7 +209,7 @@ fn dot(out: &mut String, tf: &Transform, c: DVec2, r: f64, fill: Rgba, outline: 
 }
 
 /// An arrow between pixel points: the shaft as a line, the head as a filled polygon.
-fn arrow(out: &mut String, tf: &Transform, a: DVec2, b: DVec2, head: f64, style: &Style) {
+fn arrow(out: &mut String, tf: &Transform, a: DVec2, b: DVec2, head: f64, style: &Pen) {
     let Some(arrow) = ArrowPx::new(a, b, head) else {
         return;
     };
@@ -298,7 +300,7 @@ fn chrome_line(out: &mut String, line: &PlacedLine, weight: Weight) {
 }
 
 /// The title, caption and legend groups.
-fn chrome(out: &mut String, drawing: &Drawing, frame: &Frame) {
+fn chrome(out: &mut String, drawing: &Drawing, frame: &PageLayout) {
     if let Some(title) = &frame.title {
         out.push_str("<g class=\"title\">");
         chrome_line(out, title, Weight::Bold);
@@ -319,13 +321,13 @@ fn chrome(out: &mut String, drawing: &Drawing, frame: &Frame) {
 /// The legend box.
 fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &LegendBox) {
     out.push_str("<g class=\"legend\">");
-    let border = Style::solid(style::LIGHT_GREY, style::GRID_WIDTH);
+    let border = Pen::solid(style::LIGHT_GREY, style::GRID_WIDTH);
     rect(out, tf, &legend.rect, Some(style::WHITE.with_alpha(0.92)), &border);
     for (entry, row) in drawing.legend.iter().zip(&legend.rows) {
         let (a, z) = (row.sample_from, row.sample_to);
         let mid = (a + z) / 2.0;
         match entry.sample {
-            Sample::Line => {
+            LegendIcon::Line => {
                 let _ = write!(
                     out,
                     "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"{}/>",
@@ -336,12 +338,14 @@ fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &Le
                     stroke_attrs(tf, &entry.style)
                 );
             }
-            Sample::Arrow => {
+            LegendIcon::Arrow => {
                 let head = tf.ref_px(style::ARROW_HEAD.max(4.5 * entry.style.width));
                 arrow(out, tf, a, z, head, &entry.style);
             }
-            Sample::Dot(fill) => dot(out, tf, mid, tf.ref_px(style::DOT_RADIUS * 1.2), fill, &entry.style),
-            Sample::Swatch(fill) => {
+            LegendIcon::Dot(fill) => {
+                dot(out, tf, mid, tf.ref_px(style::DOT_RADIUS * 1.2), fill, &entry.style)
+            }
+            LegendIcon::Swatch(fill) => {
                 let half = DVec2::splat(row.label.size * 0.4);
                 rect(out, tf, &PxRect { min: mid - half, max: mid + half }, Some(fill), &entry.style);
             }
@@ -373,10 +377,10 @@ mod tests {
             .segment("normal", DVec2::ZERO, DVec2::Y, DASHED)
             .text("label", DVec2::new(0.5, 0.5), "θ_t & t_{ex} <K_s>", TextOpts::LABEL)
             .text("a\"b", DVec2::new(-0.5, 0.5), "n_1", TextOpts::LABEL);
-        d.legend_entry("primary", BLUE_LINE, Sample::Line)
-            .legend_entry("T", GREEN_LINE, Sample::Arrow)
-            .legend_entry("hit", Style::NONE, Sample::Dot(style::BLACK))
-            .legend_entry("object", OUTLINE, Sample::Swatch(FILL));
+        d.legend_entry("primary", BLUE_LINE, LegendIcon::Line)
+            .legend_entry("T", GREEN_LINE, LegendIcon::Arrow)
+            .legend_entry("hit", Pen::NONE, LegendIcon::Dot(style::BLACK))
+            .legend_entry("object", OUTLINE, LegendIcon::Swatch(FILL));
         d
     }
 

@@ -10,7 +10,7 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use whitted::canvas::Drawing;
 use whitted::canvas::{skia, svg};
-use whitted::figure::source::Tracing;
+use whitted::figure::source::TraceOptions;
 use whitted::figure::{FigureKind, Options};
 use whitted::request::figure::{default_aa, figure, structure, Request};
 use whitted::request::options::canvas;
@@ -89,7 +89,7 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
     let request = Request {
         kind,
         target: Target { pixel, ray: args.ray.clone() },
-        tracing: Tracing {
+        tracing: TraceOptions {
             depth: args.depth,
             sampling: args.sampling.sampling_or(default_aa(kind))?,
             accel: args.accel.options_for(dim_of(&scene), structure(kind, args.accel.choice().kind))?,

@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use whitted::accel::AccelOptions;
 use whitted::canvas::Drawing;
-use whitted::figure::source::Tracing;
+use whitted::figure::source::TraceOptions;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::claim::Verdict;
 use whitted::lesson::{self, FigureSpec, Lesson};
@@ -217,10 +217,10 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
                     pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))),
                     ray: spec.ray.clone(),
                 },
-                tracing: Tracing {
+                tracing: TraceOptions {
                     depth: spec.depth,
                     sampling: spec.sampling.unwrap_or(Sampling::Center),
-                    accel: AccelOptions { grid: spec.grid.clone(), ..Tracing::SCENE.accel },
+                    accel: AccelOptions { grid: spec.grid.clone(), ..TraceOptions::SCENE.accel },
                 },
                 opts: Options { lang, width, height },
             };

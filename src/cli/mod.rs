@@ -161,14 +161,13 @@ mod tests {
     /// The limit is a parameter, so a small one shows the refusal without a large file.
     #[test]
     fn read_text_refuses_past_its_limit_and_non_files() {
-        let dir = std::env::temp_dir().join(format!("whitted-read-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let scratch = tempfile::tempdir().unwrap();
+        let dir = scratch.path();
         let file = dir.join("ten.json");
         super::write_file(&file, b"0123456789").unwrap();
         assert_eq!(read_text(&file, 10).as_deref(), Ok("0123456789"));
         assert_eq!(read_text(&file, 9), Err("larger than the limit of 9 bytes".to_string()));
-        assert_eq!(read_text(&dir, 10), Err("not a regular file".to_string()));
+        assert_eq!(read_text(dir, 10), Err("not a regular file".to_string()));
         assert_eq!(read_text(std::path::Path::new("/dev/zero"), 10), Err("not a regular file".to_string()));
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

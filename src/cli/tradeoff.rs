@@ -17,7 +17,7 @@ use whitted::accel::{AccelKind, AccelOptions};
 use whitted::doc::{float, stats};
 use whitted::figure::labels::Label;
 use whitted::figure::plane::Planar;
-use whitted::figure::source::Tracing;
+use whitted::figure::source::TraceOptions;
 use whitted::figure::tradeoff as tradeoff_plot;
 use whitted::figure::{FigureKind, Options};
 use whitted::render::{check_fits, RenderConfig};
@@ -278,7 +278,7 @@ fn plots<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, measured: &Tradeoff) 
         &Request {
             kind: FigureKind::HeatMap,
             target: Target::default(),
-            tracing: Tracing {
+            tracing: TraceOptions {
                 depth: None,
                 sampling: Sampling::Adaptive { threshold: DEFAULT_THRESHOLD, max_level: DEFAULT_MAX_LEVEL },
                 accel: AccelOptions::of(AccelKind::Bvh),

@@ -15,7 +15,7 @@ pub mod tradeoff;
 use crate::canvas::Drawing;
 use crate::scene::Scene;
 use plane::Planar;
-use source::Traces;
+use source::FigureInput;
 
 /// The language of a figure's labels: the narration's.
 pub use crate::doc::narrate::Lang;
@@ -161,7 +161,7 @@ impl Options {
 /// A zero canvas size, or traces that lack what the kind draws.
 pub fn draw<V: Planar>(
     kind: FigureKind,
-    traces: &Traces<V>,
+    traces: &FigureInput<V>,
     scene: &Scene<V>,
     opts: &Options,
 ) -> Result<Drawing, FigureError> {

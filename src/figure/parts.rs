@@ -9,7 +9,7 @@ use super::labels::{escape, Label};
 use super::plane::{ObjectOutline, Outline, PagePlane, Planar};
 use super::style::{self, RayRole, Rgba, TextSize};
 use super::Lang;
-use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
 use crate::image::to_byte;
 use crate::record::event::{Event, ObjectRef, RayKind};
 pub use crate::record::names::{sub, Names};
@@ -164,8 +164,8 @@ pub fn draw_objects<V: Planar>(
         } else {
             style::object()
         };
-        let faint = Style::solid(style::DARK_GREY.with_alpha(0.7), style::GRID_WIDTH)
-            .dashed(style::CONSTRUCTION_DASH);
+        let faint =
+            Pen::solid(style::DARK_GREY.with_alpha(0.7), style::GRID_WIDTH).dashed(style::CONSTRUCTION_DASH);
         let mut anchor = None;
         for ObjectOutline { outline, section } in V::outlines(&object.shape, plane) {
             let (st, fill) = if section { (section_style, Some(style::OBJECT_FILL)) } else { (faint, None) };
@@ -249,7 +249,7 @@ pub fn draw_ray(d: &mut Drawing, role: RayRole, from: DVec2, to: DVec2) {
 
 /// An angle's arc at `centre` of `radius`, from direction `a` to direction `b` (the shorter way),
 /// as a polyline; returns the point halfway along it, for the angle's label.
-pub fn draw_arc(d: &mut Drawing, centre: DVec2, radius: f64, a: DVec2, b: DVec2, style: Style) -> DVec2 {
+pub fn draw_arc(d: &mut Drawing, centre: DVec2, radius: f64, a: DVec2, b: DVec2, style: Pen) -> DVec2 {
     let (start, mut sweep) = (a.y.atan2(a.x), b.y.atan2(b.x) - a.y.atan2(a.x));
     if sweep > std::f64::consts::PI {
         sweep -= std::f64::consts::TAU;
@@ -285,7 +285,7 @@ pub fn label_outward(d: &mut Drawing, at: DVec2, away: DVec2, markup: &str) {
 
 /// The observer O: a black dot and its label.
 pub fn draw_observer(d: &mut Drawing, at: DVec2) {
-    d.marker("observer", at, style::DOT_RADIUS * 1.3, style::BLACK, Style::NONE);
+    d.marker("observer", at, style::DOT_RADIUS * 1.3, style::BLACK, Pen::NONE);
 }
 
 /// A light: a yellow dot outlined in black.
@@ -308,29 +308,29 @@ pub fn legend_role(d: &mut Drawing, role: RayRole, lang: Lang) {
         RayRole::BlockedShadow => Label::BlockedShadowRay,
         RayRole::OpaqueShadow => Label::OpaqueShadowRay,
     };
-    d.legend_entry(text.text(lang), role.style(), Sample::Arrow);
+    d.legend_entry(text.text(lang), role.style(), LegendIcon::Arrow);
 }
 
 /// The legend rows of the points: hit points, lights, the observer (those asked for).
 pub fn legend_points(d: &mut Drawing, lang: Lang, hits: bool, lights: bool, observer: bool) {
     if hits {
-        d.legend_entry(Label::HitPoint.text(lang), Style::NONE, Sample::Dot(style::HIT));
+        d.legend_entry(Label::HitPoint.text(lang), Pen::NONE, LegendIcon::Dot(style::HIT));
     }
     if lights {
         d.legend_entry(
             Label::LightSource.text(lang),
             style::outline(style::BLACK),
-            Sample::Dot(style::LIGHT),
+            LegendIcon::Dot(style::LIGHT),
         );
     }
     if observer {
-        d.legend_entry(Label::Observer.text(lang), Style::NONE, Sample::Dot(style::BLACK));
+        d.legend_entry(Label::Observer.text(lang), Pen::NONE, LegendIcon::Dot(style::BLACK));
     }
 }
 
 /// The legend row of normals.
 pub fn legend_normal(d: &mut Drawing, lang: Lang) {
-    d.legend_entry(Label::Normal.text(lang), style::normal(), Sample::Line);
+    d.legend_entry(Label::Normal.text(lang), style::normal(), LegendIcon::Line);
 }
 
 /// The larger side of the points' bounding box (1 when there are none or they are one point).

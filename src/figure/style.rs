@@ -92,13 +92,13 @@ impl RayRole {
 
     /// The role's stroke: its colour at [`RAY_WIDTH`], dashed for a blocked shadow ray.
     #[must_use]
-    pub const fn style(self) -> Style {
+    pub const fn style(self) -> Pen {
         let dash = match self {
             Self::BlockedShadow => Some(BLOCKED_DASH),
             Self::OpaqueShadow => Some(OPAQUE_DASH),
             _ => None,
         };
-        Style { color: self.color(), width: RAY_WIDTH, dash }
+        Pen { color: self.color(), width: RAY_WIDTH, dash }
     }
 
     /// A short tag for display-list items of this role: `ray:primary`, `ray:reflected`, …
@@ -117,20 +117,20 @@ impl RayRole {
 
 /// The stroke of a scene object's outline.
 #[must_use]
-pub const fn object() -> Style {
-    Style { color: OBJECT_STROKE, width: OBJECT_WIDTH, dash: None }
+pub const fn object() -> Pen {
+    Pen { color: OBJECT_STROKE, width: OBJECT_WIDTH, dash: None }
 }
 
 /// The stroke of a surface normal or other construction line: dark grey, dashed.
 #[must_use]
-pub const fn normal() -> Style {
-    Style { color: NORMAL, width: CONSTRUCTION_WIDTH, dash: Some(CONSTRUCTION_DASH) }
+pub const fn normal() -> Pen {
+    Pen { color: NORMAL, width: CONSTRUCTION_WIDTH, dash: Some(CONSTRUCTION_DASH) }
 }
 
 /// A solid stroke of `color` at [`CONSTRUCTION_WIDTH`], for outlines of highlights and markers.
 #[must_use]
-pub const fn outline(color: Rgba) -> Style {
-    Style { color, width: CONSTRUCTION_WIDTH, dash: None }
+pub const fn outline(color: Rgba) -> Pen {
+    Pen { color, width: CONSTRUCTION_WIDTH, dash: None }
 }
 
 #[cfg(test)]

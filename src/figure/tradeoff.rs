@@ -7,7 +7,7 @@
 
 use glam::DVec2;
 
-use crate::canvas::{Align, Corner, Drawing, LegendPlace, Sample, Style, TextOpts, View};
+use crate::canvas::{Align, Corner, Drawing, LegendIcon, LegendPlace, Pen, TextOpts, View};
 use crate::figure::labels::{escape, Label};
 use crate::figure::parts::num;
 use crate::figure::style::{self, Rgba, TextSize};
@@ -198,7 +198,7 @@ pub fn draw(
     );
 
     // Axes, ticks and their names.
-    let axis = Style::solid(style::DARK_GREY, style::GRID_WIDTH);
+    let axis = Pen::solid(style::DARK_GREY, style::GRID_WIDTH);
     let y_end = DVec2::new(0.0, 1.0);
     d.segment("axis", DVec2::ZERO, DVec2::new(x_end, 0.0), axis);
     d.segment("axis", DVec2::ZERO, y_end, axis);
@@ -237,7 +237,7 @@ pub fn draw(
     // The front first, under the points.
     let front_points: Vec<DVec2> = front.iter().map(|&i| at(&rows[i])).collect();
     let front_style =
-        Style::solid(style::DARK_GREY, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH);
+        Pen::solid(style::DARK_GREY, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH);
     if front_points.len() > 1 {
         d.line("pareto", front_points, front_style);
     }
@@ -257,7 +257,7 @@ pub fn draw(
     for g in &groups {
         let on_front = g.iter().any(|i| front.contains(i));
         let radius = if on_front { style::DOT_RADIUS * 1.4 } else { style::DOT_RADIUS };
-        d.marker("setting", at(&rows[g[0]]), radius, fill, Style::solid(style::WHITE, 2.0));
+        d.marker("setting", at(&rows[g[0]]), radius, fill, Pen::solid(style::WHITE, 2.0));
     }
     // Every point named, clear of the others and inside the axes, a leader to a name set apart.
     d.keep_labels_within(DVec2::ZERO, DVec2::new(x_end, 1.0 + LEGEND_BAND));
@@ -279,8 +279,8 @@ pub fn draw(
         );
     }
 
-    d.legend_entry(t(points_note), Style::NONE, Sample::Dot(fill));
-    d.legend_entry(t(Label::ParetoFront), front_style, Sample::Line);
+    d.legend_entry(t(points_note), Pen::NONE, LegendIcon::Dot(fill));
+    d.legend_entry(t(Label::ParetoFront), front_style, LegendIcon::Line);
     d.legend_place = LegendPlace::Inside(Corner::TopRight);
     Ok(d)
 }

@@ -11,10 +11,11 @@ use glam::DVec2;
 
 use super::unknown;
 use crate::accel::Layout;
-use crate::canvas::{Drawing, Item, Shape};
+use crate::canvas::{Drawing, Item, Mark};
 use crate::figure::plane::Planar;
 use crate::figure::source::{
-    first_hit, grid_pitfall, incidence_deg, met, refraction_node, search_events, tir_node, Traces,
+    first_hit, grid_pitfall, incidence_deg, met, refraction_node, search_events, tir_node, vectors_apart_deg,
+    FigureInput,
 };
 use crate::json::Value;
 use crate::record::event::{Event, RayKind};
@@ -82,6 +83,9 @@ pub enum Measure {
     /// `specular`: the largest specular term `Isrc·fat·s·ks·(N·H)^n` (any channel, any light)
     /// at the main trace's first hit: a highlight the `local-model` figure can show.
     Specular,
+    /// `apart`: the smallest angle in degrees between two of the vectors the `local-model`
+    /// figure draws at the main trace's first hit (N, V, and each light's L and H).
+    Apart,
     /// `samples`: the samples traced for the `adaptive` figure's pixel.
     Samples,
     /// `leaf-levels`: how many different levels the pixel's unsplit squares have.
@@ -115,7 +119,7 @@ pub enum Measure {
 
 impl Measure {
     /// The kinds' names in a lesson file, in this order.
-    pub const KINDS: [&'static str; 15] = [
+    pub const KINDS: [&'static str; 16] = [
         "events",
         "level",
         "shadows",
@@ -131,6 +135,7 @@ impl Measure {
         "intervals",
         "false-crossings",
         "off-centre",
+        "apart",
     ];
 
     /// The claim's name with its parameter: `events voxel_step`, `shadows blocked`.
@@ -154,6 +159,7 @@ impl Measure {
             Self::Intervals => "intervals (shortest, % of the t axis)".into(),
             Self::FalseCrossings => name(13),
             Self::OffCentre => "off-centre (% of the image)".into(),
+            Self::Apart => "apart (least angle between N, V, L, H, °)".into(),
         }
     }
 }
@@ -286,6 +292,7 @@ pub fn parse(value: Option<&Value>, path: &str, errors: &mut Vec<String>) -> Vec
             "intervals" => Some(Measure::Intervals),
             "false-crossings" => Some(Measure::FalseCrossings),
             "off-centre" => Some(Measure::OffCentre),
+            "apart" => Some(Measure::Apart),
             _ => {
                 errors.push(format!("{at}.kind: must be one of {}", Measure::KINDS.join(", ")));
                 None
@@ -321,7 +328,7 @@ pub fn parse(value: Option<&Value>, path: &str, errors: &mut Vec<String>) -> Vec
 #[must_use]
 pub fn check_all<V: Planar>(
     claims: &[Claim],
-    traces: &Traces<V>,
+    traces: &FigureInput<V>,
     scene: &Scene<V>,
     drawing: &Drawing,
 ) -> Vec<Verdict> {
@@ -335,7 +342,7 @@ pub fn check_all<V: Planar>(
 #[must_use]
 pub fn measure<V: Planar>(
     what: &Measure,
-    traces: &Traces<V>,
+    traces: &FigureInput<V>,
     scene: &Scene<V>,
     drawing: &Drawing,
 ) -> Option<f64> {
@@ -370,6 +377,7 @@ pub fn measure<V: Planar>(
             let node = &log.nodes[first_hit(log)?];
             node.lights.iter().flat_map(|t| t.specular.0).reduce(f64::max)
         }
+        Measure::Apart => vectors_apart_deg(&log?.nodes[first_hit(log?)?]),
         Measure::Samples => count(main?.samples.as_ref()?.samples.len()),
         Measure::LeafLevels => {
             let squares = &main?.samples.as_ref()?.squares;
@@ -413,7 +421,7 @@ pub fn measure<V: Planar>(
 
 /// θᵢ at the node the `refraction` figure draws: its clearest refraction, else the first total
 /// internal reflection of the main trace or of the second one.
-fn incidence<V: Planar>(traces: &Traces<V>) -> Option<f64> {
+fn incidence<V: Planar>(traces: &FigureInput<V>) -> Option<f64> {
     let main = &traces.traces.first()?.log;
     if let Some((k, _)) = refraction_node(main) {
         return incidence_deg(&main.nodes[k]);
@@ -442,9 +450,9 @@ fn pitfall_voxels<V>(log: &EventLog<V>) -> f64 {
 
 /// The segments an item draws (a polyline's pieces, an arrow's shaft).
 fn segments(item: &Item) -> Vec<(DVec2, DVec2)> {
-    match &item.shape {
-        Shape::Line { points } => points.windows(2).map(|w| (w[0], w[1])).collect(),
-        Shape::Arrow { from, to, .. } => vec![(*from, *to)],
+    match &item.mark {
+        Mark::Line { points } => points.windows(2).map(|w| (w[0], w[1])).collect(),
+        Mark::Arrow { from, to, .. } => vec![(*from, *to)],
         _ => Vec::new(),
     }
 }
@@ -457,12 +465,12 @@ fn closed_edges(item: &Item) -> Option<Vec<(DVec2, DVec2)>> {
     let ring = |pts: Vec<DVec2>| -> Vec<(DVec2, DVec2)> {
         (0..pts.len()).map(|k| (pts[k], pts[(k + 1) % pts.len()])).collect()
     };
-    match &item.shape {
-        Shape::Polygon { points, .. } if points.len() >= 3 => Some(ring(points.clone())),
-        Shape::Rect { min, max, .. } => {
+    match &item.mark {
+        Mark::Polygon { points, .. } if points.len() >= 3 => Some(ring(points.clone())),
+        Mark::Rect { min, max, .. } => {
             Some(ring(vec![*min, DVec2::new(max.x, min.y), *max, DVec2::new(min.x, max.y)]))
         }
-        Shape::Circle { center, radius, .. } => Some(ring(
+        Mark::Circle { center, radius, .. } => Some(ring(
             (0..CIRCLE_SIDES)
                 .map(|k| {
                     let a = std::f64::consts::TAU * k as f64 / CIRCLE_SIDES as f64;
@@ -530,9 +538,9 @@ fn miss_margin(drawing: &Drawing) -> Option<f64> {
     let volume = drawing.tagged("volume").find_map(closed_edges)?;
     let mut rays: Vec<(crate::figure::style::Rgba, Vec<(DVec2, DVec2)>)> = Vec::new();
     for item in drawing.items.iter().filter(|i| i.tag.starts_with("ray:")) {
-        match rays.iter_mut().find(|(c, _)| *c == item.style.color) {
+        match rays.iter_mut().find(|(c, _)| *c == item.pen.color) {
             Some((_, segs)) => segs.extend(segments(item)),
-            None => rays.push((item.style.color, segments(item))),
+            None => rays.push((item.pen.color, segments(item))),
         }
     }
     let width = drawing.view.width();
@@ -595,7 +603,7 @@ fn false_crossings<V>(drawing: &Drawing, log: &EventLog<V>, objects: usize) -> u
     let outlines: Vec<(usize, &Item)> = drawing
         .items
         .iter()
-        .filter(|i| i.style.dash.is_none())
+        .filter(|i| i.pen.dash.is_none())
         .filter_map(|i| Some((i.tag.strip_prefix("object:")?.parse::<usize>().ok()?, i)))
         .filter(|(k, _)| *k < objects)
         .collect();

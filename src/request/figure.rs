@@ -9,7 +9,7 @@ use crate::canvas::Drawing;
 use crate::doc::TraceTarget;
 use crate::figure::labels::{self, Label};
 use crate::figure::plane::Planar;
-use crate::figure::source::{self, Pick, Tracing};
+use crate::figure::source::{self, Pick, TraceOptions};
 use crate::figure::{self as fig, FigureKind, Options};
 use crate::lesson::claim::{self, Claim, Verdict};
 use crate::scene::{AnyScene, Scene};
@@ -22,7 +22,7 @@ pub struct Request {
     /// `--pixel` or `--ray`; neither lets the figure pick a pixel.
     pub target: Target,
     /// Depth, structure and sampling.
-    pub tracing: Tracing,
+    pub tracing: TraceOptions,
     /// Language and size.
     pub opts: Options,
 }

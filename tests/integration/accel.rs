@@ -2,10 +2,10 @@
 //! numerics.md §I): property tests over random 2D and 3D scenes, exact-arithmetic scenes with
 //! axis-parallel rays through edges and corners, meshes, and every case of numerics.md §I by name.
 
-use crate::support::{fixture, scene2, scene3, trace_pixel, whitted};
+use crate::support::{fixture, scene2, scene3, trace_pixel, whitted, SceneText, Scratch};
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
-use serde_json::Value;
+use serde_json::{json, Value};
 use whitted::accel::grid::Grid;
 use whitted::accel::{Accel, AccelKind, AccelOptions, Nearest, Prim, Visitor};
 use whitted::bounds::aabb::Aabb;
@@ -97,35 +97,42 @@ fn point(exact: bool, dim: usize) -> BoxedStrategy<Vec<f64>> {
 }
 
 /// An object's JSON, of a type the dimension has.
-fn object(exact: bool, dim: usize) -> BoxedStrategy<String> {
+fn object(exact: bool, dim: usize) -> BoxedStrategy<Value> {
     let material = prop_oneof![
-        Just(String::new()),
-        Just(r#", "material": {"kt": 0.5}"#.to_string()),
-        Just(r#", "material": {"ks": 0.5}"#.to_string()),
-        Just(r#", "material": {"kt": 0.25, "ior": 1.5}"#.to_string()),
+        Just(None),
+        Just(Some(json!({"kt": 0.5}))),
+        Just(Some(json!({"ks": 0.5}))),
+        Just(Some(json!({"kt": 0.25, "ior": 1.5}))),
     ];
     let radius =
         if exact { (1i32..=3).prop_map(|r| f64::from(r) * 0.5).boxed() } else { (0.2f64..1.5).boxed() };
     let size =
         if exact { (1i32..=4).prop_map(|r| f64::from(r) * 0.5).boxed() } else { (0.1f64..2.0).boxed() };
-    let sphere = (point(exact, dim), radius)
-        .prop_map(|(c, r)| format!(r#""type": "sphere", "center": {c:?}, "radius": {r}"#));
+    let sphere =
+        (point(exact, dim), radius).prop_map(|(c, r)| json!({"type": "sphere", "center": c, "radius": r}));
     let boxed = (point(exact, dim), proptest::collection::vec(size, dim)).prop_map(|(lo, e)| {
         let hi: Vec<f64> = lo.iter().zip(&e).map(|(a, b)| a + b).collect();
-        format!(r#""type": "box", "min": {lo:?}, "max": {hi:?}"#)
+        json!({"type": "box", "min": lo, "max": hi})
     });
     let triangle = proptest::collection::vec(point(exact, dim), 3)
         .prop_filter("non-degenerate", move |vs| area(vs) > 1e-6)
-        .prop_map(|vs| format!(r#""type": "triangle", "vertices": {vs:?}"#));
+        .prop_map(|vs| json!({"type": "triangle", "vertices": vs}));
     let shape = if dim == 2 {
         let segment = (point(exact, 2), point(exact, 2))
             .prop_filter("non-zero", |(a, b)| a != b)
-            .prop_map(|(a, b)| format!(r#""type": "segment", "a": {a:?}, "b": {b:?}"#));
+            .prop_map(|(a, b)| json!({"type": "segment", "a": a, "b": b}));
         prop_oneof![sphere, boxed, triangle, segment].boxed()
     } else {
         prop_oneof![sphere, boxed, triangle].boxed()
     };
-    (shape, material).prop_map(|(s, m)| format!("{{{s}{m}}}")).boxed()
+    (shape, material)
+        .prop_map(|(mut s, m)| {
+            if let Some(m) = m {
+                s["material"] = m;
+            }
+            s
+        })
+        .boxed()
 }
 
 fn area(vs: &[Vec<f64>]) -> f64 {
@@ -139,22 +146,21 @@ fn area(vs: &[Vec<f64>]) -> f64 {
     }
 }
 
-fn scene_text(objects: &[String], dim: usize, plane: bool) -> String {
-    let mut objs = objects.to_vec();
-    if plane {
-        let (p, n) = if dim == 2 { ("[0, -4]", "[0, 1]") } else { ("[0, -4, 0]", "[0, 1, 0]") };
-        objs.push(format!(r#"{{"type": "plane", "point": {p}, "normal": {n}, "material": {{"ks": 0.3}}}}"#));
-    }
-    let camera = if dim == 2 {
-        r#""camera": {"eye": [0.3, 9], "center": [0, 0], "window": {"l": -0.6, "r": 0.6}, "resolution": [24]}"#
+/// The random scenes' frame: a camera off the axis looking at the origin, depth 2, one light,
+/// the objects and, with `plane`, a reflecting floor at y = −4.
+fn scene_text(objects: &[Value], dim: usize, plane: bool) -> String {
+    let (camera, light, point, normal) = if dim == 2 {
+        let camera = SceneText::flat2(24).eye(json!([0.3, 9])).window(json!({"l": -0.6, "r": 0.6}));
+        (camera, json!([4, 7]), json!([0, -4]), json!([0, 1]))
     } else {
-        r#""camera": {"eye": [1.5, 2, 9], "center": [0, 0, 0], "window": {"l": -0.5, "r": 0.5, "b": -0.4, "t": 0.4}, "resolution": [10, 8]}"#
+        let camera = SceneText::space3(10, 8)
+            .eye(json!([1.5, 2, 9]))
+            .window(json!({"l": -0.5, "r": 0.5, "b": -0.4, "t": 0.4}));
+        (camera, json!([4, 7, 5]), json!([0, -4, 0]), json!([0, 1, 0]))
     };
-    let light = if dim == 2 { "[4, 7]" } else { "[4, 7, 5]" };
-    format!(
-        r#"{{{camera}, "max_depth": 2, "lights": [{{"position": {light}}}], "objects": [{}]}}"#,
-        objs.join(", ")
-    )
+    let floor = json!({"type": "plane", "point": point, "normal": normal, "material": {"ks": 0.3}});
+    let scene = camera.set("/max_depth", json!(2)).light(json!({"position": light}));
+    scene.objects(objects.iter().cloned()).objects(plane.then_some(floor)).text()
 }
 
 /// A ray direction: an axis (with ±0 elsewhere), a diagonal, or a general unit vector.
@@ -262,20 +268,14 @@ fn exact_lattice_rays_through_edges_and_corners_agree_bit_for_bit() {
         for y in 0..3 {
             for z in 0..2 {
                 if (x + y + z) % 2 == 0 {
-                    objects.push(format!(
-                        r#"{{"type": "box", "min": [{x}, {y}, {z}], "max": [{}, {}, {}]}}"#,
-                        x + 1,
-                        y + 1,
-                        z + 1
-                    ));
+                    objects.push(json!({"type": "box", "min": [x, y, z], "max": [x + 1, y + 1, z + 1]}));
                 }
             }
         }
     }
-    objects.push(r#"{"type": "sphere", "center": [1, 1, 1], "radius": 1}"#.into());
+    objects.push(json!({"type": "sphere", "center": [1, 1, 1], "radius": 1}));
     objects.push(
-        r#"{"type": "triangle", "vertices": [[0, 0, 2], [3, 0, 2], [0, 3, 2]], "material": {"kt": 0.5}}"#
-            .into(),
+        json!({"type": "triangle", "vertices": [[0, 0, 2], [3, 0, 2], [0, 3, 2]], "material": {"kt": 0.5}}),
     );
     let scene: Scene<DVec3> = load(&scene_text(&objects, 3, false));
     let mut rays = Vec::new();
@@ -300,9 +300,8 @@ fn exact_lattice_rays_through_edges_and_corners_agree_bit_for_bit() {
 fn flat_scene_rays_in_slab_planes_agree() {
     // Everything in the plane z = 0 (zero z-extent: numerics I8) and rays lying in it.
     let objects = vec![
-        r#"{"type": "triangle", "vertices": [[0, 0, 0], [2, 0, 0], [0, 2, 0]]}"#.to_string(),
-        r#"{"type": "triangle", "vertices": [[2, 0, 0], [2, 2, 0], [0, 2, 0]], "material": {"kt": 0.5}}"#
-            .to_string(),
+        json!({"type": "triangle", "vertices": [[0, 0, 0], [2, 0, 0], [0, 2, 0]]}),
+        json!({"type": "triangle", "vertices": [[2, 0, 0], [2, 2, 0], [0, 2, 0]], "material": {"kt": 0.5}}),
     ];
     let scene: Scene<DVec3> = load(&scene_text(&objects, 3, true));
     let mut rays = Vec::new();
@@ -337,13 +336,16 @@ fn grid_obj(n: usize) -> String {
     s
 }
 
-fn mesh_scene(extra: &str) -> Scene<DVec3> {
+/// The meshes' scenes: a camera above and in front of the origin, one light, and `objects`.
+fn above_mesh(nx: usize, ny: usize, eye: Value, objects: impl IntoIterator<Item = Value>) -> SceneText {
+    let window = json!({"l": -0.6, "r": 0.6, "b": -0.5, "t": 0.5});
+    SceneText::space3(nx, ny).eye(eye).window(window).light(json!({"position": [-3, 5, 2]})).objects(objects)
+}
+
+fn mesh_scene(extra: Option<Value>) -> Scene<DVec3> {
     let obj = grid_obj(8);
-    let text = format!(
-        r#"{{"camera": {{"eye": [0.1, 4, 5], "center": [0, 0, 0], "window": {{"l": -0.6, "r": 0.6, "b": -0.5, "t": 0.5}}, "resolution": [12, 10]}},
-            "lights": [{{"position": [-3, 5, 2]}}],
-            "objects": [{{"type": "mesh", "name": "terrain", "obj": "t.obj", "material": {{"kt": 0.5}}}}{extra}]}}"#
-    );
+    let terrain = json!({"type": "mesh", "name": "terrain", "obj": "t.obj", "material": {"kt": 0.5}});
+    let text = above_mesh(12, 10, json!([0.1, 4, 5]), std::iter::once(terrain).chain(extra)).text();
     match load_str_with(&text, &|_| Ok(obj.clone())) {
         Ok(AnyScene::Space(s)) => s,
         other => panic!("{other:?}"),
@@ -352,7 +354,7 @@ fn mesh_scene(extra: &str) -> Scene<DVec3> {
 
 #[test]
 fn meshes_agree_triangle_by_triangle_with_ties_to_the_smaller_triangle() {
-    let scene = mesh_scene(r#", {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.6}"#);
+    let scene = mesh_scene(Some(json!({"type": "sphere", "center": [0, 0.5, 0], "radius": 0.6})));
     let mut rays = Vec::new();
     // Straight down through every vertex and edge midpoint: shared edges, exact ties.
     for a in 0..=16 {
@@ -379,7 +381,7 @@ fn meshes_agree_triangle_by_triangle_with_ties_to_the_smaller_triangle() {
 
 #[test]
 fn a_mesh_multiplies_the_shadow_factor_once() {
-    let scene = mesh_scene("");
+    let scene = mesh_scene(None);
     // A ray from below crosses the wavy surface several times: kt = 0.5 once, whatever crosses.
     let up = Ray::new(DVec3::new(0.3, -3.0, 0.2), DVec3::new(0.05, 1.0, 0.03).normalize());
     for options in every_structure() {
@@ -395,7 +397,7 @@ fn a_mesh_multiplies_the_shadow_factor_once() {
 
 #[test]
 fn mesh_events_carry_the_triangle() {
-    let scene = mesh_scene("");
+    let scene = mesh_scene(None);
     let accel = Accel::build(&scene, AccelKind::Bvh);
     let mut tracer = Tracer::new(&scene, &accel, EventLog::new());
     let ray = Ray::new(DVec3::new(0.3, 3.0, 0.2), DVec3::NEG_Y);
@@ -423,12 +425,8 @@ fn the_bvh_does_under_a_quarter_of_brute_force_tests_on_300_spheres() {
     let mut objects = Vec::new();
     for i in 0..300 {
         let (x, y, z) = (f64::from(i % 10), f64::from(i / 10 % 10), f64::from(i / 100));
-        objects.push(format!(
-            r#"{{"type": "sphere", "center": [{}, {}, {}], "radius": 0.2}}"#,
-            x * 0.6 - 3.0,
-            y * 0.6 - 3.0,
-            z * 0.6 - 1.0
-        ));
+        let center = [x * 0.6 - 3.0, y * 0.6 - 3.0, z * 0.6 - 1.0];
+        objects.push(json!({"type": "sphere", "center": center, "radius": 0.2}));
     }
     let scene: Scene<DVec3> = load(&scene_text(&objects, 3, true));
     let cost = |kind| {
@@ -456,7 +454,7 @@ impl<V: Dim> Visitor<V> for Walk {
 }
 
 fn cube_scene() -> Scene<DVec3> {
-    scene3(&scene_text(&[r#"{"type": "box", "min": [0, 0, 0], "max": [4, 4, 4]}"#.to_string()], 3, false))
+    scene3(&scene_text(&[json!({"type": "box", "min": [0, 0, 0], "max": [4, 4, 4]})], 3, false))
 }
 
 fn grid4() -> Grid<DVec3> {
@@ -525,8 +523,8 @@ fn i3_ties_through_a_grid_vertex_step_x_then_y() {
     // An object through the vertex (1, 1, ·) is still found.
     let scene = scene3(&scene_text(
         &[
-            r#"{"type": "box", "min": [0, 0, 0], "max": [4, 4, 4], "material": {"kt": 0.5}}"#.into(),
-            r#"{"type": "sphere", "center": [1, 1, 0.5], "radius": 0.01}"#.into(),
+            json!({"type": "box", "min": [0, 0, 0], "max": [4, 4, 4], "material": {"kt": 0.5}}),
+            json!({"type": "sphere", "center": [1, 1, 0.5], "radius": 0.01}),
         ],
         3,
         false,
@@ -613,8 +611,7 @@ fn i6_the_lecture_pitfall_a_hit_beyond_the_current_cell_is_not_accepted() {
 
 #[test]
 fn i7_a_hit_exactly_on_a_cell_boundary_is_kept_with_the_mailbox() {
-    let scene =
-        scene3(&scene_text(&[r#"{"type": "box", "min": [1, 0, 0], "max": [2, 1, 1]}"#.into()], 3, false));
+    let scene = scene3(&scene_text(&[json!({"type": "box", "min": [1, 0, 0], "max": [2, 1, 1]})], 3, false));
     let b = Aabb::new(DVec3::new(1.0, 0.0, 0.0), DVec3::new(2.0, 1.0, 1.0));
     let grid = Grid::from_boxes(
         vec![Prim { object: 0, part: 0 }],
@@ -640,10 +637,10 @@ fn i7_a_hit_exactly_on_a_cell_boundary_is_kept_with_the_mailbox() {
 fn i8_degenerate_bounds_render_without_panic() {
     for objects in [
         vec![],
-        vec![r#"{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}"#.to_string()],
+        vec![json!({"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]})],
         vec![
-            r#"{"type": "sphere", "center": [0, 0, 0], "radius": 1}"#.into(),
-            r#"{"type": "sphere", "center": [0, 0, 0], "radius": 1}"#.into(),
+            json!({"type": "sphere", "center": [0, 0, 0], "radius": 1}),
+            json!({"type": "sphere", "center": [0, 0, 0], "radius": 1}),
         ],
     ] {
         for plane in [false, true] {
@@ -658,7 +655,7 @@ fn i8_degenerate_bounds_render_without_panic() {
 #[test]
 fn i9_a_nan_ray_ends_every_walk() {
     let scene: Scene<DVec3> =
-        load(&scene_text(&[r#"{"type": "sphere", "center": [0, 0, 0], "radius": 1}"#.into()], 3, false));
+        load(&scene_text(&[json!({"type": "sphere", "center": [0, 0, 0], "radius": 1})], 3, false));
     let nan = Ray::new(DVec3::new(f64::NAN, 0.0, 5.0), DVec3::new(0.0, f64::NAN, -1.0));
     for options in every_structure() {
         let accel = Accel::build_with(&scene, &options);
@@ -746,13 +743,11 @@ fn accel_options_on_the_command_line() {
 
 #[test]
 fn a_mesh_scene_loads_its_obj_relative_to_the_scene_file() {
-    let dir = std::env::temp_dir().join(format!("whitted-mesh-{}", std::process::id()));
-    std::fs::create_dir_all(dir.join("sub")).unwrap();
-    std::fs::write(dir.join("sub/t.obj"), grid_obj(4)).unwrap();
-    let text = r#"{"camera": {"eye": [0, 4, 5], "center": [0, 0, 0], "window": {"l": -0.6, "r": 0.6, "b": -0.5, "t": 0.5}, "resolution": [8, 6]},
-        "lights": [{"position": [-3, 5, 2]}], "objects": [{"type": "mesh", "obj": "sub/t.obj", "name": "m"}]}"#;
-    std::fs::write(dir.join("m.json"), text).unwrap();
-    let path = dir.join("m.json").display().to_string();
+    let dir = Scratch::new();
+    std::fs::create_dir(dir.join("sub")).unwrap();
+    dir.write("sub/t.obj", grid_obj(4));
+    let mesh = json!({"type": "mesh", "obj": "sub/t.obj", "name": "m"});
+    let path = dir.write("m.json", above_mesh(8, 6, json!([0, 4, 5]), [mesh]).text());
     let (code, out, err) = whitted(&["check", &path]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("mesh m: 32 triangles, 0 degenerate skipped"), "{out}");

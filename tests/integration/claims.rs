@@ -3,7 +3,7 @@
 
 use std::path::Path;
 use whitted::accel::AccelOptions;
-use whitted::figure::source::Tracing;
+use whitted::figure::source::TraceOptions;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::claim::Verdict;
 use whitted::lesson::{self, FigureSpec};
@@ -19,10 +19,10 @@ fn verdicts(dir: &Path, spec: &FigureSpec, lang: Lang) -> Vec<Verdict> {
     let request = Request {
         kind: spec.kind,
         target: Target { pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))), ray: spec.ray.clone() },
-        tracing: Tracing {
+        tracing: TraceOptions {
             depth: spec.depth,
             sampling: spec.sampling.unwrap_or(Sampling::Center),
-            accel: AccelOptions { grid: spec.grid.clone(), ..Tracing::SCENE.accel },
+            accel: AccelOptions { grid: spec.grid.clone(), ..TraceOptions::SCENE.accel },
         },
         opts: Options::slide(lang),
     };
@@ -62,11 +62,39 @@ fn every_lesson_figure_states_its_point_and_shows_it_in_both_languages() {
     assert!(failed.is_empty(), "{}", failed.join("\n"));
 }
 
+/// Numbers keep the decimal point in both languages (docs/algorithm.md, the lecture's `i + 0.5`):
+/// a Romanian caption that wrote 0,5 beside a figure that writes 0.5 would teach two notations.
+#[test]
+fn every_lesson_writes_numbers_with_the_decimal_point_in_both_languages() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "json") {
+            continue;
+        }
+        let lesson = lesson::parse(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let captions = lesson.figures.iter().map(|f| &f.caption);
+        for words in [&lesson.title, &lesson.text].into_iter().chain(captions) {
+            for text in [&words.en, &words.ro] {
+                let chars: Vec<char> = text.chars().collect();
+                let comma =
+                    chars.windows(3).any(|w| w[0].is_ascii_digit() && w[1] == ',' && w[2].is_ascii_digit());
+                if comma {
+                    found.push(format!("{}: {text}", path.display()));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "a decimal comma:\n{}", found.join("\n"));
+}
+
 /// The old scenes and pixels that did not show their point (issue "taught right", item 1), each
 /// with the claim that now fails on it: the grid pitfall whose first voxel already held the
 /// nearer sphere (its box leaked into it, the ray ran along a cell boundary), the 3D slab chart
 /// of a near-axis ray, the flat heat map of corner sampling, the BVH of one node, and Whitted's
-/// shadow figure whose primary ray was drawn through the glass sphere.
+/// shadow figure whose primary ray was drawn through the glass sphere, and the 2D local model
+/// whose L and N lay 3.25° apart.
 #[test]
 fn the_old_scenes_and_pixels_fail_their_claims() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/claims");
@@ -81,7 +109,9 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
         { "kind": "bvh", "scene": "../../../scenes/whitted.json",
           "claims": [ { "kind": "nodes", "min": 5 } ], "caption": { "en": "", "ro": "" } },
         { "kind": "shadows", "scene": "../../../scenes/whitted.json", "pixel": [292, 227],
-          "claims": [ { "kind": "false-crossings", "max": 0 } ], "caption": { "en": "", "ro": "" } } ] }"#;
+          "claims": [ { "kind": "false-crossings", "max": 0 } ], "caption": { "en": "", "ro": "" } },
+        { "kind": "local-model", "scene": "../../../scenes/flat.json", "pixel": [20],
+          "claims": [ { "kind": "apart", "min": 10 } ], "caption": { "en": "", "ro": "" } } ] }"#;
     let failed = failures(&dir, old, Lang::En);
     let expected = [
         "old figure 1 (grid-dda): claim grid-pitfall (voxels from the early find to the accepted hit): wanted ≥ 1, measured 0",
@@ -89,6 +119,7 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
         "old figure 3 (heat-map): claim heat-values: wanted ≥ 3, measured 1",
         "old figure 4 (bvh): claim nodes: wanted ≥ 5, measured 1",
         "old figure 5 (shadows): claim false-crossings: wanted ≤ 0, measured 2",
+        "old figure 6 (local-model): claim apart (least angle between N, V, L, H, °): wanted ≥ 10, measured 3.25",
     ];
     assert_eq!(failed.len(), expected.len(), "{}", failed.join("\n"));
     for (line, want) in failed.iter().zip(expected) {
@@ -99,9 +130,9 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
 #[test]
 fn lessons_writes_nothing_and_exits_1_when_a_claim_fails() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let tmp = std::env::temp_dir().join(format!("whitted-claims-{}", std::process::id()));
+    let tmp = crate::support::Scratch::new();
     let lessons = tmp.join("lessons");
-    std::fs::create_dir_all(&lessons).unwrap();
+    std::fs::create_dir(&lessons).unwrap();
     let scene = root.join("scenes/whitted.json");
     let text = format!(
         r#"{{ "name": "one", "title": {{ "en": "t", "ro": "t" }}, "figures": [
@@ -123,5 +154,4 @@ fn lessons_writes_nothing_and_exits_1_when_a_claim_fails() {
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("one figure 1 (bvh): claim nodes: wanted ≥ 5, measured 1"), "{err}");
     assert!(!out.join("en/one-1-bvh.png").exists() && !out.join("index.html").exists());
-    std::fs::remove_dir_all(&tmp).ok();
 }

@@ -1,42 +1,35 @@
 //! The command line: exit codes and one-line errors naming the field or argument (issue 3, item 8).
 
-use crate::support::{fixture_path as fixture, whitted};
-
-fn scene_file(name: &str, text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("whitted-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
-}
+use crate::support::{fixture_path as fixture, whitted, whitted_with_input, SceneText, Scratch};
+use serde_json::json;
 
 #[test]
 fn bad_input_exits_2_with_the_field_named() {
-    let cases: &[(&str, &str)] = &[
-        ("{\"camera\": [}", "invalid JSON at line 1, column"),
+    let scene = SceneText::space3(2, 2);
+    let sphere = |center: serde_json::Value, radius: serde_json::Value| {
+        scene.clone().object(json!({"type": "sphere", "center": center, "radius": radius})).text()
+    };
+    let cases: &[(String, &str)] = &[
+        ("{\"camera\": [}".into(), "invalid JSON at line 1, column"),
         (
-            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "objets": []}"#,
+            scene.clone().set("/objets", json!([])).text(),
             "objets: unknown field `objets`; did you mean `objects`?",
         ),
+        (sphere(json!([0, 0, 0]), json!(-1)), "objects[0].radius: must be > 0, got -1"),
         (
-            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "objects": [{"type":"sphere","center":[0,0,0],"radius":-1}]}"#,
-            "objects[0].radius: must be > 0, got -1",
-        ),
-        (
-            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "max_depth": -1}"#,
+            scene.clone().set("/max_depth", json!(-1)).text(),
             "max_depth: must be an integer in [0, 64], got -1",
         ),
         (
-            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "objects": [{"type":"sphere","center":[0,0,0],"radius":1e400}]}"#,
+            // A number past f64: JSON values cannot hold it, so it is written as text.
+            scene.text_with(&[("objects", r#"[{"type":"sphere","center":[0,0,0],"radius":1e400}]"#)]),
             "invalid JSON",
         ),
-        (
-            r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2,2]}, "objects": [{"type":"sphere","center":"x","radius":1}]}"#,
-            "objects[0].center: must be an array of 3 numbers, got a string",
-        ),
+        (sphere(json!("x"), json!(1)), "objects[0].center: must be an array of 3 numbers, got a string"),
     ];
+    let dir = Scratch::new();
     for (i, (text, expected)) in cases.iter().enumerate() {
-        let path = scene_file(&format!("bad{i}.json"), text);
+        let path = dir.write(&format!("bad{i}.json"), text);
         for cmd in ["check", "render", "tradeoff"] {
             let (code, _, err) =
                 whitted(&[cmd, &path, "-o", "/dev/null"][..if cmd == "render" { 4 } else { 2 }]);
@@ -132,7 +125,8 @@ fn object_names_follow_the_language_and_the_document_keeps_the_english() {
 
 #[test]
 fn render_json_lists_the_statistics() {
-    let out_png = std::env::temp_dir().join(format!("whitted-cli-{}-glass.png", std::process::id()));
+    let dir = Scratch::new();
+    let out_png = dir.join("glass.png");
     let (code, out, err) = whitted(&[
         "render",
         &fixture("glass.json"),
@@ -158,8 +152,8 @@ fn render_json_lists_the_statistics() {
 
 #[test]
 fn sampling_options_a_mode_does_not_use_are_reported() {
-    let out_png = std::env::temp_dir().join(format!("whitted-cli-{}-options.png", std::process::id()));
-    let out_png = out_png.display().to_string();
+    let dir = Scratch::new();
+    let out_png = dir.arg("options.png");
     let glass = fixture("glass.json");
     let (code, _, err) = whitted(&["render", &glass, "-o", &out_png, "--threshold", "0.2"]);
     assert_eq!(code, 0, "{err}");
@@ -189,10 +183,9 @@ fn sampling_options_a_mode_does_not_use_are_reported() {
 fn the_adaptive_figure_takes_the_threshold_it_is_given() {
     // `figure adaptive` samples adaptively without --aa, with --threshold and --max-level as given:
     // threshold 0 splits the pixel to level 2, inf never splits it.
-    let dir = std::env::temp_dir().join(format!("whitted-cli-{}-adaptive", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new();
     let draw = |threshold: &str| {
-        let svg = dir.join(format!("adaptive-{threshold}.svg")).display().to_string();
+        let svg = dir.arg(&format!("adaptive-{threshold}.svg"));
         let args = [
             "figure",
             "adaptive",
@@ -236,7 +229,8 @@ fn sweep<'a>(doc: &'a serde_json::Value, name: &str) -> (&'a serde_json::Value, 
 
 #[test]
 fn tradeoff_measures_each_sweep_against_a_reference_that_differs_in_it_only() {
-    let dir = std::env::temp_dir().join(format!("whitted-cli-{}-tradeoff", std::process::id()));
+    let scratch = Scratch::new();
+    let dir = scratch.join("plots");
     let glass = fixture("glass.json");
     let (code, out, err) = whitted(&[
         "tradeoff",
@@ -350,10 +344,7 @@ fn tradeoff_measures_each_sweep_against_a_reference_that_differs_in_it_only() {
     }
     // A scene of nothing but background: every image equals its reference, every point sits on
     // the plot's 0 row; the tables still come.
-    let empty = scene_file(
-        "empty.json",
-        r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [4,3]}}"#,
-    );
+    let empty = scratch.write("empty.json", SceneText::space3(4, 3).text());
     let empty_dir = dir.join("empty");
     let (code, out, err) =
         whitted(&["tradeoff", &empty, "--runs", "1", "--out", &empty_dir.display().to_string()]);
@@ -372,23 +363,15 @@ fn tradeoff_measures_each_sweep_against_a_reference_that_differs_in_it_only() {
 
 #[test]
 fn step_shows_the_trace_narration_a_step_at_a_time() {
-    use std::io::Write;
     let glass = fixture("glass.json");
     let (_, narration, _) = whitted(&["trace", &glass, "--pixel", "4,3"]);
     let run = |input: &str| {
-        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_whitted"))
-            .args(["step", &glass, "--pixel", "4,3"])
-            .stdin(std::process::Stdio::piped())
-            .stdout(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
-        let out = child.wait_with_output().unwrap();
-        (out.status.code(), String::from_utf8_lossy(&out.stdout).into_owned())
+        let (code, out, _) = whitted_with_input(&["step", &glass, "--pixel", "4,3"], input);
+        (code, out)
     };
     // Enter twice: steps 1, 2 and 3, no more; then the end of input ends the session.
     let (code, out) = run("\n\n");
-    assert_eq!(code, Some(0));
+    assert_eq!(code, 0);
     assert!(out.contains("1. Pixel (i, j) = (4, 3)") && out.contains("\n3. P — primary ray"), "{out}");
     assert!(!out.contains("\n   4. "), "{out}");
     // `a`: the first step, then all the rest: the whole narration, every line of it.

@@ -3,13 +3,13 @@
 //! tagged group per item; every PNG has its size, is not blank and shows the colour of each ray
 //! kind its trace holds; labels come in both languages.
 
-use crate::support::{fixture, SceneText};
+use crate::support::{fixture, fixture_path, whitted, SceneText, Scratch};
 use glam::DVec2;
 use whitted::canvas::{skia, svg};
-use whitted::canvas::{Drawing, Sample, Shape};
+use whitted::canvas::{Drawing, LegendIcon, Mark};
 use whitted::figure::labels::Label;
 use whitted::figure::plane::Planar;
-use whitted::figure::source::{record, Aim, Tracing};
+use whitted::figure::source::{record, Aim, TraceOptions};
 use whitted::figure::style::{RayRole, Rgba};
 use whitted::figure::{draw, FigureKind, Lang, Options};
 use whitted::geom::ray::Ray;
@@ -22,10 +22,10 @@ const DRAWN: [FigureKind; 14] = FigureKind::ALL;
 
 /// How a kind is traced in the tests: the sampling kinds adaptively (threshold 0.1, K = 2); the
 /// grid of the pitfall fixture with its 4 × 4 × 4 cells.
-fn tracing_for(kind: FigureKind, scene: &str) -> Tracing {
-    let mut t = Tracing::SCENE;
+fn tracing_for(kind: FigureKind, scene: &str) -> TraceOptions {
+    let mut t = TraceOptions::SCENE;
     if matches!(kind, FigureKind::HeatMap | FigureKind::Adaptive) {
-        t.sampling = Tracing::ADAPTIVE;
+        t.sampling = TraceOptions::ADAPTIVE;
     }
     if kind == FigureKind::GridDda && scene.starts_with("grid_pitfall") {
         t.accel.grid = Some(vec![4, 4, 4]);
@@ -33,7 +33,7 @@ fn tracing_for(kind: FigureKind, scene: &str) -> Tracing {
     t
 }
 
-fn tracing(kind: FigureKind) -> Tracing {
+fn tracing(kind: FigureKind) -> TraceOptions {
     tracing_for(kind, "")
 }
 
@@ -127,7 +127,7 @@ fn every_kind_has_its_display_list_test() {
 fn the_ray_tree_keeps_its_words_clear_of_the_depth_limit_and_of_edges_straight_down() {
     // glass: words under the nodes, a stopped node with a shadow child below the line;
     // corridor: a deep tree, words beside the nodes, the last node stopped; the lesson's two
-    // mirrors (pixel 4): a shadow leaf and its s on the last row above the line, another below.
+    // mirrors (pixel 4): the last level's shadow leaves and their s, all above the line.
     let mirrors = || {
         let path = format!("{}/lessons/scenes/mirrors_2d.json", env!("CARGO_MANIFEST_DIR"));
         let AnyScene::Flat(scene) = load_str(&std::fs::read_to_string(path).unwrap()).unwrap() else {
@@ -143,12 +143,12 @@ fn the_ray_tree_keeps_its_words_clear_of_the_depth_limit_and_of_edges_straight_d
         };
         let tf = d.transform();
         let line = d.tagged("depth-limit").next().unwrap_or_else(|| panic!("{name}: no depth-limit line"));
-        let Shape::Line { points } = &line.shape else { panic!("{name}: the limit is a line") };
+        let Mark::Line { points } = &line.mark else { panic!("{name}: the limit is a line") };
         let y = tf.to_px(points[0]).y;
         let (mut nodes, mut words) = (0, 0);
         for item in &d.items {
-            match (&item.shape, item.tag.as_str()) {
-                (Shape::Dot { center, radius, .. }, "node" | "node:shadow" | "stopped") => {
+            match (&item.mark, item.tag.as_str()) {
+                (Mark::Dot { center, radius, .. }, "node" | "node:shadow" | "stopped") => {
                     let (c, r) = (tf.to_px(*center).y, tf.ref_px(*radius));
                     assert!(
                         (c - y).abs() > r,
@@ -157,7 +157,7 @@ fn the_ray_tree_keeps_its_words_clear_of_the_depth_limit_and_of_edges_straight_d
                     );
                     nodes += 1;
                 }
-                (Shape::Text(text), "name" | "object") => {
+                (Mark::Text(text), "name" | "object") => {
                     let placed = Drawing::place_text(text, &tf);
                     let (top, bottom) = (placed.bbox.min.y, placed.bbox.max.y);
                     assert!(
@@ -174,14 +174,14 @@ fn the_ray_tree_keeps_its_words_clear_of_the_depth_limit_and_of_edges_straight_d
         // An edge straight down runs below the word under its node, never through it.
         let boxes: Vec<_> = d
             .tagged("object")
-            .filter_map(|i| match &i.shape {
-                Shape::Text(t) => Some(Drawing::place_text(t, &tf).bbox),
+            .filter_map(|i| match &i.mark {
+                Mark::Text(t) => Some(Drawing::place_text(t, &tf).bbox),
                 _ => None,
             })
             .collect();
         let mut vertical = 0;
         for item in &d.items {
-            let Shape::Line { points } = &item.shape else { continue };
+            let Mark::Line { points } = &item.mark else { continue };
             let (a, b) = (tf.to_px(points[0]), tf.to_px(points[points.len() - 1]));
             if item.tag == "depth-limit" || (a.x - b.x).abs() > 1e-6 {
                 continue;
@@ -210,8 +210,8 @@ fn refraction_draws_the_total_internal_reflection_of_a_given_ray() {
     let texts: Vec<&str> = d
         .items
         .iter()
-        .filter_map(|i| match &i.shape {
-            Shape::Text(t) => Some(t.text.as_str()),
+        .filter_map(|i| match &i.mark {
+            Mark::Text(t) => Some(t.text.as_str()),
             _ => None,
         })
         .collect();
@@ -276,7 +276,7 @@ fn every_png_has_its_size_and_is_not_blank() {
 /// The ray roles a trace holds, read from its events.
 fn roles_of<V: Planar>(scene: &Scene<V>, pixel: (usize, usize)) -> Vec<RayRole> {
     let traces =
-        record(FigureKind::Rays, scene, "s", &Aim::Pixel(pixel.0, pixel.1), &Tracing::SCENE).unwrap();
+        record(FigureKind::Rays, scene, "s", &Aim::Pixel(pixel.0, pixel.1), &TraceOptions::SCENE).unwrap();
     let log = &traces.traces[0].log;
     let mut roles = vec![RayRole::Primary];
     if log.nodes.iter().any(|n| n.start.kind == RayKind::Reflected) {
@@ -314,7 +314,7 @@ fn a_slide_size_rays_png_shows_the_colour_of_every_ray_kind_in_its_trace() {
     }
     // The legend names exactly the roles present.
     let legend: Vec<&str> =
-        d.legend.iter().filter(|e| e.sample == Sample::Arrow).map(|e| e.label.as_str()).collect();
+        d.legend.iter().filter(|e| e.sample == LegendIcon::Arrow).map(|e| e.label.as_str()).collect();
     assert_eq!(legend.len(), roles.len(), "{legend:?} vs {roles:?}");
 }
 
@@ -367,21 +367,14 @@ fn a_figure_reads_the_trace_it_was_given() {
     let d = figure_in(&scene, "glass", FigureKind::UvMap, &Aim::Pixel(1, 5), Lang::En, SMALL);
     let (u, v) = scene.camera.pixel_center(1, 5);
     let expected = format!("({}, {})", whitted::figure::parts::num(u), whitted::figure::parts::num(v));
-    assert!(d.items.iter().any(|i| matches!(&i.shape, Shape::Text(t) if t.text == expected)), "{expected}");
+    assert!(d.items.iter().any(|i| matches!(&i.mark, Mark::Text(t) if t.text == expected)), "{expected}");
     // A pixel outside the image is an error, not a panic.
-    assert!(record(FigureKind::Rays, &scene, "glass", &Aim::Pixel(8, 0), &Tracing::SCENE).is_err());
+    assert!(record(FigureKind::Rays, &scene, "glass", &Aim::Pixel(8, 0), &TraceOptions::SCENE).is_err());
     // A kind that needs a refraction refuses a pixel without one.
     let AnyScene::Space(boxes) = load_str(&fixture("ortho_box.json")).unwrap() else { panic!("3D") };
-    let err =
-        record(FigureKind::Refraction, &boxes, "ortho_box", &Aim::Pixel(0, 0), &Tracing::SCENE).unwrap_err();
+    let err = record(FigureKind::Refraction, &boxes, "ortho_box", &Aim::Pixel(0, 0), &TraceOptions::SCENE)
+        .unwrap_err();
     assert!(err.0.contains("has no refraction or total internal reflection"), "{err}");
-}
-
-fn whitted(args: &[&str]) -> (i32, String, String) {
-    let out =
-        std::process::Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
-    let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
-    (out.status.code().unwrap_or(-1), text(&out.stdout), text(&out.stderr))
 }
 
 #[test]
@@ -391,9 +384,8 @@ fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
     assert_eq!(out.lines().count(), 14);
     assert!(out.lines().any(|l| l.starts_with("ray-tree")));
 
-    let dir = std::env::temp_dir().join(format!("whitted-figure-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let scene = format!("{}/tests/data/scenes/lens_2d.json", env!("CARGO_MANIFEST_DIR"));
+    let dir = Scratch::new();
+    let scene = fixture_path("lens_2d.json");
     let svg_path = dir.join("rays.svg");
     let (code, _, err) = whitted(&[
         "figure",
@@ -434,7 +426,8 @@ fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
 
 #[test]
 fn the_lessons_command_writes_both_languages_and_the_pages() {
-    let out = std::env::temp_dir().join(format!("whitted-lessons-{}", std::process::id()));
+    let scratch = Scratch::new();
+    let out = scratch.join("course");
     let lessons = format!("{}/lessons", env!("CARGO_MANIFEST_DIR"));
     let args = [
         "lessons",
@@ -492,13 +485,13 @@ fn every_lesson_file_reads() {
 fn assert_finite_items(d: &Drawing, what: &str) {
     let finite = |p: &DVec2| p.is_finite();
     for item in &d.items {
-        let ok = match &item.shape {
-            Shape::Line { points } | Shape::Polygon { points, .. } => points.iter().all(finite),
-            Shape::Arrow { from, to, .. } => finite(from) && finite(to),
-            Shape::Circle { center, radius, .. } => finite(center) && radius.is_finite(),
-            Shape::Dot { center, .. } => finite(center),
-            Shape::Rect { min, max, .. } => finite(min) && finite(max),
-            Shape::Text(t) => finite(&t.anchor) && finite(&t.offset),
+        let ok = match &item.mark {
+            Mark::Line { points } | Mark::Polygon { points, .. } => points.iter().all(finite),
+            Mark::Arrow { from, to, .. } => finite(from) && finite(to),
+            Mark::Circle { center, radius, .. } => finite(center) && radius.is_finite(),
+            Mark::Dot { center, .. } => finite(center),
+            Mark::Rect { min, max, .. } => finite(min) && finite(max),
+            Mark::Text(t) => finite(&t.anchor) && finite(&t.offset),
         };
         assert!(ok, "{what}: {}", item.to_text());
     }

@@ -3,25 +3,11 @@
 //! lowered limit (`--max-events`) or with requests that are refused before any work, so each case
 //! is fast.
 
-use crate::support::whitted;
+use crate::support::{whitted, SceneText, Scratch};
+use serde_json::json;
 use std::path::{Path, PathBuf};
 
-/// A fresh folder for one test (removed first, so a rerun starts clean).
-fn folder(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("whitted-hardening-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
-}
-
 const MIRRORS: &str = "tests/data/limits/mirrors_glass_2d.json";
-const CAMERA_3D: &str = r#""camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [4,4]}"#;
 
 /// Exit code 2 and the message on stderr: the shape of every refusal.
 #[track_caller]
@@ -41,8 +27,8 @@ fn a_ray_whose_first_number_is_negative_is_a_ray_not_a_flag() {
         let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
         assert_eq!(doc["tree"]["origin"], serde_json::json!([-2.0, 0.0, 0.0]));
     }
-    let dir = folder("negative-ray");
-    let svg = dir.join("rays.svg").display().to_string();
+    let dir = Scratch::new();
+    let svg = dir.arg("rays.svg");
     let (code, _, err) =
         whitted(&["figure", "rays", "scenes/flat.json", "--ray", "-0.5,3:0.2,-1", "-o", &svg]);
     assert_eq!(code, 0, "{err}");
@@ -92,16 +78,16 @@ fn an_exponential_ray_tree_is_refused_at_its_limit() {
 
 #[test]
 fn a_figure_of_an_exponential_tree_is_refused_too() {
-    let dir = folder("figure-tree");
-    let svg = dir.join("t.svg").display().to_string();
+    let dir = Scratch::new();
+    let svg = dir.arg("t.svg");
     refused(&["figure", "ray-tree", MIRRORS, "--pixel", "4", "-o", &svg], "rays; lower --depth");
     assert!(!Path::new(&svg).exists());
 }
 
 #[test]
 fn what_cannot_fit_in_memory_is_refused_before_the_work() {
-    let dir = folder("memory");
-    let png = dir.join("x.png").display().to_string();
+    let dir = Scratch::new();
+    let png = dir.arg("x.png");
     refused(
         &["render", "scenes/whitted.json", "--size", "65536x65536", "-o", &png],
         "65536x65536 is 4294967296 pixels, more than the limit of 268435456: choose a smaller --size",
@@ -130,11 +116,7 @@ fn what_cannot_fit_in_memory_is_refused_before_the_work() {
         &["figure", "rays", "scenes/whitted.json", "--size", "20000", "-o", &png],
         "canvas is more than the",
     );
-    let scene = write(
-        &dir,
-        "huge.json",
-        r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [65536,65536]}}"#,
-    );
+    let scene = dir.write("huge.json", SceneText::space3(65536, 65536).text());
     refused(&["figure", "heat-map", &scene, "-o", &png], "heat-map: 65536x65536 is 4294967296 pixels");
     refused(&["render", &scene, "-o", &png], "render: 65536x65536");
     assert!(!Path::new(&png).exists());
@@ -142,8 +124,8 @@ fn what_cannot_fit_in_memory_is_refused_before_the_work() {
 
 #[test]
 fn a_huge_grid_is_not_drawn() {
-    let dir = folder("grid");
-    let svg = dir.join("g.svg").display().to_string();
+    let dir = Scratch::new();
+    let svg = dir.arg("g.svg");
     refused(
         &["figure", "grid-dda", "lessons/scenes/pitfall.json", "--grid", "4096,4096,1", "-o", &svg],
         "more than the 256 cells an axis may draw legibly; give a smaller --grid",
@@ -166,7 +148,7 @@ fn the_runs_and_threads_are_bounded() {
 fn files_that_are_not_regular_files_are_refused() {
     refused(&["check", "/dev/zero"], "/dev/zero: cannot read the scene: not a regular file");
     refused(&["check", "/tmp"], "not a regular file");
-    let dir = folder("fifo");
+    let dir = Scratch::new();
     let fifo = dir.join("pipe.json");
     let made = std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success());
     if made {
@@ -175,24 +157,22 @@ fn files_that_are_not_regular_files_are_refused() {
     } else {
         eprintln!("mkfifo unavailable: the named-pipe case is skipped");
     }
-    let mesh = write(
-        &dir,
+    let mesh = dir.write(
         "mesh.json",
-        &format!(r#"{{{CAMERA_3D}, "objects": [{{"type": "mesh", "obj": "/dev/zero"}}]}}"#),
+        SceneText::space3(4, 4).object(json!({"type": "mesh", "obj": "/dev/zero"})).text(),
     );
     refused(&["check", &mesh], "objects[0].obj");
 }
 
 #[test]
 fn a_key_written_twice_is_an_error_naming_its_path() {
-    let dir = folder("duplicates");
-    let scene = write(
-        &dir,
-        "twice.json",
-        &format!(
-            r#"{{{CAMERA_3D}, "max_depth": 2, "objects": [{{"type": "sphere", "center": [0,0,0], "radius": 1, "radius": 2}}], "max_depth": 3}}"#
-        ),
-    );
+    let dir = Scratch::new();
+    // A key written twice has no JSON value: the fields are written as text.
+    let text = SceneText::space3(4, 4).set("/max_depth", json!(2)).text_with(&[
+        ("objects", r#"[{"type": "sphere", "center": [0,0,0], "radius": 1, "radius": 2}]"#),
+        ("max_depth", "3"),
+    ]);
+    let scene = dir.write("twice.json", text);
     let (code, _, err) = whitted(&["check", &scene]);
     assert_eq!(code, 2);
     assert!(err.contains("max_depth: written more than once in this object; keep one"), "{err}");
@@ -201,9 +181,9 @@ fn a_key_written_twice_is_an_error_naming_its_path() {
 
 #[test]
 fn a_byte_order_mark_is_skipped() {
-    let dir = folder("bom");
+    let dir = Scratch::new();
     let text = std::fs::read_to_string("scenes/whitted.json").unwrap();
-    let scene = write(&dir, "bom.json", &format!("\u{feff}{text}"));
+    let scene = dir.write("bom.json", format!("\u{feff}{text}"));
     let (code, out, err) = whitted(&["check", &scene]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("valid"), "{out}");
@@ -211,13 +191,13 @@ fn a_byte_order_mark_is_skipped() {
 
 #[test]
 fn two_lessons_with_one_name_are_an_error_naming_both_files() {
-    let dir = folder("lesson-names");
+    let dir = Scratch::new();
     let lessons = dir.join("lessons");
-    std::fs::create_dir_all(&lessons).unwrap();
+    std::fs::create_dir(&lessons).unwrap();
     let text = std::fs::read_to_string("lessons/01-ray-casting.json").unwrap();
     std::fs::write(lessons.join("01-a.json"), &text).unwrap();
     std::fs::write(lessons.join("02-b.json"), &text).unwrap();
-    let out = dir.join("out").display().to_string();
+    let out = dir.arg("out");
     let (code, _, err) = whitted(&["lessons", "--lessons", &lessons.display().to_string(), "--out", &out]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("02-b.json: name: `ray-casting` is already the name of"), "{err}");
@@ -268,7 +248,7 @@ fn every_documented_example_runs_as_written() {
     let examples = documented_examples(root);
     assert!(examples.len() >= 10, "the README's examples were not found: {examples:?}");
     // A folder of its own, with the repository's inputs linked in, so outputs land there.
-    let dir = folder("examples");
+    let dir = Scratch::new();
     for input in ["scenes", "lessons", "tests"] {
         std::os::unix::fs::symlink(root.join(input), dir.join(input)).unwrap();
     }
@@ -277,7 +257,7 @@ fn every_documented_example_runs_as_written() {
     for (file, line) in &examples {
         let out = std::process::Command::new("sh")
             .args(["-c", &format!("set -e; {line}")])
-            .current_dir(&dir)
+            .current_dir(dir.path())
             .env("PATH", &path)
             .output()
             .unwrap();
@@ -374,9 +354,8 @@ mod mutated {
                 let path = pick.get(&all).clone();
                 *at_mut(&mut doc, &path) = value;
             }
-            let dir = std::env::temp_dir().join(format!("whitted-mutated-{}", std::process::id()));
-            std::fs::create_dir_all(&dir).unwrap();
-            let scene = write(&dir, "scene.json", &doc.to_string());
+            let dir = Scratch::new();
+            let scene = dir.write("scene.json", doc.to_string());
             let (png, svg) = (dir.join("out.png"), dir.join("out.svg"));
             let (png_s, svg_s) = (png.display().to_string(), svg.display().to_string());
             let mut args: Vec<&str> = match command {
@@ -414,19 +393,19 @@ const SCENE_MEMORY_MULTIPLE: u64 = 6;
 #[test]
 fn a_scene_takes_a_small_multiple_of_its_size() {
     use std::fmt::Write;
-    let dir = folder("scene-memory");
-    let mut text = String::from(
-        r#"{"camera": {"eye": [0,0,10], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [8,8]}, "objects": ["#,
-    );
+    let dir = Scratch::new();
+    // 400 000 spheres written as text: the file's size is what the limit is measured against.
+    let mut objects = String::from("[");
     for k in 0..400_000u32 {
         let x = f64::from(k % 1000) / 100.0 - 5.0;
         let y = f64::from(k / 1000) / 40.0 - 5.0;
         let sep = if k == 0 { "" } else { "," };
-        write!(text, r#"{sep}{{"type":"sphere","center":[{x:.6},{y:.6},-1.000000],"radius":0.012345}}"#)
+        write!(objects, r#"{sep}{{"type":"sphere","center":[{x:.6},{y:.6},-1.000000],"radius":0.012345}}"#)
             .unwrap();
     }
-    text.push_str("]}");
-    let scene = write(&dir, "many.json", &text);
+    objects.push(']');
+    let text = SceneText::space3(8, 8).eye(json!([0, 0, 10])).text_with(&[("objects", &objects)]);
+    let scene = dir.write("many.json", &text);
     let size = text.len() as u64;
     // ulimit -v counts the program's mapped code and libraries too: 64 MiB for those.
     let limit_kib = (SCENE_MEMORY_MULTIPLE * size + (64 << 20)) >> 10;

@@ -3,8 +3,8 @@
 
 use std::path::Path;
 use whitted::accel::AccelOptions;
-use whitted::canvas::{Drawing, Shape};
-use whitted::figure::source::Tracing;
+use whitted::canvas::{Drawing, Mark};
+use whitted::figure::source::TraceOptions;
 use whitted::figure::{Lang, Options};
 use whitted::lesson;
 use whitted::request::figure::{figure, Request};
@@ -33,10 +33,10 @@ fn lesson_figures(lang: Lang) -> Vec<(String, Drawing)> {
                     pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))),
                     ray: spec.ray.clone(),
                 },
-                tracing: Tracing {
+                tracing: TraceOptions {
                     depth: spec.depth,
                     sampling: spec.sampling.unwrap_or(Sampling::Center),
-                    accel: AccelOptions { grid: spec.grid.clone(), ..Tracing::SCENE.accel },
+                    accel: AccelOptions { grid: spec.grid.clone(), ..TraceOptions::SCENE.accel },
                 },
                 opts: Options::slide(lang),
             };
@@ -52,8 +52,8 @@ fn lesson_figures(lang: Lang) -> Vec<(String, Drawing)> {
 
 /// The text of item `k`.
 fn text_of(d: &Drawing, k: usize) -> String {
-    match &d.items[k].shape {
-        Shape::Text(t) => format!("{:?} [{}]", t.text, d.items[k].tag),
+    match &d.items[k].mark {
+        Mark::Text(t) => format!("{:?} [{}]", t.text, d.items[k].tag),
         _ => String::new(),
     }
 }

@@ -4,7 +4,7 @@
 //! box), so that every change of wording or number is a reviewed diff; the names it shares with
 //! the figures, each step's place in the ray tree, `--object` and `whitted step` over a pipe.
 
-use crate::support::{fixture, fixture_path, whitted};
+use crate::support::{fixture, fixture_path, whitted, whitted_with_input, Scratch};
 use whitted::accel::AccelKind;
 use whitted::bounds::VolumeKind;
 use whitted::doc::narrate::Lang;
@@ -172,27 +172,17 @@ fn object_picks_the_pixel_that_shows_it() {
     );
     let (code, _, err) = whitted(&["trace", &glass, "--object", "glass", "--pixel", "1,1"]);
     assert_eq!(code, 2, "{err}");
-    let svg = std::env::temp_dir().join(format!("whitted-object-{}.svg", std::process::id()));
+    let dir = Scratch::new();
     let (code, _, err) =
-        whitted(&["figure", "rays", &glass, "--object", "mirror", "-o", &svg.display().to_string()]);
-    let _ = std::fs::remove_file(&svg);
+        whitted(&["figure", "rays", &glass, "--object", "mirror", "-o", &dir.arg("object.svg")]);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("--object mirror: --pixel "), "{err}");
 }
 
 #[test]
 fn step_over_a_pipe_echoes_the_answers_and_says_where_each_step_stands() {
-    use std::io::Write;
     let glass = fixture_path("glass.json");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_whitted"))
-        .args(["step", &glass, "--pixel", "4,3", "--lang", "ro"])
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    child.stdin.take().unwrap().write_all(b"44\nb\nq\n").unwrap();
-    let out = child.wait_with_output().unwrap();
-    let shown = String::from_utf8_lossy(&out.stdout);
+    let (_, shown, _) = whitted_with_input(&["step", &glass, "--pixel", "4,3", "--lang", "ro"], "44\nb\nq\n");
     assert!(shown.contains("[1/84] > 44\n── P → T₁ → R₂ → R₃ @ glass, nivelul 4\n"), "{shown}");
     assert!(shown.contains("[44/84] > b\n") && shown.contains("[43/84] > q\n"), "{shown}");
     assert!(shown.contains("── pixelul (4, 3)\n1. Pixelul"), "{shown}");

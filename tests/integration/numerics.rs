@@ -70,8 +70,7 @@ fn k1_overflow_underflow_and_magnitude() {
 
 #[test]
 fn f4_index_extremes() {
-    let ior =
-        |v: f64| errors(&SceneText::space3(2, 2).set("/materials", json!({"glass": {"ior": v}})).text());
+    let ior = |v: f64| errors(&SceneText::space3(2, 2).material("glass", json!({"ior": v})).text());
     assert_eq!(ior(0.0), vec!["materials.glass.ior: must be > 0, got 0"]);
     assert_eq!(ior(-1.5), vec!["materials.glass.ior: must be > 0, got -1.5"]);
     // ior = 1e6 is valid: entering, T ≈ −N.

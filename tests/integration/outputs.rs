@@ -3,9 +3,9 @@
 //! into one folder are kept apart by a lock; an output that is the input scene, that has an
 //! unknown extension, or whose folder is missing or not writable is refused before the work.
 
-use crate::support::{fixture_path, whitted};
+use crate::support::{fixture_path, whitted, Scratch};
 use std::os::unix::process::ExitStatusExt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 
 /// The old contents every test puts in the destination before the tool runs.
@@ -19,14 +19,6 @@ const FILE_LIMIT_BLOCKS: u32 = 2;
 const LOCK: &str = ".whitted-lessons.lock";
 /// The signal of a write beyond `ulimit -f` (Linux).
 const SIGXFSZ: i32 = 25;
-
-/// A fresh, empty folder of this test.
-fn folder(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("whitted-outputs-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn s(path: &Path) -> &str {
     path.to_str().unwrap()
@@ -57,7 +49,8 @@ fn whitted_with_file_limit(args: &[&str], ignore: bool) -> std::process::Output 
 
 #[test]
 fn a_write_killed_or_failing_midway_leaves_the_old_file() {
-    let dir = folder("midway");
+    let scratch = Scratch::new();
+    let dir = scratch.path();
     let glass = fixture_path("glass.json");
     // The whole PNG is larger than the limit, so the limited write stops inside it.
     let whole = dir.join("whole.png");
@@ -92,12 +85,12 @@ fn a_write_killed_or_failing_midway_leaves_the_old_file() {
     let (code, _, err) = whitted(&["render", &glass, "--size", SIZE, "-o", s(&dest)]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(std::fs::read(&dest).unwrap(), std::fs::read(&whole).unwrap());
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn a_destination_that_is_a_folder_is_refused_before_the_work() {
-    let dir = folder("is-folder");
+    let scratch = Scratch::new();
+    let dir = scratch.path();
     let dest = dir.join("picture.png");
     std::fs::create_dir(&dest).unwrap();
     std::fs::write(dest.join("keep.txt"), OLD).unwrap();
@@ -110,15 +103,15 @@ fn a_destination_that_is_a_folder_is_refused_before_the_work() {
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(err.contains(s(&dest)) && err.contains("is a folder"), "{args:?}: {err}");
         assert_eq!(std::fs::read(dest.join("keep.txt")).unwrap(), OLD);
-        assert_eq!(temporaries(&dir), Vec::<String>::new());
+        assert_eq!(temporaries(dir), Vec::<String>::new());
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn a_replaced_file_keeps_its_permissions() {
     use std::os::unix::fs::PermissionsExt;
-    let dir = folder("mode");
+    let scratch = Scratch::new();
+    let dir = scratch.path();
     let dest = dir.join("private.png");
     std::fs::write(&dest, OLD).unwrap();
     set_mode(&dest, 0o640);
@@ -126,12 +119,12 @@ fn a_replaced_file_keeps_its_permissions() {
     assert_eq!(code, 0, "{err}");
     assert!(std::fs::read(&dest).unwrap().starts_with(b"\x89PNG"));
     assert_eq!(std::fs::metadata(&dest).unwrap().permissions().mode() & 0o777, 0o640);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn a_symlinked_output_is_written_through_the_link() {
-    let dir = folder("symlink");
+    let scratch = Scratch::new();
+    let dir = scratch.path();
     let real = dir.join("real.png");
     std::fs::write(&real, OLD).unwrap();
     let link = dir.join("link.png");
@@ -141,12 +134,12 @@ fn a_symlinked_output_is_written_through_the_link() {
     assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "the link was replaced");
     let bytes = std::fs::read(&real).unwrap();
     assert!(bytes.starts_with(b"\x89PNG"), "the link's target holds the new PNG");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn the_input_scene_is_never_an_output() {
-    let dir = folder("scene-out");
+    let scratch = Scratch::new();
+    let dir = scratch.path();
     let scene = dir.join("scene.json");
     let text = std::fs::read(fixture_path("glass.json")).unwrap();
     std::fs::write(&scene, &text).unwrap();
@@ -157,14 +150,14 @@ fn the_input_scene_is_never_an_output() {
     std::os::unix::fs::symlink(&scene, &link_png).unwrap();
     let link_svg = dir.join("link.svg");
     std::os::unix::fs::symlink(&scene, &link_svg).unwrap();
-    let relative = format!("{}/../{}/scene.json", s(&dir), dir.file_name().unwrap().to_str().unwrap());
+    let relative = format!("{}/../{}/scene.json", s(dir), dir.file_name().unwrap().to_str().unwrap());
     let cases: Vec<Vec<&str>> = vec![
         vec!["render", s(&scene), "-o", s(&scene)],
         vec!["render", s(&scene), "-o", &relative],
         vec!["render", s(&scene), "-o", s(&link_png)],
         vec!["render", s(&png_named), "-o", s(&png_named)],
         vec!["figure", "rays", s(&scene), "--size", "320x180", "-o", s(&link_svg)],
-        vec!["tradeoff", s(&png_named), "--size", "4x3", "--runs", "1", "--out", s(&dir)],
+        vec!["tradeoff", s(&png_named), "--size", "4x3", "--runs", "1", "--out", s(dir)],
     ];
     for args in &cases {
         let (code, out, err) = whitted(args);
@@ -174,12 +167,12 @@ fn the_input_scene_is_never_an_output() {
         assert_eq!(std::fs::read(&scene).unwrap(), text, "{args:?}: the scene was overwritten");
         assert_eq!(std::fs::read(&png_named).unwrap(), text, "{args:?}: the scene was overwritten");
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn an_unknown_extension_is_refused_as_figure_refuses_it() {
-    let dir = folder("extension");
+    let scratch = Scratch::new();
+    let dir = scratch.path();
     let glass = fixture_path("glass.json");
     let jpg = dir.join("x.jpg");
     let (code, _, err) = whitted(&["render", &glass, "-o", s(&jpg)]);
@@ -192,12 +185,12 @@ fn an_unknown_extension_is_refused_as_figure_refuses_it() {
     // A device takes any bytes, whatever its name.
     let (code, _, err) = whitted(&["render", &glass, "-o", "/dev/null"]);
     assert_eq!(code, 0, "{err}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn a_missing_or_unwritable_output_folder_is_reported_before_the_work() {
-    let dir = folder("no-folder");
+    let scratch = Scratch::new();
+    let dir = scratch.path();
     let glass = fixture_path("glass.json");
     let missing = dir.join("missing");
     let file = dir.join("file.txt");
@@ -232,7 +225,6 @@ fn a_missing_or_unwritable_output_folder_is_reported_before_the_work() {
         assert!(out.is_empty(), "{out}");
     }
     set_mode(&locked, 0o755);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 fn set_mode(path: &Path, mode: u32) {
@@ -278,25 +270,26 @@ fn assert_whole(dir: &Path) -> usize {
 
 #[test]
 fn a_lessons_folder_in_use_is_refused_naming_the_lock() {
-    let out = folder("lessons-lock");
+    let scratch = Scratch::new();
+    let out = scratch.path();
     let lock = std::fs::File::create(out.join(LOCK)).unwrap();
     lock.try_lock().unwrap();
-    let refused = lessons_command(&out).output().unwrap();
+    let refused = lessons_command(out).output().unwrap();
     let err = String::from_utf8_lossy(&refused.stderr);
     assert_eq!(refused.status.code(), Some(2), "{err}");
     assert!(err.contains(s(&out.join(LOCK))) && err.contains("in use"), "{err}");
     assert!(!out.join("en").exists(), "the refused run wrote");
     lock.unlock().unwrap();
-    let done = lessons_command(&out).output().unwrap();
+    let done = lessons_command(out).output().unwrap();
     assert!(done.status.success(), "{}", String::from_utf8_lossy(&done.stderr));
-    assert!(assert_whole(&out) > 0);
-    let _ = std::fs::remove_dir_all(&out);
+    assert!(assert_whole(out) > 0);
 }
 
 #[test]
 fn two_concurrent_lessons_runs_never_tear_a_file() {
-    let out = folder("lessons-two");
-    let spawn = || lessons_command(&out).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    let scratch = Scratch::new();
+    let out = scratch.path();
+    let spawn = || lessons_command(out).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
     let (first, second) = (spawn(), spawn());
     let outcomes = [first.wait_with_output().unwrap(), second.wait_with_output().unwrap()];
     let mut succeeded = 0;
@@ -310,7 +303,6 @@ fn two_concurrent_lessons_runs_never_tear_a_file() {
         }
     }
     assert!(succeeded >= 1, "both runs were refused");
-    assert!(assert_whole(&out) > 0);
+    assert!(assert_whole(out) > 0);
     assert_eq!(temporaries(&out.join("en")), Vec::<String>::new());
-    let _ = std::fs::remove_dir_all(&out);
 }

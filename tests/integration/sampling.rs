@@ -2,8 +2,10 @@
 //! sampling, sharing across rows, jobs of rows and threads, the area-weighted mean by hand, the trace
 //! document of a sampled pixel, and the options' validation.
 
-use crate::support::{assert_finite, events, f, fixture, fixture_path, scene2, scene3, whitted};
-use serde_json::Value;
+use crate::support::{
+    assert_finite, events, f, fixture, fixture_path, scene2, scene3, whitted, SceneText, Scratch,
+};
+use serde_json::{json, Value};
 use whitted::accel::{Accel, AccelKind};
 use whitted::doc::round::round_floats;
 use whitted::doc::samples::sampled_document;
@@ -121,9 +123,10 @@ fn infinite_threshold_and_level_zero_equal_corners_bit_for_bit() {
 
 #[test]
 fn h1_a_uniform_image_never_splits() {
-    let text = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-0.5,"t":0.5},
-        "resolution": [7, 5]}, "background": [0.2, 0.4, 0.6]}"#;
-    let scene = scene3(text);
+    let scene = SceneText::space3(7, 5)
+        .window(json!({"l": -1, "r": 1, "b": -0.5, "t": 0.5}))
+        .set("/background", json!([0.2, 0.4, 0.6]))
+        .space();
     let r = render_in(&scene, adaptive(0.1, 3), 2);
     assert_eq!(r.stats.rays.primary, 8 * 6);
     assert!(r.image.pixels.iter().all(|c| *c == Rgb([0.2, 0.4, 0.6])));
@@ -163,14 +166,17 @@ fn h1_bad_threshold_or_level_is_refused() {
 /// An orthographic camera looking down −z at the window [−1, 1]²: u = x. A box fills x ≤ 0.3 with
 /// the ambient colour ka (no lights, black background), so pixel (1, j), u ∈ [0, 1], has one
 /// sharp vertical edge at u = 0.3.
-const EDGE: &str = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "projection": "orthographic",
-    "window": {"l":-1,"r":1,"b":-1,"t":1}, "resolution": [2, 2]},
-  "objects": [{"type": "box", "min": [-10,-10,-1], "max": [0.3,10,0],
-               "material": {"ka": [0.8, 0.4, 0.2], "kd": 0}}]}"#;
+fn edge() -> Scene<glam::DVec3> {
+    SceneText::space3(2, 2)
+        .set("/camera/projection", json!("orthographic"))
+        .object(json!({"type": "box", "min": [-10, -10, -1], "max": [0.3, 10, 0],
+            "material": {"ka": [0.8, 0.4, 0.2], "kd": 0}}))
+        .space()
+}
 
 #[test]
 fn one_pixel_is_the_area_weighted_mean_of_its_leaves_by_hand() {
-    let scene = scene3(EDGE);
+    let scene = edge();
     let ka = Rgb([0.8, 0.4, 0.2]);
     // The spread across the edge is 0.8 (red) ≥ 0.5: squares whose corners straddle u = 0.3
     // split; the others are uniform leaves.
@@ -239,11 +245,11 @@ fn threads_do_not_change_the_image_or_the_counts() {
 
 #[test]
 fn one_and_two_threads_write_the_same_png() {
-    let dir = std::env::temp_dir();
+    let dir = Scratch::new();
     let glass = fixture_path("glass.json");
     let mut bytes = Vec::new();
     for threads in ["1", "2"] {
-        let out = dir.join(format!("whitted-aa-{}-{threads}.png", std::process::id()));
+        let out = dir.join(format!("aa-{threads}.png"));
         let out_s = out.display().to_string();
         let args = [
             "render",
@@ -342,7 +348,7 @@ fn the_sampled_trace_document() {
 #[test]
 fn snapshot_of_one_adaptive_pixel() {
     // The edge scene: 9 samples, 1 level-0 square split into 4, two of them across the edge.
-    let (_, doc) = trace_sampled(&scene3(EDGE), adaptive(0.5, 1), 1, 0);
+    let (_, doc) = trace_sampled(&edge(), adaptive(0.5, 1), 1, 0);
     assert_finite(&doc);
     insta::assert_json_snapshot!("adaptive_edge_pixel", round_floats(&doc, 9));
 }

@@ -2,10 +2,10 @@
 //! legend entry and its own item tag, shown here on the lesson scene that teaches it.
 
 use whitted::canvas::svg;
-use whitted::canvas::{Drawing, Shape};
+use whitted::canvas::{Drawing, Mark};
 use whitted::figure::labels::Label;
 use whitted::figure::plane::Planar;
-use whitted::figure::source::{record, Aim, Tracing};
+use whitted::figure::source::{record, Aim, TraceOptions};
 use whitted::figure::{draw, FigureKind, Lang, Options};
 use whitted::record::event::Event;
 use whitted::sample::Sampling;
@@ -26,7 +26,7 @@ fn drawn<V: Planar>(
     name: &str,
     kind: FigureKind,
     aim: &Aim<V>,
-    tracing: &Tracing,
+    tracing: &TraceOptions,
 ) -> Drawing {
     let traces = record(kind, scene, name, aim, tracing).unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
     let opts = Options { lang: Lang::En, width: 1920, height: 1080 };
@@ -51,7 +51,7 @@ fn tagged(d: &Drawing, prefix: &str) -> usize {
 #[test]
 fn the_bvh_lesson_shows_a_node_skipped_beyond_the_nearest_hit() {
     let AnyScene::Flat(scene) = lesson_scene("groups_2d.json") else { panic!("2D") };
-    let d = drawn(&scene, "groups_2d", FigureKind::Bvh, &Aim::Auto, &Tracing::SCENE);
+    let d = drawn(&scene, "groups_2d", FigureKind::Bvh, &Aim::Auto, &TraceOptions::SCENE);
     assert!(has_legend(&d, Label::NodeSkipped));
     assert!(tagged(&d, "node-skipped:") >= 1);
     // Its subtree is not reached because of it, and says so; no node there is called missed.
@@ -71,7 +71,7 @@ fn a_skipped_node_starts_beyond_the_best_hit_and_is_never_opened() {
         let kind = if structure == "bvh" { FigureKind::Bvh } else { FigureKind::Octree };
         let mut skips = 0;
         for i in 0..scene.camera.nx {
-            let traces = record(kind, &scene, name, &Aim::Pixel(i, 0), &Tracing::SCENE).expect("traced");
+            let traces = record(kind, &scene, name, &Aim::Pixel(i, 0), &TraceOptions::SCENE).expect("traced");
             let log = &traces.traces[0].log;
             let events: Vec<&Event<_>> = log.events.iter().map(|l| &l.event).collect();
             for (k, e) in events.iter().enumerate() {
@@ -90,8 +90,8 @@ fn a_skipped_node_starts_beyond_the_best_hit_and_is_never_opened() {
 }
 
 /// An adaptive tracing of `K = max_level` and `threshold`, or the lecture's uniform corners.
-fn sampled(sampling: Sampling) -> Tracing {
-    let mut t = Tracing::SCENE;
+fn sampled(sampling: Sampling) -> TraceOptions {
+    let mut t = TraceOptions::SCENE;
     t.sampling = sampling;
     t
 }
@@ -132,12 +132,12 @@ fn an_opaque_occluder_and_a_transparent_one_draw_different_shadow_rays() {
     // Pixel 15: the one the shadows lesson's figure picks, whose two shadow rays are stopped
     // one by the glass and one by the block.
     for kind in [FigureKind::Shadows, FigureKind::Rays] {
-        let d = drawn(&scene, "shadows_2d", kind, &Aim::Pixel(15, 0), &Tracing::SCENE);
+        let d = drawn(&scene, "shadows_2d", kind, &Aim::Pixel(15, 0), &TraceOptions::SCENE);
         assert!(has_legend(&d, Label::BlockedShadowRay), "{kind:?}");
         assert!(has_legend(&d, Label::OpaqueShadowRay), "{kind:?}");
         assert!(tagged(&d, "ray:shadow-opaque") >= 1, "{kind:?}");
         assert!(tagged(&d, "ray:shadow-blocked") >= 1, "{kind:?}");
-        let style = |tag: &str| d.items.iter().find(|i| i.tag == tag).map(|i| i.style).expect(tag);
+        let style = |tag: &str| d.items.iter().find(|i| i.tag == tag).map(|i| i.pen).expect(tag);
         let (opaque, glass) = (style("ray:shadow-opaque"), style("ray:shadow-blocked"));
         assert!(opaque.color != glass.color && opaque.dash != glass.dash, "{kind:?}");
     }
@@ -150,14 +150,14 @@ fn the_ray_tree_shows_an_uncast_shadow_leaf_where_the_light_is_behind() {
     else {
         panic!("3D")
     };
-    let d = drawn(&scene, "whitted", FigureKind::RayTree, &Aim::Auto, &Tracing::SCENE);
+    let d = drawn(&scene, "whitted", FigureKind::RayTree, &Aim::Auto, &TraceOptions::SCENE);
     assert!(has_legend(&d, Label::ShadowNotCast));
     assert!(tagged(&d, "ray:shadow-not-cast") >= 1);
     // One shadow leaf per light at every node that hit something, cast or not.
     let hits = d.items.iter().filter(|i| i.tag == "node").count()
         - d.items
             .iter()
-            .filter(|i| i.tag == "object" && matches!(&i.shape, Shape::Text(t) if t.text == "background"))
+            .filter(|i| i.tag == "object" && matches!(&i.mark, Mark::Text(t) if t.text == "background"))
             .count();
     assert_eq!(tagged(&d, "node:shadow"), hits * scene.lights.len());
 }
@@ -165,15 +165,15 @@ fn the_ray_tree_shows_an_uncast_shadow_leaf_where_the_light_is_behind() {
 #[test]
 fn the_last_levels_shadow_leaves_sit_above_the_depth_limit() {
     let AnyScene::Flat(scene) = lesson_scene("mirrors_2d.json") else { panic!("2D") };
-    let d = drawn(&scene, "mirrors_2d", FigureKind::RayTree, &Aim::Pixel(4, 0), &Tracing::SCENE);
+    let d = drawn(&scene, "mirrors_2d", FigureKind::RayTree, &Aim::Pixel(4, 0), &TraceOptions::SCENE);
     let tf = d.transform();
     let line = d.tagged("depth-limit").next().expect("a depth limit");
-    let Shape::Line { points } = &line.shape else { panic!("a line") };
+    let Mark::Line { points } = &line.mark else { panic!("a line") };
     let limit = tf.to_px(points[0]).y;
     let leaves: Vec<f64> = d
         .tagged("node:shadow")
-        .filter_map(|i| match &i.shape {
-            Shape::Dot { center, radius, .. } => Some(tf.to_px(*center).y + tf.ref_px(*radius)),
+        .filter_map(|i| match &i.mark {
+            Mark::Dot { center, radius, .. } => Some(tf.to_px(*center).y + tf.ref_px(*radius)),
             _ => None,
         })
         .collect();

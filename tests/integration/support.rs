@@ -1,8 +1,10 @@
 //! Helpers shared by the integration tests: write a scene ([`SceneText`]) or edit a fixture
 //! ([`fixture_with`]), load it, trace a pixel or a ray with `EventLog`, build the trace document,
-//! run the `whitted` binary.
+//! run the `whitted` binary ([`whitted`], [`whitted_with_input`]) on files in a [`Scratch`]
+//! folder, removed when the test ends.
 
 use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
 use whitted::accel::{Accel, AccelKind};
 use whitted::doc::{trace_document, TraceTarget};
 use whitted::geom::ray::Ray;
@@ -85,15 +87,37 @@ impl SceneText {
         map.unwrap_or_else(|| panic!("no object at {parent}")).insert(key.to_owned(), value);
         self
     }
+    /// Sets the camera's eye.
+    #[must_use]
+    pub fn eye(self, eye: Value) -> Self {
+        self.set("/camera/eye", eye)
+    }
+    /// Sets the camera's window (`{"l", "r"}` in 2D, `{"l", "r", "b", "t"}` in 3D).
+    #[must_use]
+    pub fn window(self, window: Value) -> Self {
+        self.set("/camera/window", window)
+    }
     /// Appends an object.
     #[must_use]
     pub fn object(self, object: Value) -> Self {
         self.push("objects", object)
     }
+    /// Appends objects.
+    #[must_use]
+    pub fn objects(self, objects: impl IntoIterator<Item = Value>) -> Self {
+        objects.into_iter().fold(self, Self::object)
+    }
     /// Appends a light.
     #[must_use]
     pub fn light(self, light: Value) -> Self {
         self.push("lights", light)
+    }
+    /// Names a material (`"materials": {NAME: …}`), for objects that refer to it by name.
+    #[must_use]
+    pub fn material(mut self, name: &str, material: Value) -> Self {
+        let map = self.0.as_object_mut().unwrap().entry("materials").or_insert_with(|| json!({}));
+        map.as_object_mut().unwrap().insert(name.to_owned(), material);
+        self
     }
     fn push(mut self, list: &str, item: Value) -> Self {
         let items = self.0.as_object_mut().unwrap().entry(list).or_insert_with(|| json!([]));
@@ -103,6 +127,19 @@ impl SceneText {
     /// The scene's JSON text.
     pub fn text(&self) -> String {
         self.0.to_string()
+    }
+    /// The scene's JSON text with more top-level fields written as given, after the others: for
+    /// what a JSON value cannot hold (`1e400`, a key written twice) or a text too large to build
+    /// as values. Each raw text is pasted as it is, valid JSON or not.
+    pub fn text_with(&self, raw: &[(&str, &str)]) -> String {
+        let mut text = self.text();
+        let end = text.pop();
+        assert_eq!(end, Some('}'), "a scene is an object");
+        for (key, value) in raw {
+            text.push_str(&format!(",{}:{value}", Value::from(*key)));
+        }
+        text.push('}');
+        text
     }
     /// The validated 3D scene.
     pub fn space(&self) -> Scene<glam::DVec3> {
@@ -154,7 +191,7 @@ pub fn assert_finite(doc: &Value) {
     }
 }
 
-/// Runs the `whitted` binary: (exit code, stdout, stderr).
+/// Runs the `whitted` binary: (exit code, stdout, stderr). Its files go in a [`Scratch`] folder.
 pub fn whitted(args: &[&str]) -> (i32, String, String) {
     let out =
         std::process::Command::new(env!("CARGO_BIN_EXE_whitted")).args(args).output().expect("run whitted");
@@ -163,4 +200,54 @@ pub fn whitted(args: &[&str]) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stdout).into_owned(),
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
+}
+
+/// Runs the `whitted` binary with `input` on its stdin (the answers `whitted step` reads):
+/// (exit code, stdout, stderr).
+pub fn whitted_with_input(args: &[&str], input: &str) -> (i32, String, String) {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run whitted");
+    child.stdin.take().unwrap().write_all(input.as_bytes()).expect("write whitted's input");
+    let out = child.wait_with_output().expect("run whitted");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A folder of one test's own, for the scenes it writes and the files the binary writes: fresh
+/// (a rerun never finds an earlier run's files) and removed when dropped, also when the test
+/// fails (`tempfile::TempDir`).
+pub struct Scratch(tempfile::TempDir);
+
+impl Scratch {
+    /// A new empty folder in the system's temporary folder.
+    pub fn new() -> Self {
+        Self(tempfile::Builder::new().prefix("whitted-test-").tempdir().expect("a temporary folder"))
+    }
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        self.0.path()
+    }
+    /// The path of `name` in the folder (`name` may hold `/`).
+    pub fn join(&self, name: impl AsRef<Path>) -> PathBuf {
+        self.path().join(name)
+    }
+    /// The path of `name` in the folder as an argument for the binary.
+    pub fn arg(&self, name: &str) -> String {
+        self.join(name).to_str().expect("a UTF-8 temporary path").to_owned()
+    }
+    /// Writes `name` in the folder and returns its path as an argument.
+    pub fn write(&self, name: &str, contents: impl AsRef<[u8]>) -> String {
+        std::fs::write(self.join(name), contents).unwrap_or_else(|e| panic!("{name}: {e}"));
+        self.arg(name)
+    }
 }

@@ -3,7 +3,7 @@
 //! many pixels of the lesson scenes, and the events its steps name lie in the trace document.
 //! (`web/test/identical.mjs` holds the compiled module to the same outputs.)
 
-use crate::support::{edited, whitted};
+use crate::support::{edited, whitted, SceneText, Scratch};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
@@ -142,8 +142,7 @@ fn options_reach_the_trace_as_the_command_line_gives_them() {
 
 #[test]
 fn figure_svgs_equal_the_command_line() {
-    let dir = std::env::temp_dir().join(format!("whitted-web-figures-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new();
     for path in scenes() {
         let scene = text(&path);
         let (dim, w, h) = size(&scene);
@@ -191,13 +190,11 @@ fn figure_svgs_equal_the_command_line() {
         svg,
         std::fs::read_to_string(&out).unwrap().replace(path.to_str().unwrap(), "scenes/whitted.json")
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn a_render_gives_the_pixels_of_the_png() {
-    let dir = std::env::temp_dir().join(format!("whitted-web-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new();
     for (scene, options, flags) in [
         ("scenes/whitted.json", json!({"size": [64]}), vec!["--size", "64"]),
         (
@@ -231,17 +228,17 @@ fn a_render_gives_the_pixels_of_the_png() {
         }
         assert_eq!(ours, theirs, "{scene}");
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn bad_input_is_refused_with_the_command_line_words() {
-    let dir = std::env::temp_dir().join(format!("whitted-web-errors-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let bad = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1},
-        "resolution": [2,2]}, "max_depth": -1, "objects": [{"type": "sphere", "center": [0,0,0], "radius": -1}]}"#;
+    let dir = Scratch::new();
+    let bad = SceneText::space3(2, 2)
+        .set("/max_depth", json!(-1))
+        .object(json!({"type": "sphere", "center": [0, 0, 0], "radius": -1}))
+        .text();
     let file = dir.join("bad.json");
-    std::fs::write(&file, bad).unwrap();
+    std::fs::write(&file, &bad).unwrap();
     let (code, answer) = call(&json!({"op": "check", "scene": bad}));
     let (status, _, err) = whitted(&["check", file.to_str().unwrap()]);
     assert_eq!((code, status), (2, 2));
@@ -311,13 +308,14 @@ fn bad_input_is_refused_with_the_command_line_words() {
         assert_eq!(answer.code, 2, "{broken}: {}", answer.json);
         assert!(answer.json.starts_with(r#"{"errors":["#), "{}", answer.json);
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn a_mesh_is_read_from_the_request_objs() {
-    let scene = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "window": {"l":-1,"r":1,"b":-1,"t":1},
-        "resolution": [4,4]}, "objects": [{"type": "mesh", "obj": "tri.obj"}], "lights": [{"position": [0, 0, 5]}]}"#;
+    let scene = SceneText::space3(4, 4)
+        .object(json!({"type": "mesh", "obj": "tri.obj"}))
+        .light(json!({"position": [0, 0, 5]}))
+        .text();
     let obj = "v -10 -10 0\nv 10 -10 0\nv 0 10 0\nf 1 2 3\n";
     let (code, answer) =
         call(&json!({"op": "trace", "scene": scene, "objs": {"tri.obj": obj}, "target": {"pixel": [2, 2]}}));

@@ -10,7 +10,7 @@ use whitted::canvas::svg;
 use whitted::clock::Stopwatch;
 use whitted::doc::narrate::Lang;
 use whitted::doc::TraceTarget;
-use whitted::figure::source::Tracing;
+use whitted::figure::source::TraceOptions;
 use whitted::figure::FigureKind;
 use whitted::record::DEFAULT_LIMIT;
 use whitted::request::figure::{default_aa, figure, structure, Request};
@@ -335,7 +335,7 @@ fn figure_op(f: &Fields<'_>) -> Result<Answer, Failure> {
     let request = Request {
         kind,
         target,
-        tracing: Tracing {
+        tracing: TraceOptions {
             depth: options.depth,
             sampling: chosen.sampling,
             accel: options.accel.options(dim(&scene))?,

@@ -10,7 +10,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, num, rgb_text, swatch, text_column};
 use crate::figure::plane::Planar;
@@ -58,25 +58,25 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for level in (0..=deepest).filter(|_| !pixel.uniform) {
         d.legend_entry(
             &format!("{} {level}", input.t(Label::Level)),
-            Style::NONE,
-            Sample::Swatch(shade(level)),
+            Pen::NONE,
+            LegendIcon::Swatch(shade(level)),
         );
     }
-    d.legend_entry(input.t(Label::SampleTraced), Style::NONE, Sample::Dot(style::BLACK));
+    d.legend_entry(input.t(Label::SampleTraced), Pen::NONE, LegendIcon::Dot(style::BLACK));
     // A pixel no square split (threshold ∞, or K = 0) reads nothing again: no ring to explain.
     if pixel.samples.iter().any(|s| s.reused) {
-        d.legend_entry(input.t(Label::SampleReused), reused_ring(), Sample::Dot(style::WHITE));
+        d.legend_entry(input.t(Label::SampleReused), reused_ring(), LegendIcon::Dot(style::WHITE));
     }
     if pixel.uniform {
         d.legend_entry(
             input.t(Label::UniformMean),
             style::outline(style::BLACK),
-            Sample::Dot(style::LIGHT_GREY),
+            LegendIcon::Dot(style::LIGHT_GREY),
         );
     } else {
         for stop in [Stop::Threshold, Stop::MaxLevel] {
             if pixel.squares.iter().any(|s| stop_of(s, pixel) == Some(stop)) {
-                d.legend_entry(input.t(stop.label()), stop.outline(), Sample::Dot(style::LIGHT_GREY));
+                d.legend_entry(input.t(stop.label()), stop.outline(), LegendIcon::Dot(style::LIGHT_GREY));
             }
         }
     }
@@ -118,7 +118,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 &format!("square:{}", s.level),
                 lo,
                 hi,
-                Style::solid(style::DARK_GREY, style::GRID_WIDTH),
+                Pen::solid(style::DARK_GREY, style::GRID_WIDTH),
                 Some(shade(s.level)),
             );
         });
@@ -144,7 +144,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             if sample.reused {
                 d.marker("sample:reused", at, RING_RADIUS, style::WHITE.with_alpha(0.0), reused_ring());
             }
-            d.marker("sample", at, 8.0, style::BLACK, Style::NONE);
+            d.marker("sample", at, 8.0, style::BLACK, Pen::NONE);
         });
     }
     for (sample, events) in pixel.samples.iter().zip(&sample_events) {
@@ -201,10 +201,10 @@ impl Stop {
     }
 
     /// The leaf colour disc's outline: black, or a thick vermillion ring at the maximum level.
-    fn outline(self) -> Style {
+    fn outline(self) -> Pen {
         match self {
             Stop::Threshold => style::outline(style::BLACK),
-            Stop::MaxLevel => Style::solid(style::VERMILLION, style::OBJECT_WIDTH * 1.5),
+            Stop::MaxLevel => Pen::solid(style::VERMILLION, style::OBJECT_WIDTH * 1.5),
         }
     }
 }
@@ -228,8 +228,8 @@ const BAR: f64 = 0.02;
 const RING_RADIUS: f64 = 17.0;
 
 /// The ring of a sample that another square read again.
-fn reused_ring() -> Style {
-    Style::solid(style::ORANGE, style::CONSTRUCTION_WIDTH)
+fn reused_ring() -> Pen {
+    Pen::solid(style::ORANGE, style::CONSTRUCTION_WIDTH)
 }
 
 /// The text beside the pixel: the rule, the samples, a deepest leaf's mean and the pixel's.

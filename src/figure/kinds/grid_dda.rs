@@ -9,7 +9,7 @@ use glam::DVec2;
 
 use super::Input;
 use crate::accel::Layout;
-use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, num, text_column};
 use crate::figure::plane::{PagePlane, Planar};
@@ -91,10 +91,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     d.set_caption(&caption);
     parts::legend_role(d, RayRole::Primary, input.lang);
-    d.legend_entry(input.t(Label::CellVisited), Style::NONE, Sample::Swatch(visited_fill()));
-    d.legend_entry(input.t(Label::CellExit), Style::NONE, Sample::Dot(style::ORANGE));
+    d.legend_entry(input.t(Label::CellVisited), Pen::NONE, LegendIcon::Swatch(visited_fill()));
+    d.legend_entry(input.t(Label::CellExit), Pen::NONE, LegendIcon::Dot(style::ORANGE));
     if pitfall.is_some() {
-        d.legend_entry(input.t(Label::FoundBeyond), pitfall_ring(), Sample::Dot(style::WHITE));
+        d.legend_entry(input.t(Label::FoundBeyond), pitfall_ring(), LegendIcon::Dot(style::WHITE));
     }
     // Under the table, in the column kept free of the scene (the table is at most 13 lines).
     d.legend_place = crate::canvas::LegendPlace::Inside(crate::canvas::Corner::BottomRight);
@@ -128,7 +128,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for s in &steps {
         let (a, b) = cell_rect(s.cell);
         d.with_events([s.event], |d| {
-            d.rect("cell:visited", a, b, Style::NONE, Some(visited_fill()));
+            d.rect("cell:visited", a, b, Pen::NONE, Some(visited_fill()));
         });
     }
     for k in 0..=n[0] {
@@ -152,7 +152,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let exit = s.t_max.iter().copied().fold(f64::INFINITY, f64::min);
         if exit.is_finite() {
             d.with_events([s.event], |d| {
-                d.marker("cell-exit", ray_at(exit), style::DOT_RADIUS * 0.8, style::ORANGE, Style::NONE);
+                d.marker("cell-exit", ray_at(exit), style::DOT_RADIUS * 0.8, style::ORANGE, Pen::NONE);
             });
         }
     }
@@ -231,6 +231,6 @@ fn visited_fill() -> style::Rgba {
 }
 
 /// The ring around a hit found beyond its cell.
-fn pitfall_ring() -> Style {
-    Style::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH * 1.4)
+fn pitfall_ring() -> Pen {
+    Pen::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH * 1.4)
 }

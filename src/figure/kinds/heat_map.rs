@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Drawing, Sample, Style};
+use crate::canvas::{Drawing, LegendIcon, Pen};
 use crate::figure::labels::Label;
 use crate::figure::parts::num;
 use crate::figure::plane::Planar;
@@ -110,7 +110,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             continue;
         }
         let range = if a == b { a.to_string() } else { format!("{a}–{b}") };
-        d.legend_entry(&format!("{range} {unit}"), Style::NONE, Sample::Swatch(shade(k)));
+        d.legend_entry(&format!("{range} {unit}"), Pen::NONE, LegendIcon::Swatch(shade(k)));
     }
     d.legend_place = crate::canvas::LegendPlace::Outside;
 
@@ -130,7 +130,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 let y = j as f64 * row_h;
                 let fill = colour(row[start]);
                 let hi = DVec2::new((i as f64 + reach).min(width), (y + row_h + reach).min(height));
-                d.rect("cell", DVec2::new(start as f64, y), hi, Style::NONE, Some(fill));
+                d.rect("cell", DVec2::new(start as f64, y), hi, Pen::NONE, Some(fill));
                 start = i;
             }
         }

@@ -11,7 +11,7 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::{Layout, TreeNode};
 use crate::bounds::aabb::Aabb;
-use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
 use crate::figure::plane::{PagePlane, Planar};
@@ -370,7 +370,7 @@ fn legend_role_and_fates<V: Planar>(d: &mut Drawing, input: &Input<'_, V>, fate:
     parts::legend_role(d, RayRole::Primary, input.lang);
     for f in Fate::ALL {
         if matches!(f, Fate::Entered(_)) || fate.iter().any(|g| g.kind() == f) {
-            d.legend_entry(input.t(f.label()), fate_style(f), Sample::Line);
+            d.legend_entry(input.t(f.label()), fate_style(f), LegendIcon::Line);
         }
     }
 }
@@ -384,13 +384,13 @@ fn fate_colour(f: Fate) -> Rgba {
     }
 }
 
-fn fate_style(f: Fate) -> Style {
+fn fate_style(f: Fate) -> Pen {
     match f {
-        Fate::Entered(_) => Style::solid(ENTERED, style::OBJECT_WIDTH * 1.2),
-        Fate::Skipped => Style::solid(SKIPPED, style::CONSTRUCTION_WIDTH).dashed(SKIPPED_DASH),
-        Fate::Missed => Style::solid(MISSED, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH),
-        Fate::UnderMissed | Fate::Untested => Style::solid(style::LIGHT_GREY, style::GRID_WIDTH),
-        Fate::UnderSkipped => Style::solid(SKIPPED.with_alpha(0.45), style::GRID_WIDTH).dashed(SKIPPED_DASH),
+        Fate::Entered(_) => Pen::solid(ENTERED, style::OBJECT_WIDTH * 1.2),
+        Fate::Skipped => Pen::solid(SKIPPED, style::CONSTRUCTION_WIDTH).dashed(SKIPPED_DASH),
+        Fate::Missed => Pen::solid(MISSED, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH),
+        Fate::UnderMissed | Fate::Untested => Pen::solid(style::LIGHT_GREY, style::GRID_WIDTH),
+        Fate::UnderSkipped => Pen::solid(SKIPPED.with_alpha(0.45), style::GRID_WIDTH).dashed(SKIPPED_DASH),
     }
 }
 
@@ -448,7 +448,7 @@ fn tree<V: Planar>(
             continue;
         }
         for &c in n.children.iter().filter(|c| shown[**c]) {
-            d.segment("tree-edge", at(k), at(c), Style::solid(style::DARK_GREY, style::GRID_WIDTH));
+            d.segment("tree-edge", at(k), at(c), Pen::solid(style::DARK_GREY, style::GRID_WIDTH));
         }
     }
     for (k, n) in nodes.iter().enumerate() {

@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Drawing, Sample, Style};
+use crate::canvas::{Drawing, LegendIcon, Pen};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     self, label_outward, legend_normal, num, object_name, rgb_text, sub, swatch, text_column, Names,
@@ -67,11 +67,20 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.set_caption(&caption);
     let view_role = parts::role(node.start.kind);
     legend_normal(d, input.lang);
-    d.legend_entry(input.t(Label::VectorV), view_role.style(), Sample::Arrow);
-    d.legend_entry(input.t(Label::VectorL), RayRole::Shadow.style(), Sample::Arrow);
-    d.legend_entry(input.t(Label::VectorH), h_style(), Sample::Arrow);
+    d.legend_entry(input.t(Label::VectorV), view_role.style(), LegendIcon::Arrow);
+    // L is drawn as its shadow ray is (clear, or through glass): the legend shows each style used.
+    let mut l_roles: Vec<RayRole> = Vec::new();
+    for role in lit.iter().map(|t| light_role(t)) {
+        if !l_roles.contains(&role) {
+            l_roles.push(role);
+        }
+    }
+    for role in if l_roles.is_empty() { vec![RayRole::Shadow] } else { l_roles } {
+        d.legend_entry(input.t(Label::VectorL), role.style(), LegendIcon::Arrow);
+    }
+    d.legend_entry(input.t(Label::VectorH), h_style(), LegendIcon::Arrow);
     if let Some(local) = end.local {
-        d.legend_entry("I_{local}", style::outline(style::BLACK), Sample::Swatch(swatch(local)));
+        d.legend_entry("I_{local}", style::outline(style::BLACK), LegendIcon::Swatch(swatch(local)));
     }
     let column = parts::fit_with_column(d, &[DVec2::new(-1.5, -0.45), DVec2::new(1.5, 1.5)], 0.02, 0.5);
 
@@ -81,7 +90,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         "object",
         i + DVec2::new(-1.5, -0.4),
         i + DVec2::new(1.5, 0.0),
-        Style::NONE,
+        Pen::NONE,
         Some(style::OBJECT_FILL),
     );
     d.segment("surface", i + DVec2::new(-1.5, 0.0), i + DVec2::new(1.5, 0.0), style::object());
@@ -110,23 +119,24 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.with_events(view_ev.clone(), |d| {
         d.arrow(view_role.tag(), i, i + unit(view_dir) * len, view_role.style());
     });
-    let many = lit.len() > 1;
-    let name = |letter: &str, m: usize| if many { sub(letter, m + 1) } else { letter.to_owned() };
+    // Named by the light's number (`L₂` is lights[1]), as the narration names them, whichever are lit.
+    let many = node.lights.len() > 1;
+    let name = |letter: &str, light: usize| if many { sub(letter, light + 1) } else { letter.to_owned() };
     let mut tips =
         vec![(DVec2::Y, "N".to_owned(), hit_ev.clone()), (unit(view_dir), "V".to_owned(), view_ev)];
-    for (m, t) in lit.iter().enumerate() {
+    for t in &lit {
         let Some(l) = t.l else { continue };
-        let role = t.shadow.map_or(RayRole::Shadow, |s| RayRole::shadow(s, s < 1.0));
+        let role = light_role(t);
         let events = light_ev(t.light);
         d.with_events(events.clone(), |d| {
             d.arrow(role.tag(), i, i + unit(l) * len, role.style());
         });
-        tips.push((unit(l), name("L", m), events.clone()));
+        tips.push((unit(l), name("L", t.light), events.clone()));
         if let Some(h) = (l + view_dir).try_unit() {
             d.with_events(events.clone(), |d| {
                 d.arrow("vector:H", i, i + unit(h) * len * 0.85, h_style());
             });
-            tips.push((unit(h) * 0.85, name("H", m), events));
+            tips.push((unit(h) * 0.85, name("H", t.light), events));
         }
     }
     d.with_events(hit_ev.clone(), |d| {
@@ -153,8 +163,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             rgb_text(scene.ambient.modulate(ka))
         ),
     ];
-    for (m, t) in node.lights.iter().enumerate().take(TOLD_LIGHTS) {
-        let l = name("L", m);
+    for t in node.lights.iter().take(TOLD_LIGHTS) {
+        let l = name("L", t.light);
         if t.lum == 0.0 {
             lines.push(format!("{l}: N·L = {} ≤ 0 → lum = 0", num(t.n_dot_l)));
             continue;
@@ -165,7 +175,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             let n_dot_h = n_f.dot(h);
             lines.push(format!(
                 "{}: N·H = {}, (N·H)^n = {} (n = {})",
-                name("H", m),
+                name("H", t.light),
                 num(n_dot_h),
                 num(material.highlight(n_dot_h)),
                 num(material.n)
@@ -181,7 +191,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     Ok(())
 }
 
+/// How light `t`'s L is drawn: as its shadow ray (clear, or attenuated by glass).
+fn light_role<V>(t: &LightTerm<V>) -> RayRole {
+    t.shadow.map_or(RayRole::Shadow, |s| RayRole::shadow(s, s < 1.0))
+}
+
 /// The bisector H: black, a little thinner than a ray.
-fn h_style() -> Style {
-    Style::solid(style::BLACK, style::RAY_WIDTH * 0.8)
+fn h_style() -> Pen {
+    Pen::solid(style::BLACK, style::RAY_WIDTH * 0.8)
 }

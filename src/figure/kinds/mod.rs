@@ -20,7 +20,7 @@ pub mod uv_map;
 
 use super::labels::{self, Label};
 use super::plane::Planar;
-use super::source::{Traced, Traces};
+use super::source::{FigureInput, FigureTrace};
 use super::{FigureError, FigureKind, Lang};
 use crate::canvas::{Drawing, LegendPlace};
 use crate::scene::Scene;
@@ -28,7 +28,7 @@ use crate::scene::Scene;
 /// What a kind reads.
 pub struct Input<'a, V: Planar> {
     /// The recorded traces (the main one first).
-    pub traces: &'a Traces<V>,
+    pub traces: &'a FigureInput<V>,
     /// The scene they were recorded in.
     pub scene: &'a Scene<V>,
     /// The labels' language.
@@ -40,7 +40,7 @@ impl<V: Planar> Input<'_, V> {
     ///
     /// # Errors
     /// When there is none.
-    pub fn main(&self) -> Result<&Traced<V>, FigureError> {
+    pub fn main(&self) -> Result<&FigureTrace<V>, FigureError> {
         self.traces.traces.first().ok_or_else(|| FigureError("no trace was recorded".into()))
     }
     /// A fixed label in the figure's language.
@@ -50,7 +50,7 @@ impl<V: Planar> Input<'_, V> {
     }
     /// The caption's start: the scene and the traced pixel (and why it was picked).
     #[must_use]
-    pub fn traced(&self, traced: &Traced<V>) -> String {
+    pub fn traced(&self, traced: &FigureTrace<V>) -> String {
         let target = traced.targets.first().cloned().unwrap_or(super::source::Target::Ray);
         labels::traced(&self.traces.scene_name, &target, traced.pick, V::DIM, self.lang)
     }

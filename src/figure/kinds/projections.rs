@@ -9,14 +9,14 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Align, Drawing, Sample, Style, TextOpts, View};
+use crate::canvas::{Align, Drawing, LegendIcon, Pen, TextOpts, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     camera_plane, draw_objects, draw_observer, draw_ray, label, label_objects, legend_points, legend_role,
     object_extent, plane_note,
 };
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{Target, Traced};
+use crate::figure::source::{FigureTrace, Target};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
 use crate::scene::camera::{Camera, Projection};
@@ -29,7 +29,7 @@ struct Primary {
 }
 
 /// The primary rays of one trace (its roots), on `plane`.
-fn primaries<V: Planar>(traced: &Traced<V>, plane: &PagePlane<V>) -> Vec<Primary> {
+fn primaries<V: Planar>(traced: &FigureTrace<V>, plane: &PagePlane<V>) -> Vec<Primary> {
     traced
         .log
         .roots()
@@ -143,7 +143,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     ));
     legend_role(d, RayRole::Primary, lang);
     legend_points(d, lang, true, false, false);
-    d.legend_entry(input.t(Label::ViewWindow), window_style(), Sample::Line);
+    d.legend_entry(input.t(Label::ViewWindow), window_style(), LegendIcon::Line);
     // Room above the panels for their headings.
     d.fit_view(&[lo, hi + shift + DVec2::new(0.0, 2.5 * pad)], 0.0);
 
@@ -221,7 +221,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
 }
 
 /// The window points S of a trace's pixels, on `plane`.
-fn window_points<V: Planar>(traced: &Traced<V>, plane: &PagePlane<V>, cam: &Camera<V>) -> Vec<DVec2> {
+fn window_points<V: Planar>(traced: &FigureTrace<V>, plane: &PagePlane<V>, cam: &Camera<V>) -> Vec<DVec2> {
     traced
         .targets
         .iter()
@@ -237,6 +237,6 @@ fn window_points<V: Planar>(traced: &Traced<V>, plane: &PagePlane<V>, cam: &Came
 }
 
 /// The view window's stroke: thick dark grey.
-fn window_style() -> Style {
-    Style::solid(style::DARK_GREY, style::OBJECT_WIDTH * 1.5)
+fn window_style() -> Pen {
+    Pen::solid(style::DARK_GREY, style::OBJECT_WIDTH * 1.5)
 }

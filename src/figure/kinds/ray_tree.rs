@@ -11,7 +11,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
 use crate::figure::labels::{escape, Label};
 use crate::figure::parts::{self, legend_role, num, swatch, Names};
 use crate::figure::plane::Planar;
@@ -175,8 +175,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     ));
     d.legend_entry(
         input.t(Label::NodeColour),
-        Style::solid(style::BLACK, 3.0),
-        Sample::Swatch(style::LIGHT_GREY),
+        Pen::solid(style::BLACK, 3.0),
+        LegendIcon::Swatch(style::LIGHT_GREY),
     );
     let mut roles = vec![RayRole::Primary];
     if log.nodes.iter().any(|n| n.start.kind == crate::record::event::RayKind::Reflected) {
@@ -199,10 +199,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         legend_role(d, role, input.lang);
     }
     if graph.iter().any(|(v, _, _)| v.uncast()) {
-        d.legend_entry(input.t(Label::ShadowNotCast), uncast_style(), Sample::Dot(style::WHITE));
+        d.legend_entry(input.t(Label::ShadowNotCast), uncast_style(), LegendIcon::Dot(style::WHITE));
     }
     if !stopped.is_empty() {
-        d.legend_entry(input.t(Label::StoppedByDepth), stop_style(), Sample::Dot(style::WHITE));
+        d.legend_entry(input.t(Label::StoppedByDepth), stop_style(), LegendIcon::Dot(style::WHITE));
     }
 
     // The legend beside the graph, which fills the rest: its corners are rarely free.
@@ -254,8 +254,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         (0..log.nodes.len()).flat_map(|k| log.indices_of(k, |e| matches!(e, Event::DepthLimit { .. })));
     let limits: Vec<usize> = limits.collect();
     if !stopped.is_empty() {
-        let line =
-            Style::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH);
+        let line = Pen::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH);
         let opts = TextOpts::NOTE
             .align(Align { h: HAlign::Left, v: VAlign::Top })
             .offset(0.0, -8.0)
@@ -297,7 +296,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 let node = &log.nodes[*k];
                 let role = parts::role(node.start.kind);
                 let fill = node.end.as_ref().map_or(style::WHITE, |e| swatch(e.color));
-                let ring = Style::solid(role.color(), style::RAY_WIDTH);
+                let ring = Pen::solid(role.color(), style::RAY_WIDTH);
                 d.marker("node", *p, RAY_NODE, fill, ring);
                 if stopped.contains(k) {
                     let limit = log.indices_of(*k, |e| matches!(e, Event::DepthLimit { .. }));
@@ -310,7 +309,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 d.marker("node:shadow", *p, SHADOW_NODE, style::WHITE, uncast_style());
             }
             Vertex::Shadow { role, .. } => {
-                let ring = Style { width: style::RAY_WIDTH * 0.8, ..role.style() };
+                let ring = Pen { width: style::RAY_WIDTH * 0.8, ..role.style() };
                 d.marker("node:shadow", *p, SHADOW_NODE, style::WHITE, ring);
             }
         });
@@ -381,13 +380,12 @@ const STOP_CLEAR: f64 = 6.0;
 
 /// A shadow leaf that was not cast (`lum = 0`, the light behind the surface): thin, grey,
 /// dotted.
-fn uncast_style() -> Style {
-    Style::solid(style::DARK_GREY, style::CONSTRUCTION_WIDTH)
-        .dashed(crate::canvas::Dash { on: 4.0, off: 8.0 })
+fn uncast_style() -> Pen {
+    Pen::solid(style::DARK_GREY, style::CONSTRUCTION_WIDTH).dashed(crate::canvas::Dash { on: 4.0, off: 8.0 })
 }
 
 /// The mark of a node stopped by the depth limit: a dashed vermillion ring.
-fn stop_style() -> Style {
-    Style::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH)
+fn stop_style() -> Pen {
+    Pen::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH)
         .dashed(crate::canvas::Dash { on: 10.0, off: 7.0 })
 }

@@ -7,7 +7,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Drawing, Style};
+use crate::canvas::{Drawing, Pen};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     self, camera_plane, draw_light, draw_objects, draw_observer, draw_ray, exit_point, label, label_objects,
@@ -152,13 +152,13 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         }
     }
     if let Some((a, b)) = window {
-        d.segment("window", a, b, Style::solid(style::DARK_GREY, style::OBJECT_WIDTH * 1.5));
+        d.segment("window", a, b, Pen::solid(style::DARK_GREY, style::OBJECT_WIDTH * 1.5));
         draw_observer(d, plane.point(cam.eye));
     }
     for s in &shadows {
         if let Some(b) = s.block {
             d.with_events([s.event], |d| {
-                d.marker("occluder-point", b, style::DOT_RADIUS, s.role.color(), Style::NONE);
+                d.marker("occluder-point", b, style::DOT_RADIUS, s.role.color(), Pen::NONE);
             });
         }
     }

@@ -7,13 +7,13 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{
     self, deg, draw_arc, label_outward, legend_normal, legend_role, num, object_name, text_column, Names,
 };
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{node_events, refraction_node, tir_node, Traced};
+use crate::figure::source::{node_events, refraction_node, tir_node, FigureTrace};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
 use crate::record::event::Event;
@@ -42,7 +42,7 @@ struct Case<V> {
 }
 
 /// The case of node `node` of `traced`, read from its recorded events.
-fn case<V: Planar>(traced: &Traced<V>, node: usize) -> Option<Case<V>> {
+fn case<V: Planar>(traced: &FigureTrace<V>, node: usize) -> Option<Case<V>> {
     let n = &traced.log.nodes[node];
     let hit = n.end.as_ref()?.hit?;
     let n_f = if hit.entering { hit.normal } else { -hit.normal };
@@ -82,7 +82,7 @@ fn case<V: Planar>(traced: &Traced<V>, node: usize) -> Option<Case<V>> {
 /// When the traces hold no refraction and no total internal reflection.
 pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
     let main = input.main()?;
-    let mut cases: Vec<(&Traced<V>, Case<V>)> = Vec::new();
+    let mut cases: Vec<(&FigureTrace<V>, Case<V>)> = Vec::new();
     if let Some(c) = refraction_node(&main.log).and_then(|(k, _)| case(main, k)) {
         cases.push((main, c));
     }
@@ -128,7 +128,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         }
     }
     legend_normal(d, lang);
-    d.legend_entry(input.t(Label::Inside), style::outline(style::BLACK), Sample::Swatch(style::OBJECT_FILL));
+    d.legend_entry(
+        input.t(Label::Inside),
+        style::outline(style::BLACK),
+        LegendIcon::Swatch(style::OBJECT_FILL),
+    );
 
     // One case: its numbers in a column on the right. Two: side by side, 4.4 apart, each with
     // its numbers below (in smaller type, 1.4 units reserved).
@@ -161,7 +165,7 @@ fn incidence_plane<V: Planar>(c: &Case<V>) -> Option<PagePlane<V>> {
 fn panel<V: Planar>(
     input: &Input<'_, V>,
     d: &mut Drawing,
-    traced: &Traced<V>,
+    traced: &FigureTrace<V>,
     c: &Case<V>,
     offset: DVec2,
 ) -> Vec<String> {
@@ -179,7 +183,7 @@ fn panel<V: Planar>(
     } else {
         (at(DVec2::new(-1.5, 0.0)), at(DVec2::new(1.5, 1.35)))
     };
-    d.rect("medium", lo, hi, Style::NONE, Some(style::OBJECT_FILL));
+    d.rect("medium", lo, hi, Pen::NONE, Some(style::OBJECT_FILL));
     d.segment("surface", at(DVec2::new(-1.5, 0.0)), at(DVec2::new(1.5, 0.0)), style::object());
     d.segment("normal", at(DVec2::new(0.0, -1.3)), at(DVec2::new(0.0, 1.3)), style::normal());
 
@@ -214,7 +218,7 @@ fn panel<V: Planar>(
     });
 
     // θᵢ between N and −D; θₜ between −N and T.
-    let arc = Style::solid(style::BLACK, style::CONSTRUCTION_WIDTH);
+    let arc = Pen::solid(style::BLACK, style::CONSTRUCTION_WIDTH);
     let cos_i = (-c.d.dot(c.n_f)).clamp(-1.0, 1.0);
     let theta_i = cos_i.acos();
     let mid_i = draw_arc(d, i, 0.42, DVec2::Y, -incident, arc);

@@ -8,7 +8,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Drawing, Style};
+use crate::canvas::{Drawing, Pen};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     self, camera_plane, draw_light, draw_objects, draw_ray, label, label_objects, legend_normal,
@@ -97,8 +97,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     if shadows.iter().any(|s| !s.occluders.is_empty()) {
         d.legend_entry(
             input.t(Label::OccluderPoint),
-            Style::NONE,
-            crate::canvas::Sample::Dot(RayRole::BlockedShadow.color()),
+            Pen::NONE,
+            crate::canvas::LegendIcon::Dot(RayRole::BlockedShadow.color()),
         );
     }
     legend_points(d, lang, false, true, false);
@@ -148,13 +148,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         if let Some(t) = s.block {
             let at = plane.point(s.origin + s.direction * t);
             d.with_events([s.event], |d| {
-                d.marker(
-                    "occluder-point",
-                    at,
-                    style::DOT_RADIUS,
-                    RayRole::BlockedShadow.color(),
-                    Style::NONE,
-                );
+                d.marker("occluder-point", at, style::DOT_RADIUS, RayRole::BlockedShadow.color(), Pen::NONE);
             });
         }
     }

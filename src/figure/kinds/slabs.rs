@@ -11,11 +11,11 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::Layout;
 use crate::bounds::BoundingVolume;
-use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, clip_line, num, object_name};
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{bound_test_index, bound_test_of, Target, Traced};
+use crate::figure::source::{bound_test_index, bound_test_of, FigureTrace, Target};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
 use crate::record::event::ObjectRef;
@@ -71,7 +71,7 @@ const MISS_RAY: Rgba = style::BLUE;
 
 /// A traced ray's test of the volume, read from its `bound_test` event.
 struct Tested<'a, V> {
-    traced: &'a Traced<V>,
+    traced: &'a FigureTrace<V>,
     /// The events it draws, when it is the main trace: its primary ray and its `bound_test`.
     events: Vec<usize>,
     origin: V,
@@ -196,7 +196,7 @@ pub fn draw<V: Planar>(
     d.set_caption(&caption);
     for t in &tested {
         let (colour, label) = if t.hit { (HIT_RAY, Label::RayMeets) } else { (MISS_RAY, Label::RayMisses) };
-        d.legend_entry(input.t(label), Style::solid(colour, style::RAY_WIDTH), Sample::Arrow);
+        d.legend_entry(input.t(label), Pen::solid(colour, style::RAY_WIDTH), LegendIcon::Arrow);
     }
     let mut in_rows: Vec<(usize, &Slab<V>)> = slabs.iter().enumerate().collect();
     in_rows.sort_by_key(|(_, s)| s.row);
@@ -204,8 +204,8 @@ pub fn draw<V: Planar>(
         let text = format!("{} {}", input.t(Label::SlabPlanes), s.name);
         d.legend_entry(
             &text,
-            Style::solid(slab_colour(k), style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH),
-            Sample::Line,
+            Pen::solid(slab_colour(k), style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH),
+            LegendIcon::Line,
         );
     }
     d.legend_place = crate::canvas::LegendPlace::Outside;
@@ -241,7 +241,7 @@ pub fn draw<V: Planar>(
             continue;
         }
         let base = s.normal.dot(plane.origin) - m.dot(plane.offset);
-        let dash = Style::solid(slab_colour(k), style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH);
+        let dash = Pen::solid(slab_colour(k), style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH);
         for c in [s.lo, s.hi] {
             let point = m * ((c - base) / m.length_squared());
             if let Some((a, b)) = clip_line(point, m.perp().normalize(), &scene_part) {
@@ -261,7 +261,7 @@ pub fn draw<V: Planar>(
     for t in &tested {
         let (a, b) = span_of(t);
         let colour = if t.hit { HIT_RAY } else { MISS_RAY };
-        let role = Style::solid(colour, style::RAY_WIDTH);
+        let role = Pen::solid(colour, style::RAY_WIDTH);
         let (pa, pb) = (at(t, a), at(t, b));
         let mid = pa + (pb - pa) * 0.5;
         d.with_events(t.events.iter().copied(), |d| {
@@ -276,7 +276,7 @@ pub fn draw<V: Planar>(
                 for (end, letter) in iv.iter().zip(["I", "E"]) {
                     if end.is_finite() && (from..=to).contains(end) {
                         let p = at(t, *end);
-                        d.marker("crossing", p, style::DOT_RADIUS * 0.8, slab_colour(k), Style::NONE);
+                        d.marker("crossing", p, style::DOT_RADIUS * 0.8, slab_colour(k), Pen::NONE);
                         let opts = TextOpts::NOTE.size(TextSize::Small).color(slab_colour(k)).avoid_overlap();
                         d.text("crossing-name", p, &sub_text(letter, &slabs[k].name), opts);
                     }
@@ -285,7 +285,7 @@ pub fn draw<V: Planar>(
             if t.hit {
                 for (s, name) in [(t.t_in, "I"), (t.t_out, "E")] {
                     let p = at(t, s);
-                    d.marker("entry-exit", p, style::DOT_RADIUS * 1.2, style::BLACK, Style::NONE);
+                    d.marker("entry-exit", p, style::DOT_RADIUS * 1.2, style::BLACK, Pen::NONE);
                     d.text("label", p, name, TextOpts::LABEL.bold().avoid_overlap());
                 }
             }
@@ -331,7 +331,7 @@ pub fn draw<V: Planar>(
                 d.segment("t-axis", DVec2::new(left, y), DVec2::new(right, y), style::grid());
                 let (a, b) = (iv[0], iv[1]);
                 if a <= b {
-                    let bar = Style::solid(slab_colour(s), style::RAY_WIDTH * 1.6);
+                    let bar = Pen::solid(slab_colour(s), style::RAY_WIDTH * 1.6);
                     d.segment("interval", DVec2::new(x_of(a), y), DVec2::new(x_of(b), y), bar);
                 }
             }
@@ -340,7 +340,7 @@ pub fn draw<V: Planar>(
             let y_bot = top - row_h * (slabs.len() as f64 + 0.5);
             for (value, tag) in [(t.t_in, "t-in"), (t.t_out, "t-out")] {
                 if value.is_finite() {
-                    let line = Style::solid(colour, style::CONSTRUCTION_WIDTH);
+                    let line = Pen::solid(colour, style::CONSTRUCTION_WIDTH);
                     d.segment(tag, DVec2::new(x_of(value), y_top), DVec2::new(x_of(value), y_bot), line);
                 }
             }

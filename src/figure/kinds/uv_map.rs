@@ -7,11 +7,11 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Align, Drawing, HAlign, Sample, Style, TextOpts, VAlign};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
 use crate::figure::labels::Label;
 use crate::figure::parts::{num, text_column};
 use crate::figure::plane::Planar;
-use crate::figure::source::Traced;
+use crate::figure::source::FigureTrace;
 use crate::figure::style::{self, TextSize};
 use crate::figure::FigureError;
 use crate::record::event::Event;
@@ -41,9 +41,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.legend_entry(
         input.t(Label::ChosenPixel),
         style::outline(style::BLACK),
-        Sample::Swatch(style::HIGHLIGHT),
+        LegendIcon::Swatch(style::HIGHLIGHT),
     );
-    d.legend_entry(input.t(Label::WindowViewport), style::normal(), Sample::Arrow);
+    d.legend_entry(input.t(Label::WindowViewport), style::normal(), LegendIcon::Arrow);
     if V::DIM == 2 {
         one_row(input, d, cam, &mapped);
     } else {
@@ -53,7 +53,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
 }
 
 /// The traced pixel and the `(u, v)` of its `primary_ray` event.
-fn mapped<V>(traced: &Traced<V>) -> Option<Mapped> {
+fn mapped<V>(traced: &FigureTrace<V>) -> Option<Mapped> {
     let (i, j) = match traced.targets.first()? {
         crate::figure::source::Target::Pixel { i, j, .. } => (*i, *j),
         crate::figure::source::Target::Ray => return None,
@@ -148,7 +148,7 @@ fn two_panels<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>,
     let centre = lo + DVec2::splat(cell / 2.0);
     let uv = to_window(m.uv[0], m.uv.get(1).copied().unwrap_or(0.0));
     // A ring keeps the pixel visible when the grid is fine.
-    let ring = Style::solid(style::BLACK, style::CONSTRUCTION_WIDTH);
+    let ring = Pen::solid(style::BLACK, style::CONSTRUCTION_WIDTH);
     d.with_events([m.event], |d| {
         d.rect("pixel", lo, lo + DVec2::splat(cell), style::outline(style::BLACK), hl);
         d.rect("pixel", to_window(u0, v0), to_window(u1, v1), style::outline(style::BLACK), hl);
@@ -267,7 +267,7 @@ fn one_row<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>, m:
         );
     }
     d.rect("image", DVec2::new(0.0, top), DVec2::new(width, top + strip), style::object(), None);
-    d.segment("window", to_line(w.l), to_line(w.r), Style::solid(style::BLACK, style::OBJECT_WIDTH * 1.5));
+    d.segment("window", to_line(w.l), to_line(w.r), Pen::solid(style::BLACK, style::OBJECT_WIDTH * 1.5));
 
     let i = m.i as f64;
     let lo = DVec2::new(i * cell, top);
@@ -282,7 +282,7 @@ fn one_row<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>, m:
             style::outline(style::BLACK),
             Some(style::HIGHLIGHT),
         );
-        d.segment("pixel", a, b, Style::solid(style::HIGHLIGHT, style::OBJECT_WIDTH * 3.0));
+        d.segment("pixel", a, b, Pen::solid(style::HIGHLIGHT, style::OBJECT_WIDTH * 3.0));
         d.arrow("mapping", centre, u, style::normal());
         d.dot("pixel-centre", centre, style::HIT);
         d.dot("uv", u, style::HIT);

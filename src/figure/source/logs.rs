@@ -29,6 +29,24 @@ pub fn incidence_deg<V: Vector>(node: &RayNode<V>) -> Option<f64> {
     Some(cos.acos().to_degrees())
 }
 
+/// The smallest angle, in degrees, between two of the vectors the `local-model` figure draws at
+/// node `node`'s hit: the facing normal N_f, V = −D, and L and H = (L + V)/|L + V| of each light
+/// whose L was computed. Two vectors closer than a few degrees would be drawn one over the other.
+#[must_use]
+pub fn vectors_apart_deg<V: Vector>(node: &RayNode<V>) -> Option<f64> {
+    let hit = node.end.as_ref()?.hit?;
+    let n_f = if hit.entering { hit.normal } else { -hit.normal };
+    let view = -node.start.direction;
+    let mut vectors = vec![n_f, view];
+    for l in node.lights.iter().filter_map(|t| t.l) {
+        vectors.push(l);
+        vectors.extend((l + view).try_unit());
+    }
+    let angle = |a: V, b: V| a.dot(b).clamp(-1.0, 1.0).acos().to_degrees();
+    let pairs = vectors.iter().enumerate().flat_map(|(k, a)| vectors[k + 1..].iter().map(move |b| (*a, *b)));
+    pairs.map(|(a, b)| angle(a, b)).reduce(f64::min)
+}
+
 /// The node whose refraction shows best: θᵢ near 40°, the primary hit first.
 #[must_use]
 pub fn refraction_node<V: Dim>(log: &EventLog<V>) -> Option<(usize, f64)> {

@@ -82,7 +82,7 @@ pub enum Target {
 
 /// One recorded trace: one or several primary rays (the roots of `log`).
 #[derive(Clone, Debug)]
-pub struct Traced<V> {
+pub struct FigureTrace<V> {
     /// The primary rays' targets, one per root of `log`, in order.
     pub targets: Vec<Target>,
     /// Every event and ray node.
@@ -101,12 +101,12 @@ pub struct Traced<V> {
 
 /// Everything a figure reads besides the scene.
 #[derive(Clone, Debug)]
-pub struct Traces<V: Dim> {
+pub struct FigureInput<V: Dim> {
     /// The scene's name (its file stem), for the caption.
     pub scene_name: String,
     /// The traces: the main one first; `projections` has the orthographic then the perspective
     /// one; `refraction` may add a second trace that shows a total internal reflection.
-    pub traces: Vec<Traced<V>>,
+    pub traces: Vec<FigureTrace<V>>,
     /// The primary rays of every pixel of a whole render (`heat-map`).
     pub counts: Option<Counts>,
     /// The structure the traces were recorded with (its volumes, nodes or cells are drawn).
@@ -128,7 +128,7 @@ pub struct Counts {
 
 /// Options of the tracing a figure reads.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Tracing {
+pub struct TraceOptions {
     /// Overrides the scene's `max_depth`.
     pub depth: Option<u32>,
     /// The structure that finds hits; the kinds that draw one (`slab-test`, `kay-kajiya`, `bvh`,
@@ -139,7 +139,7 @@ pub struct Tracing {
     pub sampling: Sampling,
 }
 
-impl Tracing {
+impl TraceOptions {
     /// The scene's own depth, brute force, one ray through each pixel centre.
     pub const SCENE: Self = Self {
         depth: None,
@@ -162,8 +162,8 @@ pub fn record<V: Dim>(
     scene: &Scene<V>,
     scene_name: &str,
     aim: &Aim<V>,
-    tracing: &Tracing,
-) -> Result<Traces<V>, FigureError> {
+    tracing: &TraceOptions,
+) -> Result<FigureInput<V>, FigureError> {
     let cam = &scene.camera;
     if let Aim::Pixel(i, j) = *aim {
         if i >= cam.nx || j >= cam.ny {
@@ -185,7 +185,7 @@ pub fn record<V: Dim>(
     };
     let accel = Accel::build_with(scene, &options);
     let depth = tracing.depth.unwrap_or(scene.max_depth);
-    let tracer = Recording { scene, accel: &accel, depth };
+    let tracer = FigureTracer { scene, accel: &accel, depth };
     let (mut counts, mut focus) = (None, None);
     let traces = match kind {
         FigureKind::Projections => projections(&tracer, aim),
@@ -230,7 +230,7 @@ pub fn record<V: Dim>(
         FigureKind::Adaptive => {
             // The centre alone has nothing to subdivide: the figure's own adaptive rule then.
             let sampling = match tracing.sampling {
-                Sampling::Center => Tracing::ADAPTIVE,
+                Sampling::Center => TraceOptions::ADAPTIVE,
                 other => other,
             };
             vec![tracer.sampled(aim, sampling)?]
@@ -260,7 +260,7 @@ pub fn record<V: Dim>(
         let why = overflow_message(full.log.limit(), depth, scene.worst_tree_rays(depth));
         return Err(FigureError(why));
     }
-    Ok(Traces { scene_name: scene_name.to_owned(), traces, counts, accel, focus })
+    Ok(FigureInput { scene_name: scene_name.to_owned(), traces, counts, accel, focus })
 }
 
 /// The message for a trace that lacks what a figure draws.
@@ -280,15 +280,15 @@ fn has<V>(log: &EventLog<V>, test: impl Fn(&Event<V>) -> bool) -> bool {
 }
 
 /// The tracer, set up once for all the pixels a figure traces.
-struct Recording<'a, V: Dim> {
+struct FigureTracer<'a, V: Dim> {
     scene: &'a Scene<V>,
     accel: &'a Accel<V>,
     depth: u32,
 }
 
-impl<V: Dim> Recording<'_, V> {
+impl<V: Dim> FigureTracer<'_, V> {
     /// Traces the primary rays of `targets` into one log.
-    fn trace(&self, scene: &Scene<V>, rays: &[(Ray<V>, Target)], depth: u32, pick: Pick) -> Traced<V> {
+    fn trace(&self, scene: &Scene<V>, rays: &[(Ray<V>, Target)], depth: u32, pick: Pick) -> FigureTrace<V> {
         let mut tracer = Tracer::new(scene, self.accel, EventLog::new());
         tracer.max_depth = depth;
         let mut colors = Vec::new();
@@ -299,7 +299,7 @@ impl<V: Dim> Recording<'_, V> {
             };
             colors.push(tracer.trace_primary(ray, &uv));
         }
-        Traced {
+        FigureTrace {
             targets: rays.iter().map(|(_, t)| t.clone()).collect(),
             log: tracer.recorder,
             colors,
@@ -311,13 +311,13 @@ impl<V: Dim> Recording<'_, V> {
     }
 
     /// Pixel `(i, j)` traced with its samples (`sampling` samples corners).
-    fn pixel_samples(&self, i: usize, j: usize, sampling: Sampling, pick: Pick) -> Traced<V> {
+    fn pixel_samples(&self, i: usize, j: usize, sampling: Sampling, pick: Pick) -> FigureTrace<V> {
         let mut tracer = Tracer::new(self.scene, self.accel, EventLog::new());
         tracer.max_depth = self.depth;
         let traced = trace_pixel(&mut tracer, sampling, i, j);
         let (u, v) = self.scene.camera.pixel_center(i, j);
         let uv = if V::DIM == 2 { vec![u] } else { vec![u, v] };
-        Traced {
+        FigureTrace {
             targets: vec![Target::Pixel { i, j, uv }],
             colors: vec![traced.color],
             log: tracer.recorder,
@@ -329,7 +329,7 @@ impl<V: Dim> Recording<'_, V> {
     }
 
     /// `adaptive`: the given pixel, or the one whose subdivision splits the most squares.
-    fn sampled(&self, aim: &Aim<V>, sampling: Sampling) -> Result<Traced<V>, FigureError> {
+    fn sampled(&self, aim: &Aim<V>, sampling: Sampling) -> Result<FigureTrace<V>, FigureError> {
         match aim {
             Aim::Pixel(i, j) => Ok(self.pixel_samples(*i, *j, sampling, Pick::Given)),
             Aim::Ray(_) => Err(FigureError("adaptive subdivides a pixel: give --pixel, not --ray".into())),
@@ -365,13 +365,13 @@ impl<V: Dim> Recording<'_, V> {
     }
 
     /// The trace of one pixel.
-    fn pixel(&self, i: usize, j: usize, pick: Pick) -> Traced<V> {
+    fn pixel(&self, i: usize, j: usize, pick: Pick) -> FigureTrace<V> {
         self.trace(self.scene, &[Self::pixel_ray(self.scene, i, j)], self.depth, pick)
     }
 
     /// The trace of `aim`; with [`Aim::Auto`], of the pixel with the best `score` (picked as
     /// `why`), or the default pixel when no pixel scores.
-    fn aimed(&self, aim: &Aim<V>, why: Pick, score: impl Fn(&EventLog<V>) -> Option<f64>) -> Traced<V> {
+    fn aimed(&self, aim: &Aim<V>, why: Pick, score: impl Fn(&EventLog<V>) -> Option<f64>) -> FigureTrace<V> {
         match aim {
             Aim::Pixel(i, j) => self.pixel(*i, *j, Pick::Given),
             Aim::Ray(ray) => self.trace(self.scene, &[(*ray, Target::Ray)], self.depth, Pick::Given),
@@ -423,7 +423,7 @@ const PROJECTION_RAYS: usize = 9;
 /// `projections`: the same pixels traced (primary rays only) with an orthographic and a
 /// perspective camera of the same window: evenly spread columns of the given pixel's row (the
 /// middle row by default).
-fn projections<V: Dim>(rec: &Recording<'_, V>, aim: &Aim<V>) -> Vec<Traced<V>> {
+fn projections<V: Dim>(rec: &FigureTracer<'_, V>, aim: &Aim<V>) -> Vec<FigureTrace<V>> {
     let cam = &rec.scene.camera;
     let row = match aim {
         Aim::Pixel(_, j) => *j,
@@ -446,7 +446,7 @@ fn projections<V: Dim>(rec: &Recording<'_, V>, aim: &Aim<V>) -> Vec<Traced<V>> {
             let mut scene = rec.scene.clone();
             scene.camera.projection = projection;
             let rays: Vec<(Ray<V>, Target)> =
-                columns.iter().map(|&i| Recording::pixel_ray(&scene, i, row)).collect();
+                columns.iter().map(|&i| FigureTracer::pixel_ray(&scene, i, row)).collect();
             let pick = if matches!(aim, Aim::Pixel(..)) { Pick::Given } else { Pick::Default };
             rec.trace(&scene, &rays, 0, pick)
         })
@@ -482,12 +482,22 @@ fn rich_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
     Some(100.0 * roles as f64 - log.nodes.len().min(60) as f64)
 }
 
+/// The least angle between two of N, V, L, H that `local-model`'s pick accepts, in degrees: closer
+/// vectors would be drawn one over the other at slide size.
+pub const MIN_APART_DEG: f64 = 10.0;
+
+/// The score `local-model`'s pick adds when N, V, L, H are [`MIN_APART_DEG`] apart: more than the
+/// other terms together (at most 2 + 2 + 3 + 2), so a pixel that keeps them apart always wins.
+const APART_WEIGHT: f64 = 10.0;
+
 /// `local-model`: the primary hit lit by a light, on an opaque object with a highlight (ks > 0)
 /// if there is one and a visible specular term, with N·L near 0.6 and N·V near 0.8, so that N,
 /// L, H and V fan out.
 fn lit_score<V: Dim>(scene: &Scene<V>, log: &EventLog<V>) -> Option<f64> {
     let node = log.nodes.first()?;
     let hit = node.end.as_ref()?.hit?;
+    // Vectors drawn one over the other outweigh every other merit.
+    let apart = if vectors_apart_deg(node)? >= MIN_APART_DEG { APART_WEIGHT } else { 0.0 };
     let material = scene.material_of(hit.object.index);
     let kind = if material.transmits() { 0.0 } else { 1.0 } + if material.ks > 0.0 { 1.0 } else { 0.0 };
     let n_dot_v = node.start.direction.dot(hit.normal).abs();
@@ -497,7 +507,7 @@ fn lit_score<V: Dim>(scene: &Scene<V>, log: &EventLog<V>) -> Option<f64> {
         .map(|t| {
             // A visible highlight: the specular term (N·H)^n·ks·… of at least 0.2 counts fully.
             let highlight = (t.specular.0.iter().copied().fold(0.0, f64::max) * 5.0).min(1.0);
-            2.0 * kind + 3.0 * highlight + 2.0 - (t.n_dot_l - 0.6).abs() - (n_dot_v - 0.8).abs()
+            apart + 2.0 * kind + 3.0 * highlight + 2.0 - (t.n_dot_l - 0.6).abs() - (n_dot_v - 0.8).abs()
         })
         .reduce(f64::max)
 }
@@ -506,7 +516,10 @@ fn lit_score<V: Dim>(scene: &Scene<V>, log: &EventLog<V>) -> Option<f64> {
 /// primary ray misses the same volume by a visible margin (its [`clearance`] nearest a quarter of
 /// the volume's size, and at least an eighth), and that object. A given pixel is the first
 /// of the two (its hit object, or the first volume it meets, is the one drawn).
-fn bound_pair<V: Dim>(rec: &Recording<'_, V>, aim: &Aim<V>) -> Result<(Vec<Traced<V>>, usize), FigureError> {
+fn bound_pair<V: Dim>(
+    rec: &FigureTracer<'_, V>,
+    aim: &Aim<V>,
+) -> Result<(Vec<FigureTrace<V>>, usize), FigureError> {
     let first = match aim {
         Aim::Auto => {
             // The pixel nearest the centre whose primary ray hits an object inside its volume.
