@@ -208,3 +208,21 @@ fn the_heat_maps_legend_names_every_count_a_pixel_has() {
     assert!(d.title.as_deref() == Some(Label::TitleHeatMap.text(Lang::En)));
     assert!(d.caption.clone().unwrap_or_default().contains(Label::HeatMapCounts.text(Lang::En)));
 }
+
+#[test]
+fn an_object_listed_in_a_cell_only_through_its_bounding_box_is_drawn_and_named_as_such() {
+    // groups_2d, the grid lesson's walk: cell 2, (4, 2), lists the segment h because h's box
+    // reaches into it; h itself lies below the cell.
+    let AnyScene::Flat(scene) = lesson_scene("groups_2d.json") else { panic!("2D") };
+    let d = drawn(&scene, "groups_2d", FigureKind::GridDda, &Aim::Auto, &TraceOptions::SCENE);
+    assert!(has_legend(&d, Label::ListedByBox));
+    let h = (0..scene.objects.len()).find(|o| scene.object_label(*o, Lang::En) == "h").expect("h");
+    assert_eq!(tagged(&d, &format!("object-box-only:{h}")), 1);
+    let listing = d.to_text();
+    assert!(
+        listing.contains(&format!("2: (4, 2) · (8.482, 8.968) · h ({})", Label::BoxOnly.text(Lang::En))),
+        "{listing}"
+    );
+    // Cell 1 lists e, whose circle does reach into it: no such mark.
+    assert!(listing.contains("1: (4, 3) · (8.482, 7.473) · e\""), "{listing}");
+}
