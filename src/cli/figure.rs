@@ -57,6 +57,10 @@ pub struct FigureArgs {
     /// `kay-kajiya`, `bvh`, `grid-dda` and `octree` use their own, keeping --grid's cells.
     #[command(flatten)]
     accel: AccelArgs,
+    /// The figure's title, instead of the kind's (a lesson's own wording; the text markup of
+    /// labels: `n_1`, `t_{ex}`).
+    #[arg(long, value_name = "TEXT")]
+    title: Option<String>,
     /// Print every kind with one line and exit.
     #[arg(long)]
     list: bool,
@@ -96,7 +100,10 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         },
         opts: Options { lang: args.lang.lang(), width, height },
     };
-    let made = figure(&scene, &scene_name(scene_path), &request)?;
+    let mut made = figure(&scene, &scene_name(scene_path), &request)?;
+    if let Some(title) = &args.title {
+        made.drawing.set_title(title);
+    }
     write_file(&output, &format.encode(&made.drawing)?)
 }
 

@@ -150,6 +150,9 @@ fn command(spec: &FigureSpec, scene: &Path, lang: Lang, png: &Path) -> String {
         let cells: Vec<String> = cells.iter().map(ToString::to_string).collect();
         cmd.push_str(&format!(" --grid {}", cells.join(",")));
     }
+    if let Some(title) = &spec.title {
+        cmd.push_str(&format!(" --title {}", shell_quote(title.get(lang))));
+    }
     cmd.push_str(&format!(" --lang {} -o {}", lang_dir(lang), shell_quote(&png.display().to_string())));
     cmd
 }
@@ -226,7 +229,12 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             };
             let made = scenes[&scene_path].as_ref().map_err(Clone::clone).and_then(|scene| {
                 figure_checked(scene, &scene_name(&scene_path), &request, &spec.claims)
-                    .map(|(made, verdicts)| (made.drawing, verdicts))
+                    .map(|(mut made, verdicts)| {
+                        if let Some(title) = &spec.title {
+                            made.drawing.set_title(title.get(lang));
+                        }
+                        (made.drawing, verdicts)
+                    })
                     .map_err(|f| f.message)
             });
             ((l, f, lang), made)

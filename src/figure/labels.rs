@@ -147,7 +147,7 @@ pub enum Label {
     Isrc,
     /// A traced sample (legend of `adaptive`).
     SampleTraced,
-    /// A sample read again by another square.
+    /// A sample read again by another subregion (the lecture's subzonă).
     SampleReused,
     /// A leaf square's colour.
     LeafColour,
@@ -431,9 +431,9 @@ impl Label {
             Self::Inside => ("inside the object", "interiorul obiectului"),
             Self::Isrc => ("Isrc", "Isursa"),
             Self::SampleTraced => ("sample: one primary ray", "eșantion: o rază primară"),
-            Self::SampleReused => ("read again by another square", "refolosit de alt pătrat"),
+            Self::SampleReused => ("read again by another subregion", "refolosit de altă subzonă"),
             Self::LeafColour => ("leaf: the mean of its corners", "frunză: media colțurilor"),
-            Self::SplitWhen => ("a square splits while", "un pătrat se divide cât timp"),
+            Self::SplitWhen => ("a subregion splits while", "o subzonă se divide cât timp"),
             Self::SamplesTraced => ("samples traced", "eșantioane trasate"),
             Self::Reused => ("reused", "refolosite"),
             Self::PixelColour => ("pixel", "pixelul"),

@@ -16,8 +16,9 @@
 //! `scene` is relative to the lesson file; `pixel` is `[i, j]` (`[i]` in 2D), `ray` is
 //! `{ "origin": [...], "direction": [...] }`; `aa` is `center`, `corners` or `adaptive` (with
 //! `threshold`, default 0.1, and `max_level`, default 2) for `adaptive` and `heat-map`; `grid`
-//! (cells per axis) for `grid-dda`; `text`, `pixel`, `ray`, `depth`, `aa` and `grid` may be left
-//! out. An unknown field is an error. `claims` lists what the figure must show, each checked on
+//! (cells per axis) for `grid-dda`; a figure's `title` (both languages) replaces the kind's when
+//! the lesson says it better (the aliasing lesson's projections); `text`, `pixel`, `ray`, `depth`,
+//! `aa`, `grid` and `title` may be left out. An unknown field is an error. `claims` lists what the figure must show, each checked on
 //! its traces before anything is written (module `claim`).
 
 pub mod claim;
@@ -49,6 +50,8 @@ pub struct FigureSpec {
     pub sampling: Option<Sampling>,
     /// The grid's cells per axis (`grid`), for `grid-dda`.
     pub grid: Option<Vec<usize>>,
+    /// A title of the lesson's own in both languages, instead of the kind's (`title`).
+    pub title: Option<Both>,
     /// What the figure shows, in both languages.
     pub caption: Both,
     /// What it must show, checked on its traces and drawing (`claims`).
@@ -178,6 +181,7 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
         "threshold",
         "max_level",
         "grid",
+        "title",
         "caption",
         "claims",
     ];
@@ -246,9 +250,10 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
             cells
         }
     };
+    let title = map.get("title").map(|t| both(Some(t), &format!("{path}.title"), errors));
     let caption = both(map.get("caption"), &format!("{path}.caption"), errors);
     let claims = claim::parse(map.get("claims"), &format!("{path}.claims"), errors);
-    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, grid, caption, claims })
+    Some(FigureSpec { kind: kind?, scene: scene?, pixel, ray, depth, sampling, grid, title, caption, claims })
 }
 
 /// `aa` (`center`, `corners`, `adaptive`) with `threshold` (default 0.1) and `max_level` (default 2).
@@ -279,7 +284,7 @@ mod tests {
         "figures": [ { "kind": "rays", "scene": "s.json", "pixel": [3], "aa": "adaptive", "max_level": 3,
                        "caption": { "en": "a", "ro": "b" } },
                      { "kind": "refraction", "scene": "t.json", "ray": { "origin": [0, 0], "direction": [1, 0] },
-                       "depth": 2, "caption": { "en": "c", "ro": "d" } } ] }"#;
+                       "depth": 2, "title": { "en": "T", "ro": "Ț" }, "caption": { "en": "c", "ro": "d" } } ] }"#;
 
     #[test]
     fn a_lesson_reads() {
@@ -292,6 +297,8 @@ mod tests {
         assert_eq!(lesson.figures[1].sampling, None);
         assert_eq!(lesson.file_stem(1), "rays-2-refraction");
         assert_eq!(lesson.title.get(Lang::Ro), "Raze");
+        assert_eq!(lesson.figures[0].title, None);
+        assert_eq!(lesson.figures[1].title.as_ref().map(|t| t.get(Lang::Ro)), Some("Ț"));
     }
 
     #[test]

@@ -89,6 +89,29 @@ fn every_lesson_writes_numbers_with_the_decimal_point_in_both_languages() {
     assert!(found.is_empty(), "a decimal comma:\n{}", found.join("\n"));
 }
 
+/// A lesson scene names its objects in both languages (`{ "en": "mirror", "ro": "oglindă" }`): a
+/// Romanian figure that labels "ball" teaches in two languages at once. Letters and codes (`a`,
+/// `A`, `o12`) are the same in both and may stay one string.
+#[test]
+fn every_lesson_scene_names_its_objects_in_both_languages() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/scenes");
+    let mut english_only = Vec::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let scene: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        for object in scene["objects"].as_array().into_iter().flatten() {
+            if let Some(name) = object["name"].as_str() {
+                let code = name.chars().count() <= 1 || name.chars().skip(1).all(|c| c.is_ascii_digit());
+                if !code {
+                    english_only.push(format!("{}: {name}", path.display()));
+                }
+            }
+        }
+    }
+    assert!(english_only.is_empty(), "named in one language only:\n{}", english_only.join("\n"));
+}
+
 /// The old scenes and pixels that did not show their point (issue "taught right", item 1), each
 /// with the claim that now fails on it: the grid pitfall whose first voxel already held the
 /// nearer sphere (its box leaked into it, the ray ran along a cell boundary), the 3D slab chart

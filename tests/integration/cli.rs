@@ -92,7 +92,7 @@ fn object_names_follow_the_language_and_the_document_keeps_the_english() {
     let scene = format!("{}/scenes/flat.json", env!("CARGO_MANIFEST_DIR"));
     let (code, out, err) = whitted(&["trace", &scene, "--pixel", "15", "--lang", "ro"]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains(": I₁ pe “oglindă” (segmentul 2)"), "{out}");
+    assert!(out.contains(": I₁ pe „oglindă” (segmentul 2)"), "{out}");
     assert!(!out.contains("mirror"), "{out}");
     let (_, out, _) = whitted(&["trace", &scene, "--pixel", "15", "--lang", "en"]);
     assert!(out.contains("“mirror” (segment 2)"), "{out}");

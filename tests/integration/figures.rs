@@ -549,3 +549,24 @@ fn try_figure<V: Planar>(scene: &Scene<V>, kind: FigureKind) -> Result<Drawing, 
     let traces = record(kind, scene, "s", &Aim::Auto, &tracing(kind)).map_err(|e| e.0)?;
     draw(kind, &traces, scene, &Options { lang: Lang::Ro, width: 480, height: 270 }).map_err(|e| e.0)
 }
+
+/// The aliasing lesson's point, measured on its figure: adjacent rays 0.5 apart at both rows of
+/// discs in the orthographic panel, and 1 then 3 apart in the perspective one (discs 0.6 wide),
+/// each spacing marked `Δ = …` where the rows lie.
+#[test]
+fn the_aliasing_figure_marks_the_ray_spacing_at_each_row_of_discs() {
+    let path = format!("{}/lessons/scenes/aliasing_2d.json", env!("CARGO_MANIFEST_DIR"));
+    let AnyScene::Flat(scene) = load_str(&std::fs::read_to_string(path).unwrap()).unwrap() else {
+        panic!("a 2D scene")
+    };
+    let d = figure_in(&scene, "aliasing_2d", FigureKind::Projections, &Aim::Auto, Lang::En, (1920, 1080));
+    let mut marks: Vec<&str> = d
+        .tagged("spacing")
+        .filter_map(|i| match &i.mark {
+            Mark::Text(t) => Some(t.text.as_str()),
+            _ => None,
+        })
+        .collect();
+    marks.sort_unstable();
+    assert_eq!(marks, ["Δ = 0.5", "Δ = 0.5", "Δ = 1", "Δ = 3"]);
+}

@@ -215,7 +215,14 @@ impl<'a, V: Dim> Writer<'a, V> {
         let obj = &self.scene.objects[o.index];
         let kind = self.kind_word(obj.shape.kind());
         let base = match &obj.name {
-            Some(n) => format!("“{}” ({kind} {})", n.get(self.lang), o.index),
+            // Quoted as each language quotes: “mirror” in English, „oglindă” in Romanian.
+            Some(n) => {
+                let (open, close) = match self.lang {
+                    Lang::En => ('“', '”'),
+                    Lang::Ro => ('„', '”'),
+                };
+                format!("{open}{}{close} ({kind} {})", n.get(self.lang), o.index)
+            }
             None => format!("{kind} {}", o.index),
         };
         match o.triangle {

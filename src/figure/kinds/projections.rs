@@ -13,13 +13,14 @@ use crate::canvas::{Align, Drawing, LegendIcon, Pen, TextOpts, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     camera_plane, draw_objects, draw_observer, draw_ray, label, label_objects, legend_points, legend_role,
-    object_extent, plane_note,
+    num, object_extent, plane_note,
 };
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{FigureTrace, Target};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
 use crate::scene::camera::{Camera, Projection};
+use crate::scene::Scene;
 
 /// One primary ray on the page: where it starts and where it ends (a hit, or the far edge).
 struct Primary {
@@ -217,7 +218,79 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for (list, _) in &anchors {
         label_objects(d, scene, list, input.lang);
     }
+    // The spacing of adjacent rays at each row of objects: what aliasing is about.
+    for ((traced, offset), plane) in [(ortho, DVec2::ZERO), (persp, shift)].into_iter().zip(&planes) {
+        let panel = plane.shifted(offset);
+        for row in object_rows(scene, &panel) {
+            mark_spacing(d, &primaries(traced, &panel), &row);
+        }
+    }
     Ok(())
+}
+
+/// A row of bounded objects on the page: their centres' common height and their mean x.
+struct Row {
+    y: f64,
+    x: f64,
+    /// Half the tallest object's extent along the page's y, to keep the mark clear of the row.
+    half_height: f64,
+}
+
+/// The rows of objects in a panel: two or more bounded objects whose centres lie at one height
+/// (one distance along the viewing direction), the depths at which the ray spacing is marked.
+fn object_rows<V: Planar>(scene: &Scene<V>, plane: &PagePlane<V>) -> Vec<Row> {
+    let mut centres: Vec<(DVec2, f64)> = scene
+        .objects
+        .iter()
+        .filter_map(|o| {
+            let (lo, hi) = o.shape.bounds()?;
+            let (a, b) = (plane.point(lo), plane.point(hi));
+            Some((plane.point((lo + hi) * 0.5), (a.y - b.y).abs() / 2.0))
+        })
+        .collect();
+    centres.sort_by(|a, b| a.0.y.total_cmp(&b.0.y));
+    let mut rows = Vec::new();
+    for group in centres.chunk_by(|a, b| (a.0.y - b.0.y).abs() <= ROW_TOLERANCE * (1.0 + a.0.y.abs())) {
+        if group.len() >= 2 {
+            let x = group.iter().map(|c| c.0.x).sum::<f64>() / group.len() as f64;
+            let half_height = group.iter().map(|c| c.1).fold(0.0, f64::max);
+            rows.push(Row { y: group[0].0.y, x, half_height });
+        }
+    }
+    rows
+}
+
+/// Centres whose heights differ by less than this (relative) are one row.
+const ROW_TOLERANCE: f64 = 1e-9;
+
+/// Marks the distance between two adjacent primary rays near the middle of `row`, measured where
+/// they cross the row's height: a dimension line just beyond the row (one object's half-height
+/// past its far side), joined to the crossings by extension lines, labelled `Δ = 3`. Only a pair
+/// whose two rays reach the line is marked (a ray stopped by an object of the row does not).
+fn mark_spacing(d: &mut Drawing, rays: &[Primary], row: &Row) {
+    let y = row.y + 2.0 * row.half_height;
+    let mut crossings: Vec<(f64, bool)> = rays
+        .iter()
+        .filter(|p| p.dir.y > 1e-12)
+        .map(|p| (p.from.x + p.dir.x * (row.y - p.from.y) / p.dir.y, p.hit.is_none_or(|h| h.y >= y)))
+        .collect();
+    crossings.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let middle = |(a, b): (f64, f64)| ((a + b) / 2.0 - row.x).abs();
+    let Some((a, b)) = crossings
+        .windows(2)
+        .filter(|w| w[0].1 && w[1].1)
+        .map(|w| (w[0].0, w[1].0))
+        .min_by(|p, q| middle(*p).total_cmp(&middle(*q)))
+    else {
+        return;
+    };
+    for x in [a, b] {
+        d.segment("spacing", DVec2::new(x, row.y), DVec2::new(x, y), style::normal());
+    }
+    let line = Pen::solid(style::DARK_GREY, style::CONSTRUCTION_WIDTH);
+    d.segment("spacing", DVec2::new(a, y), DVec2::new(b, y), line);
+    let opts = TextOpts::LABEL.align(Align::ABOVE).offset(0.0, 4.0).avoid_overlap();
+    d.text("spacing", DVec2::new((a + b) / 2.0, y), &format!("Δ = {}", num(b - a)), opts);
 }
 
 /// The window points S of a trace's pixels, on `plane`.
