@@ -19,6 +19,7 @@ pub mod canvas;
 pub mod clock;
 pub mod doc;
 pub mod figure;
+pub mod format;
 pub mod geom;
 pub mod image;
 pub mod json;

@@ -11,6 +11,7 @@ use serde_json::{Map, Value};
 
 use crate::accel::AccelKind;
 use crate::figure::{FigureKind, Lang};
+use crate::format::html_escape;
 use crate::lesson::{FigureSpec, Lesson};
 use crate::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD, MAX_LEVEL};
 
@@ -140,11 +141,11 @@ pub struct Nav {
 /// `module` says whether `whitted-wasm.js` was written beside the scripts.
 #[must_use]
 pub fn lesson_page(lesson: &Lesson, views: &[View], lang: Lang, nav: &Nav, module: bool) -> String {
-    let mut body = format!("<h1>{}</h1>\n", esc(lesson.title.get(lang)));
+    let mut body = format!("<h1>{}</h1>\n", html_escape(lesson.title.get(lang)));
     if !lesson.text.get(lang).is_empty() {
-        body.push_str(&format!("<p class=\"intro\">{}</p>\n", esc(lesson.text.get(lang))));
+        body.push_str(&format!("<p class=\"intro\">{}</p>\n", html_escape(lesson.text.get(lang))));
     }
-    body.push_str(&format!("<p class=\"hint\">{}</p>\n", esc(word("hint", lang))));
+    body.push_str(&format!("<p class=\"hint\">{}</p>\n", html_escape(word("hint", lang))));
     for view in views {
         body.push_str(&view_html(view, lang, None));
     }
@@ -157,21 +158,21 @@ pub fn lesson_page(lesson: &Lesson, views: &[View], lang: Lang, nav: &Nav, modul
 pub fn play_page(examples: &[(String, String)], lang: Lang, nav: &Nav, module: bool) -> String {
     let mut body = format!(
         "<h1>{}</h1>\n<p class=\"intro\">{}</p>\n<p class=\"hint\">{}</p>\n",
-        esc(word("play_title", lang)),
-        esc(word("play_intro", lang)),
-        esc(word("hint", lang))
+        html_escape(word("play_title", lang)),
+        html_escape(word("play_intro", lang)),
+        html_escape(word("hint", lang))
     );
     let mut picker = format!(
         "<div class=\"picker\"><label>{} <input type=\"file\" data-whitted=\"file\" accept=\".json,.obj\" multiple></label>\n\
          <label>{} <select data-whitted=\"example\">",
-        esc(word("open", lang)),
-        esc(word("example", lang))
+        html_escape(word("open", lang)),
+        html_escape(word("example", lang))
     );
     for (name, text) in examples {
         picker.push_str(&format!(
             "<option value=\"{n}\" data-text=\"{t}\">{n}</option>",
-            n = esc(name),
-            t = esc(text)
+            n = html_escape(name),
+            t = html_escape(text)
         ));
     }
     picker.push_str("</select></label></div>\n");
@@ -183,22 +184,31 @@ pub fn play_page(examples: &[(String, String)], lang: Lang, nav: &Nav, module: b
 
 /// The whole document around `body`.
 fn page(title: &str, body: &str, lang: Lang, nav: &Nav, module: bool) -> String {
-    let mut links = format!("<a href=\"{}\">{}</a>", esc(&nav.index), esc(word("lessons", lang)));
+    let mut links =
+        format!("<a href=\"{}\">{}</a>", html_escape(&nav.index), html_escape(word("lessons", lang)));
     if let Some(prev) = &nav.prev {
-        links.push_str(&format!("<a href=\"{}\">{}</a>", esc(prev), esc(word("prev", lang))));
+        links.push_str(&format!("<a href=\"{}\">{}</a>", html_escape(prev), html_escape(word("prev", lang))));
     }
     if let Some(next) = &nav.next {
-        links.push_str(&format!("<a href=\"{}\">{}</a>", esc(next), esc(word("next_lesson", lang))));
+        links.push_str(&format!(
+            "<a href=\"{}\">{}</a>",
+            html_escape(next),
+            html_escape(word("next_lesson", lang))
+        ));
     }
-    links.push_str(&format!("<a href=\"{}\">{}</a>", esc(&nav.play), esc(word("play", lang))));
+    links.push_str(&format!(
+        "<a href=\"{}\">{}</a>",
+        html_escape(&nav.play),
+        html_escape(word("play", lang))
+    ));
     let other_code = match lang {
         Lang::En => "ro",
         Lang::Ro => "en",
     };
     links.push_str(&format!(
         "<a data-whitted=\"lang\" hreflang=\"{other_code}\" lang=\"{other_code}\" href=\"{}\">{}</a>",
-        esc(&nav.other),
-        esc(word("other", lang))
+        html_escape(&nav.other),
+        html_escape(word("other", lang))
     ));
     let module_script =
         if module { format!("<script src=\"../{MODULE_SCRIPT}\"></script>\n") } else { String::new() };
@@ -211,9 +221,9 @@ fn page(title: &str, body: &str, lang: Lang, nav: &Nav, module: bool) -> String 
          <nav class=\"bar\">{links}</nav>\n<main>\n\
          <p class=\"module\" data-whitted=\"module\" role=\"status\">{status}</p>\n{body}</main>\n</body>\n</html>\n",
         code = code(lang),
-        title = esc(title),
+        title = html_escape(title),
         words = words_json(lang),
-        status = esc(word(if module { "loading" } else { "missing" }, lang)),
+        status = html_escape(word(if module { "loading" } else { "missing" }, lang)),
         class = if module { "live" } else { "static" },
     )
 }
@@ -223,7 +233,7 @@ fn select(name: &str, options: &[(&str, String)], chosen: &str) -> String {
     let mut out = format!("<select data-whitted=\"{name}\">");
     for (value, label) in options {
         let selected = if *value == chosen { " selected" } else { "" };
-        out.push_str(&format!("<option value=\"{value}\"{selected}>{}</option>", esc(label)));
+        out.push_str(&format!("<option value=\"{value}\"{selected}>{}</option>", html_escape(label)));
     }
     out.push_str("</select>");
     out
@@ -232,10 +242,10 @@ fn select(name: &str, options: &[(&str, String)], chosen: &str) -> String {
 /// One view's markup: the state attributes, image, figure, step controls, options, command,
 /// steps, editor and errors list (the contract of `docs/course.md`).
 fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
-    let w = |key| esc(word(key, lang));
-    let mut attrs = format!(" data-scene=\"{}\"", esc(view.scene));
+    let w = |key| html_escape(word(key, lang));
+    let mut attrs = format!(" data-scene=\"{}\"", html_escape(view.scene));
     if let Some(path) = &view.path {
-        attrs.push_str(&format!(" data-path=\"{}\"", esc(path)));
+        attrs.push_str(&format!(" data-path=\"{}\"", html_escape(path)));
     }
     let spec = view.spec;
     let kind = spec.map_or(FigureKind::Rays, |s| s.kind);
@@ -274,14 +284,13 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
     let kinds: Vec<(&str, String)> =
         FigureKind::ALL.iter().map(|k| (k.name(), k.name().to_owned())).collect();
     let kinds = select("kind", &kinds, kind.name());
-    let figure = view
-        .png
-        .as_ref()
-        .map_or(String::new(), |png| format!("<img src=\"{}\" alt=\"{}\">", esc(png), esc(view.caption)));
+    let figure = view.png.as_ref().map_or(String::new(), |png| {
+        format!("<img src=\"{}\" alt=\"{}\">", html_escape(png), html_escape(view.caption))
+    });
     let caption = if view.caption.is_empty() {
         String::new()
     } else {
-        format!("<p class=\"caption\">{}</p>\n", esc(view.caption))
+        format!("<p class=\"caption\">{}</p>\n", html_escape(view.caption))
     };
     format!(
         "<section class=\"view\" data-whitted=\"view\"{attrs} tabindex=\"-1\">\n{caption}{picker}\
@@ -326,7 +335,7 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
         command = w("command"),
         steps = w("steps"),
         scene = w("scene"),
-        text = esc(view.text),
+        text = html_escape(view.text),
     )
 }
 
@@ -395,7 +404,7 @@ pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &
          nav a {{ margin-right: 1em; }} .error {{ color: #d55e00; }}\n\
          @media print {{ nav, .cmd {{ display: none; }} figure {{ page-break-inside: avoid; }} }}\n\
          </style>\n</head>\n<body>\n<h1>{title}</h1>\n<nav><a href=\"{}\">{other_name}</a></nav>\n<ol>\n",
-        esc(other)
+        html_escape(other)
     );
     // The lesson pages and the playground live in the language's folder (`en/`, `ro/`); the
     // English index is one folder up from its pages.
@@ -406,7 +415,7 @@ pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &
     for lesson in lessons {
         out.push_str(&format!(
             "<li><a href=\"{pages}{name}.html\">{}</a> (<a href=\"#{name}\">{figures}</a>)</li>\n",
-            esc(lesson.title.get(lang)),
+            html_escape(lesson.title.get(lang)),
             name = lesson.name,
         ));
     }
@@ -415,26 +424,26 @@ pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &
         out.push_str(&format!(
             "<section id=\"{}\">\n<h2>{}</h2>\n",
             lesson.name,
-            esc(lesson.title.get(lang))
+            html_escape(lesson.title.get(lang))
         ));
         if !lesson.text.get(lang).is_empty() {
-            out.push_str(&format!("<p>{}</p>\n", esc(lesson.text.get(lang))));
+            out.push_str(&format!("<p>{}</p>\n", html_escape(lesson.text.get(lang))));
         }
         for (spec, s) in lesson.figures.iter().zip(figures) {
-            let caption = esc(spec.caption.get(lang));
+            let caption = html_escape(spec.caption.get(lang));
             match &s.error {
                 None => out.push_str(&format!(
                     "<figure>\n<a href=\"{svg}\"><img src=\"{png}\" alt=\"{caption}\"></a>\n<figcaption>{caption} \
                      (<a href=\"{svg}\">{vector}</a>)<br><span class=\"cmd\">{regenerate}: <code>{cmd}</code></span>\
                      </figcaption>\n</figure>\n",
-                    svg = esc(&s.svg),
-                    png = esc(&s.png),
-                    cmd = esc(&s.command),
+                    svg = html_escape(&s.svg),
+                    png = html_escape(&s.png),
+                    cmd = html_escape(&s.command),
                 )),
                 Some(e) => out.push_str(&format!(
                     "<figure>\n<figcaption>{caption}<br><span class=\"error\">{}</span><br><code>{}</code></figcaption>\n</figure>\n",
-                    esc(e),
-                    esc(&s.command)
+                    html_escape(e),
+                    html_escape(&s.command)
                 )),
             }
         }
@@ -442,11 +451,6 @@ pub fn index_html(lessons: &[Lesson], shown: &[Vec<Shown>], lang: Lang, other: &
     }
     out.push_str("</body>\n</html>\n");
     out
-}
-
-/// Escapes text for HTML (element content and quoted attribute values).
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
 #[cfg(test)]

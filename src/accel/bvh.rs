@@ -372,7 +372,7 @@ impl<V: Vector> Builder<'_, V> {
         if depth >= BALANCE_DEPTH || !(cbox.extent()[axis] > 0.0) {
             return (count > MAX_LEAF || depth >= BALANCE_DEPTH).then(|| self.median(lo, hi, axis));
         }
-        let (cost, axis, bin) = self.best_bin_split(lo, hi, cbox, bounds);
+        let BinSplit { cost, axis, bin } = self.best_bin_split(lo, hi, cbox, bounds);
         // A leaf costs the tests of all its primitives.
         let leaf: f64 = self.items[lo..hi].iter().map(|it| f64::from(it.cost)).sum();
         if count <= MAX_LEAF && cost >= leaf {
@@ -393,9 +393,9 @@ impl<V: Vector> Builder<'_, V> {
         Some(mid)
     }
 
-    /// The best binned SAH split over every axis: `(cost, axis, last bin of the left side)`.
-    /// All axes are binned in one pass over the primitives.
-    fn best_bin_split(&self, lo: usize, hi: usize, cbox: &Aabb<V>, bounds: &Aabb<V>) -> (f64, usize, usize) {
+    /// The best binned SAH split over every axis. All axes are binned in one pass over the
+    /// primitives.
+    fn best_bin_split(&self, lo: usize, hi: usize, cbox: &Aabb<V>, bounds: &Aabb<V>) -> BinSplit {
         let parent = bounds.surface();
         // Large groups are binned along their longest axis only, small ones along every axis.
         let longest = cbox.longest_axis();
@@ -418,7 +418,7 @@ impl<V: Vector> Builder<'_, V> {
                 }
             }
         }
-        let mut best = (f64::INFINITY, 0, 0);
+        let mut best = BinSplit { cost: f64::INFINITY, axis: 0, bin: 0 };
         for axis in (0..V::DIM).filter(|&a| maps[a].is_some()) {
             let (counts, costs, boxes) = (&counts[axis], &costs[axis], &boxes[axis]);
             // Sweep from the right: the area, count and test cost of bins b+1.. .
@@ -449,8 +449,8 @@ impl<V: Vector> Builder<'_, V> {
                     // A flat or point-like group: every box has measure 0; split evenly.
                     C_TRAV + f64::max(cl, cr)
                 };
-                if cost < best.0 {
-                    best = (cost, axis, b);
+                if cost < best.cost {
+                    best = BinSplit { cost, axis, bin: b };
                 }
             }
         }
@@ -465,6 +465,17 @@ impl<V: Vector> Builder<'_, V> {
         });
         mid
     }
+}
+
+/// A binned SAH split: what [`Bvh`]'s build chooses among.
+#[derive(Clone, Copy, Debug)]
+struct BinSplit {
+    /// Its SAH cost.
+    cost: f64,
+    /// The axis binned.
+    axis: usize,
+    /// The last bin of the left side.
+    bin: usize,
 }
 
 /// The bin map of an axis: `(min, BINS / extent)`.

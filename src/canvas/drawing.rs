@@ -160,10 +160,9 @@ impl Drawing {
         self.push(tag, style, Mark::Line { points: vec![a, b] })
     }
 
-    /// Adds an arrow from `from` to `to`, its head sized for the stroke
-    /// (`max(ARROW_HEAD, 4.5 × width)` reference pixels).
+    /// Adds an arrow from `from` to `to`, its head sized for the stroke ([`style::arrow_head`]).
     pub fn arrow(&mut self, tag: &str, from: DVec2, to: DVec2, style: Pen) -> &mut Self {
-        let head = style::ARROW_HEAD.max(4.5 * style.width);
+        let head = style::arrow_head(style.width);
         self.push(tag, style, Mark::Arrow { from, to, head })
     }
 

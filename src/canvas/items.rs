@@ -113,9 +113,19 @@ pub struct ArrowPx {
     pub head: [DVec2; 4],
 }
 
+/// The largest share of an arrow its head may take, so that a short arrow keeps a shaft.
+pub const HEAD_MAX_SHARE: f64 = 0.6;
+/// Half the head's width at its base, per head length: a barb's distance from the shaft's line.
+pub const HEAD_HALF_WIDTH: f64 = 0.42;
+/// Where the shaft stops, in head lengths back from the tip: inside the head, so no gap shows.
+pub const SHAFT_END: f64 = 0.7;
+/// Where the head's notch lies, in head lengths back from the tip: short of the base, so the
+/// head's back is swept between the barbs.
+pub const HEAD_NOTCH: f64 = 0.85;
+
 impl ArrowPx {
-    /// The arrow from pixel `from` to pixel `to` with a head `head` pixels long (at most 0.6 of
-    /// the arrow, so a short arrow keeps a shaft), or `None` for a zero-length arrow.
+    /// The arrow from pixel `from` to pixel `to` with a head `head` pixels long (at most
+    /// [`HEAD_MAX_SHARE`] of the arrow), or `None` for a zero-length arrow.
     #[must_use]
     pub fn new(from: DVec2, to: DVec2, head: f64) -> Option<Self> {
         let along = to - from;
@@ -124,13 +134,13 @@ impl ArrowPx {
             return None;
         }
         let dir = along / len;
-        let head = head.min(0.6 * len);
+        let head = head.min(HEAD_MAX_SHARE * len);
         let base = to - dir * head;
-        let side = dir.perp() * head * 0.42;
+        let side = dir.perp() * head * HEAD_HALF_WIDTH;
         Some(Self {
             shaft_from: from,
-            shaft_to: to - dir * head * 0.7,
-            head: [to, base + side, to - dir * head * 0.85, base - side],
+            shaft_to: to - dir * head * SHAFT_END,
+            head: [to, base + side, to - dir * head * HEAD_NOTCH, base - side],
         })
     }
 }

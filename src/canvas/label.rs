@@ -8,6 +8,7 @@ use glam::DVec2;
 
 use super::drawing::Drawing;
 use super::items::{Mark, Text};
+use super::legend::PlacedLegend;
 use super::style::{self, Rgba, TextSize};
 use super::text::{self, Weight};
 use super::view::{PxRect, Transform};
@@ -86,7 +87,23 @@ pub struct TextOpts {
     pub far: bool,
 }
 
-/// The distances, in gaps of 14 reference pixels, at which [`Placement::Clear`] tries the eight
+/// The gap between two rings of candidate spots around a label's anchor, in reference pixels.
+pub const RING_GAP: f64 = 14.0;
+
+/// What a candidate spot costs per share of its padded box that covers earlier labels and other
+/// points' markers: covering all of one weighs as much as [`OUTSIDE_COST`].
+pub const COVER_COST: f64 = 100.0;
+/// What a candidate spot costs per line it crosses: the unit of the other costs, since the halo
+/// keeps a label readable over a line.
+pub const LINE_COST: f64 = 1.0;
+/// What a candidate spot partly outside the label area costs.
+pub const OUTSIDE_COST: f64 = 100.0;
+/// What a candidate spot's leader costs per label it would cross.
+pub const LEADER_CROSSING_COST: f64 = 20.0;
+/// What each ring farther from the anchor costs: a label far from its anchor loses its meaning.
+pub const RING_COST: f64 = 1.5;
+
+/// The distances, in gaps of [`RING_GAP`], at which [`Placement::Clear`] tries the eight
 /// directions around the anchor: near, for a crowded diagram, where a name far from its object
 /// would be lost among the others.
 pub const NEAR_STEPS: [f64; 4] = [1.0, 2.5, 4.5, 7.0];
@@ -323,7 +340,7 @@ impl Drawing {
     /// Moves `label` down, a line at a time, off the earlier labels and no lower than world
     /// height `floor` (see [`Drawing::text`]).
     pub(super) fn place_stacked(&self, label: &mut Text, floor: f64) {
-        let (tf, _, _) = self.placed_legend();
+        let tf = self.placed_legend().transform;
         let boxes = self.text_boxes(&tf);
         // One line down: the label's own height and a gap of 2 reference pixels, so that
         // labels on neighbouring lines never touch.
@@ -351,11 +368,10 @@ impl Drawing {
 
     /// Moves `label` to the clearest candidate spot `steps` gaps from its anchor (see
     /// [`Drawing::text`]), with a leader when `leader` and the spot is farther than
-    /// [`LEADER_FROM`]. A spot costs the share of it that covers earlier labels and other points'
-    /// markers (×100), one per line it crosses, 100 outside the label area, 20 per label its
-    /// leader would cross, and 1.5 per ring away from the anchor.
+    /// [`LEADER_FROM`]. A spot costs [`COVER_COST`], [`LINE_COST`], [`OUTSIDE_COST`],
+    /// [`LEADER_CROSSING_COST`] and [`RING_COST`] per what each counts; the cheapest wins.
     pub(super) fn place_clear(&self, label: &mut Text, leader: bool, steps: &[f64]) {
-        let (tf, plot, _) = self.placed_legend();
+        let PlacedLegend { transform: tf, plot, .. } = self.placed_legend();
         let segments = self.segments(&tf);
         let mut boxes = self.text_boxes(&tf);
         // Other points' markers are data: a name must not hide one (its own point is the anchor).
@@ -386,7 +402,10 @@ impl Drawing {
             let leader_over_labels = placed.leader.map_or(0, |(a, c)| {
                 boxes.iter().filter(|o| !o.contains_point(a) && o.meets_segment(a, c)).count()
             });
-            100.0 * overlap + crossings as f64 + 100.0 * outside + 20.0 * leader_over_labels as f64
+            COVER_COST * overlap
+                + LINE_COST * crossings as f64
+                + OUTSIDE_COST * outside
+                + LEADER_CROSSING_COST * leader_over_labels as f64
         };
         let requested = with_leader(label.clone());
         let mut best = (cost(&requested), requested.offset, requested.align);
@@ -394,7 +413,6 @@ impl Drawing {
             *label = requested;
             return;
         }
-        let gap = 14.0;
         let diag = std::f64::consts::FRAC_1_SQRT_2;
         let directions = [
             (DVec2::new(1.0, 0.0), Align::RIGHT_OF),
@@ -406,13 +424,11 @@ impl Drawing {
             (DVec2::new(-diag, -diag), Align { h: HAlign::Right, v: VAlign::Top }),
             (DVec2::new(diag, -diag), Align { h: HAlign::Left, v: VAlign::Top }),
         ];
-        // A label far from its anchor loses its meaning: each step away costs as much as crossing
-        // one and a half lines (the halo keeps a label readable over a line).
         for (step, &distance) in steps.iter().enumerate() {
             for (dir, align) in directions {
                 let candidate =
-                    with_leader(Text { offset: dir * gap * distance, align, ..requested.clone() });
-                let c = cost(&candidate) + 1.5 * step as f64;
+                    with_leader(Text { offset: dir * RING_GAP * distance, align, ..requested.clone() });
+                let c = cost(&candidate) + RING_COST * step as f64;
                 if c < best.0 {
                     best = (c, candidate.offset, candidate.align);
                     if c <= 0.0 {

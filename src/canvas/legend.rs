@@ -89,11 +89,47 @@ pub struct LegendBox {
     pub rows: Vec<LegendRow>,
 }
 
+/// The legend box's padding around its rows, in reference pixels.
+pub const LEGEND_PAD: f64 = 18.0;
+/// The length of a row's sample line or arrow, in reference pixels: long enough to show a dash.
+pub const LEGEND_SAMPLE: f64 = 64.0;
+/// The gap between a row's sample and its text, in reference pixels.
+pub const LEGEND_GAP: f64 = 16.0;
+
+/// The legend's sizes in pixels at a drawing's scale.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct LegendMetrics {
+    /// [`LEGEND_PAD`], scaled.
+    pub pad: f64,
+    /// [`LEGEND_SAMPLE`], scaled.
+    pub sample_len: f64,
+    /// [`LEGEND_GAP`], scaled.
+    pub gap: f64,
+    /// A row's height: a body text line.
+    pub row: f64,
+}
+
+/// Where the picture and the legend go: what [`Drawing::placed_legend`] decides.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct PlacedLegend {
+    /// World → pixels for the plot area.
+    pub transform: Transform,
+    /// The plot area, in pixels.
+    pub plot: PxRect,
+    /// The legend box, or `None` without legend entries.
+    pub legend: Option<PxRect>,
+}
+
 impl Drawing {
     /// The legend's padding, sample length, gap before the text, and row height, in pixels.
-    pub(super) fn legend_metrics(&self) -> (f64, f64, f64, f64) {
+    pub(super) fn legend_metrics(&self) -> LegendMetrics {
         let k = self.px_scale();
-        (18.0 * k, 64.0 * k, 16.0 * k, TextSize::Body.px() * k * LINE_SPACING)
+        LegendMetrics {
+            pad: LEGEND_PAD * k,
+            sample_len: LEGEND_SAMPLE * k,
+            gap: LEGEND_GAP * k,
+            row: TextSize::Body.px() * k * LINE_SPACING,
+        }
     }
 
     /// The legend box's size in pixels, or `None` without legend entries.
@@ -102,7 +138,7 @@ impl Drawing {
             return None;
         }
         let size = TextSize::Body.px() * self.px_scale();
-        let (pad, sample_len, gap, row) = self.legend_metrics();
+        let LegendMetrics { pad, sample_len, gap, row } = self.legend_metrics();
         let text_width = self
             .legend
             .iter()
@@ -115,10 +151,10 @@ impl Drawing {
     }
 
     /// The transform, the plot area and the legend box, with [`LegendPlace::Auto`] resolved.
-    pub(super) fn placed_legend(&self) -> (Transform, PxRect, Option<PxRect>) {
+    pub(super) fn placed_legend(&self) -> PlacedLegend {
         let Some(size) = self.legend_size() else {
             let plot = self.plot_area_beside(0.0);
-            return (self.transform_in(&plot), plot, None);
+            return PlacedLegend { transform: self.transform_in(&plot), plot, legend: None };
         };
         let inset = style::MARGIN * self.px_scale() * 0.3;
         let in_corner = |plot: &PxRect, corner: Corner| {
@@ -136,19 +172,31 @@ impl Drawing {
             let plot = self.plot_area_beside(size.x);
             let margin = style::MARGIN * self.px_scale();
             let min = DVec2::new(plot.max.x + margin, plot.min.y);
-            (self.transform_in(&plot), plot, Some(PxRect { min, max: min + size }))
+            PlacedLegend {
+                transform: self.transform_in(&plot),
+                plot,
+                legend: Some(PxRect { min, max: min + size }),
+            }
         };
         let below = || {
             let plot = self.plot_area_above(size.y);
             let margin = style::MARGIN * self.px_scale();
             let min = DVec2::new(plot.max.x - size.x, plot.max.y + margin);
-            (self.transform_in(&plot), plot, Some(PxRect { min, max: min + size }))
+            PlacedLegend {
+                transform: self.transform_in(&plot),
+                plot,
+                legend: Some(PxRect { min, max: min + size }),
+            }
         };
         match self.legend_place {
             LegendPlace::Below => below(),
             LegendPlace::Inside(corner) => {
                 let plot = self.plot_area_beside(0.0);
-                (self.transform_in(&plot), plot, Some(in_corner(&plot, corner)))
+                PlacedLegend {
+                    transform: self.transform_in(&plot),
+                    plot,
+                    legend: Some(in_corner(&plot, corner)),
+                }
             }
             LegendPlace::Outside => outside(),
             LegendPlace::Auto => {
@@ -165,7 +213,7 @@ impl Drawing {
                     .iter()
                     .map(|c| in_corner(&plot, *c))
                     .find(|r| clear(r))
-                    .map_or_else(outside, |r| (tf, plot, Some(r)))
+                    .map_or_else(outside, |r| PlacedLegend { transform: tf, plot, legend: Some(r) })
             }
         }
     }
@@ -173,7 +221,7 @@ impl Drawing {
     /// The legend's rows inside its box.
     pub(super) fn legend_rows(&self, rect: PxRect) -> LegendBox {
         let size = TextSize::Body.px() * self.px_scale();
-        let (pad, sample_len, gap, row) = self.legend_metrics();
+        let LegendMetrics { pad, sample_len, gap, row } = self.legend_metrics();
         let cap = text::cap_height(size);
         let rows = self
             .legend

@@ -5,7 +5,7 @@
 use glam::DVec2;
 
 use super::drawing::Drawing;
-use super::legend::{LegendBox, LegendPlace};
+use super::legend::{LegendBox, LegendPlace, PlacedLegend};
 use super::style::{self, TextSize};
 use super::text::{self, Weight};
 use super::view::{PxRect, Transform};
@@ -62,7 +62,7 @@ impl Drawing {
     /// The world → pixel scale of the picture: how large the figure draws its view.
     #[must_use]
     pub fn picture_scale(&self) -> f64 {
-        self.placed_legend().0.scale()
+        self.placed_legend().transform.scale()
     }
 
     /// The plot area with a legend column `column` pixels wide (0 for none) on the right.
@@ -101,7 +101,7 @@ impl Drawing {
     /// area after the legend is placed, as in [`Drawing::frame`]).
     #[must_use]
     pub fn transform(&self) -> Transform {
-        self.placed_legend().0
+        self.placed_legend().transform
     }
 
     /// The view scaled uniformly to fit `plot`, centred.
@@ -111,7 +111,7 @@ impl Drawing {
     /// Lays out the canvas for the back ends: transform, plot area, title, caption and legend.
     #[must_use]
     pub fn frame(&self) -> PageLayout {
-        let (tf, plot, legend_rect) = self.placed_legend();
+        let PlacedLegend { transform: tf, plot, legend: legend_rect } = self.placed_legend();
         let k = self.px_scale();
         let w = f64::from(self.width());
         let h = f64::from(self.height());

@@ -325,7 +325,7 @@ impl Canvas<'_> {
                     }
                 }
                 LegendIcon::Arrow => {
-                    let head = self.tf.ref_px(style::ARROW_HEAD.max(4.5 * entry.style.width));
+                    let head = self.tf.ref_px(style::arrow_head(entry.style.width));
                     self.arrow(a, z, head, &entry.style, false);
                 }
                 LegendIcon::Dot(fill) => {

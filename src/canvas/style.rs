@@ -99,8 +99,18 @@ pub const TEXT: Rgba = Rgba::rgb(0x1A, 0x1A, 0x1A);
 
 /// Width of a grid or cell line, in reference pixels.
 pub const GRID_WIDTH: f64 = 2.0;
-/// Length of an arrow head, tip to base, in reference pixels.
+/// Length of an arrow head, tip to base, in reference pixels, for a thin stroke.
 pub const ARROW_HEAD: f64 = 30.0;
+/// A thick stroke's arrow head is at least this many stroke widths long, so the head stays wider
+/// than the shaft.
+pub const ARROW_HEAD_PER_WIDTH: f64 = 4.5;
+
+/// The length of the arrow head of a stroke `width` reference pixels wide, in reference pixels:
+/// [`ARROW_HEAD`], or [`ARROW_HEAD_PER_WIDTH`] widths when that is longer.
+#[must_use]
+pub fn arrow_head(width: f64) -> f64 {
+    ARROW_HEAD.max(ARROW_HEAD_PER_WIDTH * width)
+}
 /// Radius of a dot ([`crate::canvas::Drawing::dot`]: a hit point's marker), in reference pixels.
 pub const DOT_RADIUS: f64 = 10.0;
 /// Width of the white halo around labels, in reference pixels (the full stroke width).

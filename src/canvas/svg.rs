@@ -33,17 +33,17 @@ pub fn to_svg(drawing: &Drawing) -> String {
         out,
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
          viewBox=\"0 0 {w} {h}\" font-family=\"{}, sans-serif\">",
-        escape(text::FAMILY)
+        xml_escape(text::FAMILY)
     );
     let plot = frame.plot;
     let _ = writeln!(
         out,
         "<defs><clipPath id=\"{CLIP_ID}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\
          </clipPath></defs>",
-        num(plot.min.x),
-        num(plot.min.y),
-        num(plot.width()),
-        num(plot.height())
+        svg_coordinate(plot.min.x),
+        svg_coordinate(plot.min.y),
+        svg_coordinate(plot.width()),
+        svg_coordinate(plot.height())
     );
     out.push_str("<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
     let tf = frame.transform;
@@ -54,8 +54,12 @@ pub fn to_svg(drawing: &Drawing) -> String {
             format!(" clip-path=\"url(#{CLIP_ID})\"")
         };
         let events: Vec<String> = item.events.iter().map(ToString::to_string).collect();
-        let _ =
-            write!(out, "<g data-tag=\"{}\" data-events=\"{}\"{clip}>", escape(&item.tag), events.join(" "));
+        let _ = write!(
+            out,
+            "<g data-tag=\"{}\" data-events=\"{}\"{clip}>",
+            xml_escape(&item.tag),
+            events.join(" ")
+        );
         shape(&mut out, &tf, &item.pen, &item.mark);
         out.push_str("</g>\n");
     }
@@ -64,8 +68,11 @@ pub fn to_svg(drawing: &Drawing) -> String {
     out
 }
 
-/// A number for an attribute: at most two decimals, no trailing zeros, no `-0`.
-fn num(v: f64) -> String {
+/// A coordinate or length in an SVG attribute, in pixels: two decimals, no trailing zeros, no `-0`.
+/// A hundredth of a pixel is below what a screen or printer shows. The minus is ASCII `-`, as
+/// SVG's number syntax requires. The top-level `format` module lists every format and why.
+#[must_use]
+pub fn svg_coordinate(v: f64) -> String {
     let s = format!("{v:.2}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {
@@ -75,9 +82,10 @@ fn num(v: f64) -> String {
     }
 }
 
-/// Escapes text for XML content and attribute values; drops characters XML 1.0 forbids.
+/// Text for the SVG's XML content and attribute values: `& < > " '` become entities.
+/// The control characters XML 1.0 forbids are dropped, since one would make the file unreadable.
 #[must_use]
-pub fn escape(s: &str) -> String {
+pub fn xml_escape(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {
@@ -102,15 +110,20 @@ fn stroke_attrs(tf: &Transform, style: &Pen) -> String {
     let mut s = format!(
         " stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"",
         style.color.hex(),
-        num(tf.ref_px(style.width))
+        svg_coordinate(tf.ref_px(style.width))
     );
     if let Some(dash) = style.dash {
-        let _ = write!(s, " stroke-dasharray=\"{} {}\"", num(tf.ref_px(dash.on)), num(tf.ref_px(dash.off)));
+        let _ = write!(
+            s,
+            " stroke-dasharray=\"{} {}\"",
+            svg_coordinate(tf.ref_px(dash.on)),
+            svg_coordinate(tf.ref_px(dash.off))
+        );
     } else {
         s.push_str(" stroke-linecap=\"round\"");
     }
     if style.color.a < 255 {
-        let _ = write!(s, " stroke-opacity=\"{}\"", num(style.color.opacity()));
+        let _ = write!(s, " stroke-opacity=\"{}\"", svg_coordinate(style.color.opacity()));
     }
     s
 }
@@ -119,14 +132,17 @@ fn stroke_attrs(tf: &Transform, style: &Pen) -> String {
 fn fill_attrs(fill: Option<Rgba>) -> String {
     match fill {
         None => " fill=\"none\"".to_owned(),
-        Some(c) if c.a < 255 => format!(" fill=\"{}\" fill-opacity=\"{}\"", c.hex(), num(c.opacity())),
+        Some(c) if c.a < 255 => {
+            format!(" fill=\"{}\" fill-opacity=\"{}\"", c.hex(), svg_coordinate(c.opacity()))
+        }
         Some(c) => format!(" fill=\"{}\"", c.hex()),
     }
 }
 
 /// `x,y x,y …` of pixel points.
 fn points_attr(points: impl IntoIterator<Item = DVec2>) -> String {
-    let pairs: Vec<String> = points.into_iter().map(|p| format!("{},{}", num(p.x), num(p.y))).collect();
+    let pairs: Vec<String> =
+        points.into_iter().map(|p| format!("{},{}", svg_coordinate(p.x), svg_coordinate(p.y))).collect();
     pairs.join(" ")
 }
 
@@ -145,9 +161,9 @@ fn shape(out: &mut String, tf: &Transform, style: &Pen, shape: &Mark) {
             let _ = write!(
                 out,
                 "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{}{}/>",
-                num(c.x),
-                num(c.y),
-                num(tf.len_px(*radius)),
+                svg_coordinate(c.x),
+                svg_coordinate(c.y),
+                svg_coordinate(tf.len_px(*radius)),
                 fill_attrs(*fill),
                 stroke_attrs(tf, style)
             );
@@ -186,10 +202,10 @@ fn rect(out: &mut String, tf: &Transform, r: &PxRect, fill: Option<Rgba>, style:
     let _ = write!(
         out,
         "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"{}{}/>",
-        num(r.min.x),
-        num(r.min.y),
-        num(r.width()),
-        num(r.height()),
+        svg_coordinate(r.min.x),
+        svg_coordinate(r.min.y),
+        svg_coordinate(r.width()),
+        svg_coordinate(r.height()),
         fill_attrs(fill),
         stroke_attrs(tf, style)
     );
@@ -200,9 +216,9 @@ fn dot(out: &mut String, tf: &Transform, c: DVec2, r: f64, fill: Rgba, outline: 
     let _ = write!(
         out,
         "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{}{}/>",
-        num(c.x),
-        num(c.y),
-        num(r),
+        svg_coordinate(c.x),
+        svg_coordinate(c.y),
+        svg_coordinate(r),
         fill_attrs(Some(fill)),
         stroke_attrs(tf, outline)
     );
@@ -216,10 +232,10 @@ fn arrow(out: &mut String, tf: &Transform, a: DVec2, b: DVec2, head: f64, style:
     let _ = write!(
         out,
         "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"{}/>",
-        num(arrow.shaft_from.x),
-        num(arrow.shaft_from.y),
-        num(arrow.shaft_to.x),
-        num(arrow.shaft_to.y),
+        svg_coordinate(arrow.shaft_from.x),
+        svg_coordinate(arrow.shaft_from.y),
+        svg_coordinate(arrow.shaft_to.x),
+        svg_coordinate(arrow.shaft_to.y),
         stroke_attrs(tf, style)
     );
     let _ = write!(
@@ -256,9 +272,9 @@ fn text_line(
     let _ = write!(
         out,
         "<text x=\"{}\" y=\"{}\" font-size=\"{}\" text-anchor=\"{anchor}\" fill=\"{}\"",
-        num(at.x),
-        num(at.y),
-        num(size),
+        svg_coordinate(at.x),
+        svg_coordinate(at.y),
+        svg_coordinate(size),
         color.hex()
     );
     if weight == Weight::Bold {
@@ -273,12 +289,12 @@ fn text_line(
             out,
             " stroke=\"#ffffff\" stroke-width=\"{}\" stroke-linejoin=\"round\" \
              paint-order=\"stroke\"",
-            num(width)
+            svg_coordinate(width)
         );
     }
     out.push('>');
     for run in text::runs(markup, weight) {
-        let content = escape(&run.text);
+        let content = xml_escape(&run.text);
         match run.script {
             Script::Normal => out.push_str(&content),
             Script::Sub | Script::Super => {
@@ -286,7 +302,7 @@ fn text_line(
                 let _ = write!(
                     out,
                     "<tspan baseline-shift=\"{shift}\" font-size=\"{}\">{content}</tspan>",
-                    num(size * run.script.scale())
+                    svg_coordinate(size * run.script.scale())
                 );
             }
         }
@@ -331,15 +347,15 @@ fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &Le
                 let _ = write!(
                     out,
                     "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"{}/>",
-                    num(a.x),
-                    num(a.y),
-                    num(z.x),
-                    num(z.y),
+                    svg_coordinate(a.x),
+                    svg_coordinate(a.y),
+                    svg_coordinate(z.x),
+                    svg_coordinate(z.y),
                     stroke_attrs(tf, &entry.style)
                 );
             }
             LegendIcon::Arrow => {
-                let head = tf.ref_px(style::ARROW_HEAD.max(4.5 * entry.style.width));
+                let head = tf.ref_px(style::arrow_head(entry.style.width));
                 arrow(out, tf, a, z, head, &entry.style);
             }
             LegendIcon::Dot(fill) => {
@@ -442,9 +458,9 @@ mod tests {
 
     #[test]
     fn escaping() {
-        assert_eq!(escape("a<b>&\"c'\u{1}"), "a&lt;b&gt;&amp;&quot;c&apos;");
-        assert_eq!(num(-0.001), "0");
-        assert_eq!(num(2.5), "2.5");
-        assert_eq!(num(3.0), "3");
+        assert_eq!(xml_escape("a<b>&\"c'\u{1}"), "a&lt;b&gt;&amp;&quot;c&apos;");
+        assert_eq!(svg_coordinate(-0.001), "0");
+        assert_eq!(svg_coordinate(2.5), "2.5");
+        assert_eq!(svg_coordinate(3.0), "3");
     }
 }

@@ -1,30 +1,12 @@
 //! The trace document and narration of one pixel traced with `--aa corners|adaptive`
-//! (product.md "The trace document"; algorithm.md §8). Beside the fields of every trace document:
-//!
-//! - `tree`: null (there is no single root); `color`: the pixel's area-weighted mean of its leaves;
-//!   `uv`: the pixel's centre (no ray goes through it; the samples give theirs);
-//! - `sampling`: `{ aa, threshold, max_level, scale }` (`scale` = `2^K` lattice steps a pixel side);
-//! - `samples`: one entry per sample, in the order traced: `label` (the lecture's `CA`, `CB`, …),
-//!   `u`, `v` (2D: `u`), `lattice` (`[x, y]` = `[i·2^K + a, j·2^K + b]`, 2D `[x]`), `level` (0 for
-//!   the pixel's corners, k for the corners new at the k-th subdivision), `reused` (true iff another
-//!   square of this pixel read it after it was traced: shared, not traced again), `color`, `tree`
-//!   (its primary ray's node);
-//! - `squares`: the subdivision in pre-order (children lower-left, lower-right, upper-left,
-//!   upper-right; 2D: left, right): `level`, `lattice` (its lower-left corner), `side` (lattice
-//!   units), `corners` (indices into `samples`, in the same order), `spread` (max over channels of
-//!   max − min of the corners), `split`, `weight` (its share of the pixel's area, `4^−level`, 2D
-//!   `2^−level`), `color` (a leaf: the mean of its corners; a split square: the mean of its
-//!   children);
-//! - `events`: each carries `sample` (an index into `samples`); every time a square reads a corner,
-//!   a `sample` event (`u`, `v`, `level`, `color`, `reused`) with `reused` = the sample had already
-//!   been traced for another square of this pixel (its first read comes right after its ray's
-//!   events); `ray` numbers the nodes of the samples' trees in pre-order, one tree after another
-//!   in the order of `samples`.
-//!
+//! (algorithm.md §8). The fields it adds (`sampling`, `samples`, `squares`; `tree` is null) are
+//! specified in product.md "The trace document". A sample's first `sample` event comes right after
+//! its ray's events, and its rays are numbered one sample's tree after another.
 //! The pixel is traced alone: corners it shares with neighbouring pixels are traced here too.
 
-use super::narrate::{num, rays_line, Lang, Narration};
+use super::narrate::{rays_line, Lang, Narration};
 use super::{color, event, float, node, stats, Namer, TraceTarget};
+use crate::format::narration_number;
 use crate::record::event::Event;
 use crate::record::stats::Stats;
 use crate::record::EventLog;
@@ -104,7 +86,7 @@ pub fn sampled_document<V: Dim>(
 }
 
 fn rgb(c: Rgb) -> String {
-    format!("({}, {}, {})", num(c.0[0]), num(c.0[1]), num(c.0[2]))
+    format!("({}, {}, {})", narration_number(c.0[0]), narration_number(c.0[1]), narration_number(c.0[2]))
 }
 
 /// The narration of a pixel traced with samples: the rule, each sample, each square and the mean.
@@ -161,7 +143,7 @@ pub fn sample_narration<V>(
                 "   split a square while max over R, G, B of (max − min of its corners) ≥",
                 "   se subdivizează un pătrat cât timp max pe R, G, B din (max − min al colțurilor) ≥",
             ),
-            num(pixel.threshold),
+            narration_number(pixel.threshold),
             t("and its level is below", "și nivelul său este sub"),
             pixel.max_level
         )
@@ -174,7 +156,7 @@ pub fn sample_narration<V>(
         pixel.samples.len()
     );
     for s in &pixel.samples {
-        let uv: Vec<String> = s.uv.iter().map(|x| num(*x)).collect();
+        let uv: Vec<String> = s.uv.iter().map(|x| narration_number(*x)).collect();
         let reused = if s.reused { t(", reused", ", refolosit") } else { "" };
         let _ = writeln!(
             out,
@@ -199,7 +181,7 @@ pub fn sample_narration<V>(
             q.level,
             what,
             labels.join(", "),
-            num(q.spread),
+            narration_number(q.spread),
             rgb(q.color),
             if q.split {
                 t("mean of its parts", "media părților")

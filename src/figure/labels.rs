@@ -6,6 +6,7 @@
 
 use super::source::{Pick, Target};
 use super::Lang;
+use crate::format::markup_escape;
 
 /// A fixed label or caption piece.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -585,22 +586,10 @@ pub fn target(target: &Target, dim: usize, lang: Lang) -> String {
 /// `scene NAME · pixel (i, j) (picked: …)`: the caption's first part.
 #[must_use]
 pub fn traced(scene_name: &str, what: &Target, pick: Pick, dim: usize, lang: Lang) -> String {
-    let mut out = format!("{} {} · {}", Label::Scene.text(lang), escape(scene_name), target(what, dim, lang));
+    let mut out =
+        format!("{} {} · {}", Label::Scene.text(lang), markup_escape(scene_name), target(what, dim, lang));
     if let Some(why) = pick_reason(pick, lang) {
         out.push_str(&format!(" ({}: {why})", Label::Picked.text(lang)));
-    }
-    out
-}
-
-/// A name made safe for the markup (`_`, `^`, `{`, `}`, `\` become literal).
-#[must_use]
-pub fn escape(name: &str) -> String {
-    let mut out = String::with_capacity(name.len());
-    for c in name.chars() {
-        if matches!(c, '_' | '^' | '{' | '}' | '\\') {
-            out.push('\\');
-        }
-        out.push(c);
     }
     out
 }
@@ -692,10 +681,5 @@ mod tests {
         assert_eq!(Label::PrimaryRay.text(Lang::Ro), "rază primară P");
         assert_eq!(Label::TitleRayTree.text(Lang::Ro), "Arborele de raze");
         assert_eq!(Label::ViewWindow.text(Lang::Ro), "fereastra vizuală");
-    }
-
-    #[test]
-    fn names_are_escaped() {
-        assert_eq!(escape("glass_ball^2"), "glass\\_ball\\^2");
     }
 }

@@ -5,41 +5,19 @@
 
 use glam::DVec2;
 
-use super::labels::{escape, Label};
+use super::labels::Label;
 use super::plane::{ObjectOutline, Outline, PagePlane, Planar};
 use super::style::{self, RayRole, Rgba, TextSize};
 use super::Lang;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
+use crate::format::markup_escape;
+use crate::format::slide_number;
 use crate::image::to_byte;
 use crate::record::event::{Event, ObjectRef, RayKind};
 pub use crate::record::names::{sub, Names};
 use crate::record::EventLog;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
-
-/// A number as a slide shows it: at most 3 decimals, trailing zeros dropped, no `-0`, a true
-/// minus sign; `∞` for infinities.
-#[must_use]
-pub fn num(x: f64) -> String {
-    if x.is_infinite() {
-        return if x > 0.0 { "∞".into() } else { "−∞".into() };
-    }
-    if x != 0.0 && x.abs() < 1e-3 {
-        // Tiny values as a·10^e, two significant digits.
-        let e = x.abs().log10().floor();
-        let m = x / 10f64.powf(e);
-        let m = format!("{m:.1}").replace('-', "−");
-        return format!("{m}·10^{{{}}}", num(e));
-    }
-    let decimals = if x.abs() >= 100.0 { 1 } else { 3 };
-    let s = format!("{x:.decimals$}");
-    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_owned() } else { s };
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.replace('-', "−")
-    }
-}
 
 /// An angle in degrees, one decimal: `30.0°`.
 #[must_use]
@@ -51,10 +29,10 @@ pub fn deg(radians: f64) -> String {
 #[must_use]
 pub fn rgb_text(c: Rgb) -> String {
     let [r, g, b] = c.0;
-    if num(r) == num(g) && num(g) == num(b) {
-        num(r)
+    if slide_number(r) == slide_number(g) && slide_number(g) == slide_number(b) {
+        slide_number(r)
     } else {
-        format!("({}, {}, {})", num(r), num(g), num(b))
+        format!("({}, {}, {})", slide_number(r), slide_number(g), slide_number(b))
     }
 }
 
@@ -77,7 +55,7 @@ pub fn role(kind: RayKind) -> RayRole {
 /// An object's name as the trace calls it, safe for the markup.
 #[must_use]
 pub fn object_name<V: Planar>(scene: &Scene<V>, object: ObjectRef, lang: Lang) -> String {
-    escape(&scene.object_label(object.index, lang))
+    markup_escape(&scene.object_label(object.index, lang))
 }
 
 /// Where a shadow ray first meets an occluder: the least accepted t below `d_L` among the object
@@ -205,7 +183,7 @@ pub fn draw_objects<V: Planar>(
 /// The objects' names at the anchors of [`draw_objects`], clear of lines and labels.
 pub fn label_objects<V: Planar>(d: &mut Drawing, scene: &Scene<V>, anchors: &[(usize, DVec2)], lang: Lang) {
     for &(index, a) in anchors {
-        let name = escape(&scene.object_label(index, lang));
+        let name = markup_escape(&scene.object_label(index, lang));
         let opts = TextOpts::NOTE.color(style::DARK_GREY).avoid_overlap_with_leader();
         d.text(&format!("object-name:{index}"), a, &name, opts);
     }
@@ -387,13 +365,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn numbers_for_slides() {
-        assert_eq!(num(0.5), "0.5");
-        assert_eq!(num(-0.0001), "−1.0·10^{−4}");
-        assert_eq!(num(2.5e-7), "2.5·10^{−7}");
-        assert_eq!(num(-1.23456), "−1.235");
-        assert_eq!(num(123.456), "123.5");
-        assert_eq!(num(f64::INFINITY), "∞");
+    fn angles_colours_and_subscripts_for_slides() {
         assert_eq!(deg(std::f64::consts::FRAC_PI_6), "30.0°");
         assert_eq!(rgb_text(Rgb([0.5, 0.5, 0.5])), "0.5");
         assert_eq!(sub("R", 12), "R_{12}");

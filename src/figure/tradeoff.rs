@@ -8,10 +8,11 @@
 use glam::DVec2;
 
 use crate::canvas::{Align, Corner, Drawing, LegendIcon, LegendPlace, Pen, TextOpts, View};
-use crate::figure::labels::{escape, Label};
-use crate::figure::parts::num;
+use crate::figure::labels::Label;
 use crate::figure::style::{self, Rgba, TextSize};
 use crate::figure::{FigureError, Lang, Options};
+use crate::format::markup_escape;
+use crate::format::slide_number;
 use crate::sample::Sampling;
 use crate::tradeoff::{Measured, Measurement, Setting, Sweep};
 
@@ -104,7 +105,9 @@ fn point_name(sweep: Sweep, setting: &Setting, lang: Lang) -> String {
         Sweep::Sampling => match setting.sampling {
             Sampling::Center => Label::SamplingCentre.text(lang).to_owned(),
             Sampling::Corners => Label::SamplingCorners.text(lang).to_owned(),
-            Sampling::Adaptive { threshold, max_level } => format!("{}, K = {max_level}", num(threshold)),
+            Sampling::Adaptive { threshold, max_level } => {
+                format!("{}, K = {max_level}", slide_number(threshold))
+            }
         },
         Sweep::Depth => setting.depth.to_string(),
         Sweep::Accel => setting.accel.name().to_owned(),
@@ -132,14 +135,30 @@ fn reference_name(sweep: Sweep, setting: &Setting, lang: Lang) -> String {
     }
 }
 
-/// The title of a sweep's plot, the caption's note on its reference and the legend's note on
-/// the points' names; none for the structures, whose error is 0 by design (nothing to plot).
-fn words(sweep: Sweep) -> Option<(Label, Label, Label)> {
+/// The words of a sweep's plot.
+struct SweepWords {
+    /// The plot's title.
+    title: Label,
+    /// The caption's note on the reference.
+    reference: Label,
+    /// The legend's note on the points' names.
+    points: Label,
+}
+
+/// The words of a sweep's plot; none for the structures, whose error is 0 by design (nothing
+/// to plot).
+fn words(sweep: Sweep) -> Option<SweepWords> {
     match sweep {
-        Sweep::Sampling => {
-            Some((Label::TitleTradeoffSampling, Label::ReferenceSampling, Label::PointsSampling))
-        }
-        Sweep::Depth => Some((Label::TitleTradeoffDepth, Label::ReferenceDepth, Label::PointsDepth)),
+        Sweep::Sampling => Some(SweepWords {
+            title: Label::TitleTradeoffSampling,
+            reference: Label::ReferenceSampling,
+            points: Label::PointsSampling,
+        }),
+        Sweep::Depth => Some(SweepWords {
+            title: Label::TitleTradeoffDepth,
+            reference: Label::ReferenceDepth,
+            points: Label::PointsDepth,
+        }),
         Sweep::Accel => None,
     }
 }
@@ -161,17 +180,17 @@ pub fn draw(
     let t = |label: Label| label.text(lang);
     let (sweep, rows) = (measured.sweep, &measured.rows);
     let reference = &measured.reference;
-    let (title, reference_note, points_note) =
+    let SweepWords { title, reference: reference_note, points: points_note } =
         words(sweep).ok_or_else(|| FigureError("a structure changes no pixel: no error to plot".into()))?;
     d.set_title(t(title));
     d.set_caption(&format!(
         "{} {} · {} ({} {} {}) · {}",
         t(Label::Scene),
-        escape(scene_name),
+        markup_escape(scene_name),
         t(reference_note),
-        num(reference.rays_per_pixel()),
+        slide_number(reference.rays_per_pixel()),
         t(Label::RaysPerPixelShort),
-        escape(&reference_name(sweep, &reference.setting, lang)),
+        markup_escape(&reference_name(sweep, &reference.setting, lang)),
         t(Label::TimesInTable),
     ));
 
@@ -207,7 +226,7 @@ pub fn draw(
         let p = DVec2::new(x_end * rays_axis.at(x), 0.0);
         d.segment("axis", p, p - DVec2::new(0.0, tick_len), axis);
         if rays_axis.names(x) {
-            d.text("tick", p, &num(x), TextOpts::NOTE.align(Align::BELOW).offset(0.0, -14.0));
+            d.text("tick", p, &slide_number(x), TextOpts::NOTE.align(Align::BELOW).offset(0.0, -14.0));
         }
     }
     let y_ticks = error_axis.map(LogAxis::ticks).unwrap_or_default();
@@ -216,7 +235,7 @@ pub fn draw(
         let p = DVec2::new(0.0, y_of(*v));
         d.segment("axis", p, p - DVec2::new(tick_len, 0.0), axis);
         if error_axis.is_some_and(|a| a.names(*v)) {
-            d.text("tick", p, &num(*v), tick_name);
+            d.text("tick", p, &slide_number(*v), tick_name);
         }
     }
     if has_zero {
@@ -274,7 +293,7 @@ pub fn draw(
         d.text(
             "setting-name",
             p,
-            &escape(&group_name(sweep, &settings, lang)),
+            &markup_escape(&group_name(sweep, &settings, lang)),
             side.size(TextSize::Small).avoid_overlap_with_leader().far(),
         );
     }

@@ -12,6 +12,7 @@
 //! [`unit_interval`] and [`non_negative`] return the problem text for [`Reader::optional`].
 
 use super::{Map, SyntaxError, Value};
+use crate::format::as_written;
 use std::fmt;
 
 /// The largest magnitude an input number may have (§11): squares and triple sums stay finite.
@@ -82,16 +83,6 @@ pub fn type_name(v: &Value) -> &'static str {
     }
 }
 
-/// Formats a number as a person wrote it (`-1`, `0.5`; `1e100` beyond the plain range).
-#[must_use]
-pub fn num(x: f64) -> String {
-    if x != 0.0 && !(1e-5..1e16).contains(&x.abs()) {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
-    }
-}
-
 /// The closest of `known` to `word` by Levenshtein distance (`strsim`), if it is close enough to
 /// be a typo: at most 2 edits (a third of a long name), and fewer than the name has letters, so
 /// that no name is offered for a word it shares nothing with (`b` is not a typo of `l`).
@@ -111,19 +102,19 @@ pub fn suggest<'a>(word: &str, known: &[&'a str]) -> Option<&'a str> {
 /// `x > 0`, else the problem.
 #[must_use]
 pub fn positive(x: f64) -> Option<String> {
-    (x <= 0.0).then(|| format!("must be > 0, got {}", num(x)))
+    (x <= 0.0).then(|| format!("must be > 0, got {}", as_written(x)))
 }
 
 /// `x ∈ [0, 1]`, else the problem.
 #[must_use]
 pub fn unit_interval(x: f64) -> Option<String> {
-    (!(0.0..=1.0).contains(&x)).then(|| format!("must be in [0, 1], got {}", num(x)))
+    (!(0.0..=1.0).contains(&x)).then(|| format!("must be in [0, 1], got {}", as_written(x)))
 }
 
 /// `x ≥ 0`, else the problem.
 #[must_use]
 pub fn non_negative(x: f64) -> Option<String> {
-    (x < 0.0).then(|| format!("must be ≥ 0, got {}", num(x)))
+    (x < 0.0).then(|| format!("must be ≥ 0, got {}", as_written(x)))
 }
 
 impl Reader {
@@ -189,7 +180,7 @@ impl Reader {
             return None;
         };
         if !x.is_finite() || x.abs() > MAX_MAGNITUDE {
-            self.err(path, format!("must be at most {MAX_MAGNITUDE:e} in magnitude, got {}", num(x)));
+            self.err(path, format!("must be at most {MAX_MAGNITUDE:e} in magnitude, got {}", as_written(x)));
             return None;
         }
         Some(x)
@@ -235,7 +226,7 @@ impl Reader {
     pub fn integer(&mut self, v: &Value, path: &str, min: u64, max: u64) -> Option<u64> {
         let Some(n) = v.as_u64() else {
             let got = match v.as_f64() {
-                Some(x) => num(x),
+                Some(x) => as_written(x),
                 None => type_name(v).to_string(),
             };
             self.err(path, format!("must be an integer in [{min}, {max}], got {got}"));

@@ -15,7 +15,7 @@ use crate::canvas::{Drawing, Item, Mark};
 use crate::figure::plane::Planar;
 use crate::figure::source::{
     first_hit, grid_pitfall, incidence_deg, met, refraction_node, search_events, tir_node, vectors_apart_deg,
-    FigureInput,
+    FigureInput, GridPitfall,
 };
 use crate::json::Value;
 use crate::record::event::{Event, RayKind};
@@ -432,7 +432,7 @@ fn incidence<V: Planar>(traces: &FigureInput<V>) -> Option<f64> {
 /// [`Measure::GridPitfall`]: from the step whose cell found an object beyond its exit to the last
 /// step (the one that accepted the hit), when the accepted hit is that object or a nearer one.
 fn pitfall_voxels<V>(log: &EventLog<V>) -> f64 {
-    let Some((step, early, t_early, _)) = grid_pitfall(log) else { return 0.0 };
+    let Some(GridPitfall { step, object: early, t: t_early, .. }) = grid_pitfall(log) else { return 0.0 };
     let steps = search_events(log, 0).filter(|e| matches!(e, Event::VoxelStep { .. })).count();
     let accepted = search_events(log, 0)
         .chain(log.events.iter().filter(|l| l.ray == Some(0)).map(|l| &l.event))

@@ -206,8 +206,8 @@ fn the_adaptive_figure_takes_the_threshold_it_is_given() {
     assert!(all.contains("25 / 25"), "threshold 0: every point of the 5×5 lattice");
     assert!(none.contains("4 / 25"), "threshold inf: the 4 corners");
     // The legend explains the ring of a sample read again only where one is.
-    assert!(all.contains("read again by another square"));
-    assert!(!none.contains("read again by another square"), "no square split, nothing read again");
+    assert!(all.contains("read again by another subregion"));
+    assert!(!none.contains("read again by another subregion"), "no square split, nothing read again");
 }
 
 #[test]

@@ -366,7 +366,7 @@ fn a_figure_reads_the_trace_it_was_given() {
     let AnyScene::Space(scene) = load_str(&fixture("glass.json")).unwrap() else { panic!("3D") };
     let d = figure_in(&scene, "glass", FigureKind::UvMap, &Aim::Pixel(1, 5), Lang::En, SMALL);
     let (u, v) = scene.camera.pixel_center(1, 5);
-    let expected = format!("({}, {})", whitted::figure::parts::num(u), whitted::figure::parts::num(v));
+    let expected = format!("({}, {})", whitted::format::slide_number(u), whitted::format::slide_number(v));
     assert!(d.items.iter().any(|i| matches!(&i.mark, Mark::Text(t) if t.text == expected)), "{expected}");
     // A pixel outside the image is an error, not a panic.
     assert!(record(FigureKind::Rays, &scene, "glass", &Aim::Pixel(8, 0), &TraceOptions::SCENE).is_err());

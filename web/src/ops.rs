@@ -226,8 +226,20 @@ fn render_op(f: &Fields<'_>) -> Result<Answer, Failure> {
     Ok(Answer { code: 0, json: doc.to_string(), bytes: outcome.rendered.image.to_rgba8() })
 }
 
+/// What a `trace` or `narrate` request asks for.
+struct TraceAsked {
+    /// The scene.
+    scene: AnyScene,
+    /// The trace: target, depth, sampling, structure, limit.
+    trace: Trace,
+    /// The request's options, as given.
+    options: Options,
+    /// Notes on ignored options.
+    notes: Vec<String>,
+}
+
 /// The trace a `trace` or `narrate` request asks for, and the notes on ignored options.
-fn trace_of(f: &Fields<'_>, op: &str) -> Result<(AnyScene, Trace, Options, Vec<String>), Failure> {
+fn trace_of(f: &Fields<'_>, op: &str) -> Result<TraceAsked, Failure> {
     let options = ask::options(f.get("options"))?;
     no_size(&options, op)?;
     let target = ask::target(f.get("target"))?;
@@ -241,17 +253,17 @@ fn trace_of(f: &Fields<'_>, op: &str) -> Result<(AnyScene, Trace, Options, Vec<S
         max_events: options.max_events.unwrap_or(DEFAULT_LIMIT),
     };
     let notes = chosen.notes.into_iter().chain(trace.check(&scene)?).collect();
-    Ok((scene, trace, options, notes))
+    Ok(TraceAsked { scene, trace, options, notes })
 }
 
 fn trace_op(f: &Fields<'_>) -> Result<Answer, Failure> {
-    let (scene, trace, _, _) = trace_of(f, "trace")?;
+    let TraceAsked { scene, trace, .. } = trace_of(f, "trace")?;
     Ok(Answer::ok(document_text(&trace.document(&scene)?)?))
 }
 
 fn narrate_op(f: &Fields<'_>) -> Result<Answer, Failure> {
     let lang = ask::lang(f.get("lang"))?;
-    let (scene, trace, options, notes) = trace_of(f, "narrate")?;
+    let TraceAsked { scene, trace, options, notes } = trace_of(f, "narrate")?;
     let narrated = trace.narration(&scene, lang)?;
     let steps: Vec<Value> = narrated
         .narration

@@ -4,7 +4,8 @@
 //! facing normal is what the model uses), the diffuse and specular components; then the colour
 //! sum `I = I_local + ks·R_k + kt·T_k`.
 
-use super::{num, rgb, vec_str, Indexed, Writer};
+use super::{rgb, vec_str, Indexed, Writer};
+use crate::format::narration_number;
 use crate::record::event::{Event, LightTerm, RayKind};
 use crate::record::RayNode;
 use crate::scene::material::{Material, Rgb};
@@ -105,7 +106,7 @@ impl<'a, V: Dim> Writer<'a, V> {
         );
         let mut lines = Vec::new();
         match term.l {
-            Some(l) => lines.push(format!("L = {}, {n}·L = {}", vec_str(l), num(term.n_dot_l))),
+            Some(l) => lines.push(format!("L = {}, {n}·L = {}", vec_str(l), narration_number(term.n_dot_l))),
             None => lines.push(
                 self.t(
                     "the light sits at I: no direction, lum = 0",
@@ -124,7 +125,7 @@ impl<'a, V: Dim> Writer<'a, V> {
             self.step(indent, &title, &lines, hit_event.into_iter().collect());
             return;
         }
-        lines.push(format!("lum = 1, fat = min(1, 1/(c0 + c1·d + c2·d²)) = {}", num(term.fat)));
+        lines.push(format!("lum = 1, fat = min(1, 1/(c0 + c1·d + c2·d²)) = {}", narration_number(term.fat)));
         let mut events = Vec::new();
         for (k, e) in shadows {
             if let Event::ShadowRay { light, origin, direction, distance, occluders, s } = e {
@@ -155,15 +156,15 @@ impl<'a, V: Dim> Writer<'a, V> {
                 } else {
                     let list: Vec<String> = occluders
                         .iter()
-                        .map(|o| format!("{} (kt = {})", self.object(o.object), num(o.kt)))
+                        .map(|o| format!("{} (kt = {})", self.object(o.object), narration_number(o.kt)))
                         .collect();
                     list.join(", ")
                 };
                 lines.push(format!(
                     "{} d_L = {}: {occ} → s = Π kt = {}",
                     self.t("segment to the light, length", "segment până la sursă, lungime"),
-                    num(*distance),
-                    num(*s)
+                    narration_number(*distance),
+                    narration_number(*s)
                 ));
             }
         }
@@ -179,15 +180,16 @@ impl<'a, V: Dim> Writer<'a, V> {
                 node.end.as_ref().and_then(|e| e.hit).map(|h| if h.entering { h.normal } else { -h.normal });
             if let (Some(h), Some(n_f)) = ((l + view).try_unit(), n_f) {
                 let n_dot_h = n_f.dot(h);
-                let mut line = format!("H = (L + V)/|L + V| = {}, {n}·H = {}", vec_str(h), num(n_dot_h));
-                let _ = write!(line, ", ({n}·H)^n = {}", num(material.highlight(n_dot_h)));
+                let mut line =
+                    format!("H = (L + V)/|L + V| = {}, {n}·H = {}", vec_str(h), narration_number(n_dot_h));
+                let _ = write!(line, ", ({n}·H)^n = {}", narration_number(material.highlight(n_dot_h)));
                 lines.push(line);
             }
         }
         lines.push(format!(
             "{} {src}·fat·s·ks·({n}·H)^n (n = {}) = {}",
             self.t("specular component", "componenta speculară"),
-            num(material.n),
+            narration_number(material.n),
             rgb(term.specular)
         ));
         if events.is_empty() {
@@ -219,7 +221,7 @@ impl<'a, V: Dim> Writer<'a, V> {
                     (m.ks, "ks")
                 }
             };
-            let _ = write!(formula, " + {name}·{sym} = {} · {}", num(k), rgb(col));
+            let _ = write!(formula, " + {name}·{sym} = {} · {}", narration_number(k), rgb(col));
         }
         let name = self.names.ray_text(index);
         let i = self.names.hit_text(index).unwrap_or_default();

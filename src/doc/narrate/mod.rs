@@ -30,41 +30,8 @@ use crate::scene::Scene;
 use crate::shape::Dim;
 use std::fmt::Write;
 
+use crate::format::narration_number;
 pub use crate::lang::Lang;
-
-/// A number as a person reads it: up to 6 significant digits, no `-0`.
-#[must_use]
-pub fn num(x: f64) -> String {
-    if x == f64::INFINITY {
-        return "∞".into();
-    }
-    if x == f64::NEG_INFINITY {
-        return "−∞".into();
-    }
-    if x == 0.0 {
-        return "0".into();
-    }
-    let a = x.abs();
-    let s = if (1e-4..1e7).contains(&a) {
-        // 1e-4 ≤ a < 1e7, so the exponent lies in [−4, 6] and the cast is exact.
-        #[allow(clippy::cast_possible_truncation)]
-        let exponent = a.log10().floor() as i64;
-        let decimals = usize::try_from((5 - exponent).clamp(0, 12)).unwrap_or(0);
-        let s = format!("{x:.decimals$}");
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        }
-    } else {
-        format!("{x:.5e}")
-    };
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.replace('-', "−")
-    }
-}
 
 /// An angle given by its cosine, in degrees with two decimals: `acos(c)` as `30.00°` (c clamped
 /// to [−1, 1], which rounding may leave by an ulp).
@@ -75,19 +42,19 @@ fn degrees(cos: f64) -> String {
 /// A number as the right operand of a subtraction: negative values in parentheses.
 fn paren(x: f64) -> String {
     if x < 0.0 {
-        format!("({})", num(x))
+        format!("({})", narration_number(x))
     } else {
-        num(x)
+        narration_number(x)
     }
 }
 
 fn vec_str<V: Vector>(v: V) -> String {
-    let parts: Vec<String> = v.to_vec().into_iter().map(num).collect();
+    let parts: Vec<String> = v.to_vec().into_iter().map(narration_number).collect();
     format!("({})", parts.join(", "))
 }
 
 fn rgb(c: Rgb) -> String {
-    format!("({}, {}, {})", num(c.0[0]), num(c.0[1]), num(c.0[2]))
+    format!("({}, {}, {})", narration_number(c.0[0]), narration_number(c.0[1]), narration_number(c.0[2]))
 }
 
 /// A narration and, for each of its numbered steps in order, the indices of the events it
@@ -242,20 +209,7 @@ impl<'a, V: Dim> Writer<'a, V> {
     }
 }
 
-/// The numbered narration of a traced primary ray.
-#[must_use]
-pub fn narrate<V: Dim>(
-    scene: &Scene<V>,
-    log: &EventLog<V>,
-    stats: &Stats,
-    target: &TraceTarget,
-    max_depth: u32,
-    lang: Lang,
-) -> String {
-    narration(scene, log, stats, target, max_depth, lang).text
-}
-
-/// [`narrate`] with the events and the place of each step.
+/// The numbered narration of a traced primary ray: its text, and each step's events and place.
 #[must_use]
 pub fn narration<V: Dim>(
     scene: &Scene<V>,
@@ -356,22 +310,22 @@ fn pixel_steps<V: Dim>(w: &mut Writer<'_, V>, pixel: &[usize], uv: &[f64], prima
     let win = &cam.window;
     let mut lines = vec![format!(
         "u = l + (r − l)·(i + 0.5)/Nx = {} + ({} − {})·({} + 0.5)/{} = {}",
-        num(win.l),
-        num(win.r),
+        narration_number(win.l),
+        narration_number(win.r),
         paren(win.l),
         pixel[0],
         cam.nx,
-        num(uv[0])
+        narration_number(uv[0])
     )];
     if V::DIM == 3 {
         lines.push(format!(
             "v = b + (t − b)·(j + 0.5)/Ny = {} + ({} − {})·({} + 0.5)/{} = {}",
-            num(win.b),
-            num(win.t),
+            narration_number(win.b),
+            narration_number(win.t),
             paren(win.b),
             pixel[1],
             cam.ny,
-            num(uv[1])
+            narration_number(uv[1])
         ));
     }
     let title = if V::DIM == 3 {

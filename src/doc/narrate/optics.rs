@@ -4,7 +4,8 @@
 //! The cosines and angles are read from the recorded hit (c = −D·N_f, k by `geom::optics`'s
 //! own formula), so they are the numbers the tracer used.
 
-use super::{degrees, num, vec_str, Writer};
+use super::{degrees, vec_str, Writer};
+use crate::format::narration_number;
 use crate::geom::offset::OFFSET_SCALE;
 use crate::geom::optics::{refract, Refraction};
 use crate::record::event::NodeHit;
@@ -32,11 +33,11 @@ impl<V: Dim> Writer<'_, V> {
                 "{}: M = max(‖{i}‖∞, ‖O‖∞, |t|, {}) = max({}, {}, {}, {}) = {} ({})",
                 self.t("spawn offset δ = 2⁻⁴⁴·M", "deplasarea δ = 2⁻⁴⁴·M"),
                 self.t("scale", "scara"),
-                num(hit.point.max_abs()),
-                num(start.max_abs()),
-                num(hit.t.abs()),
-                num(scale),
-                num(offset / OFFSET_SCALE),
+                narration_number(hit.point.max_abs()),
+                narration_number(start.max_abs()),
+                narration_number(hit.t.abs()),
+                narration_number(scale),
+                narration_number(offset / OFFSET_SCALE),
                 self.t(
                     "‖·‖∞ the largest |coordinate|, O the incoming ray's origin, scale the object's size",
                     "‖·‖∞ cea mai mare |coordonată|, O originea razei incidente, scara mărimea obiectului"
@@ -44,7 +45,7 @@ impl<V: Dim> Writer<'_, V> {
             ),
             format!(
                 "δ = {} → {child} {} {i} {side} δ·N_f = {}",
-                num(offset),
+                narration_number(offset),
                 self.t("starts at", "pornește din"),
                 vec_str(origin)
             ),
@@ -65,7 +66,7 @@ impl<V: Dim> Writer<'_, V> {
         );
         let mut lines = vec![format!(
             "R = 2(N_f·V)·N_f − V, V = −D, N_f·V = {} → {child} = {}",
-            num(n_f_v),
+            narration_number(n_f_v),
             vec_str(direction)
         )];
         lines.extend(self.offset_lines(index, &child, origin, direction, offset));
@@ -92,7 +93,12 @@ impl<V: Dim> Writer<'_, V> {
             self.t("Transmitted ray", "Raza transmisă"),
             self.t("at", "în")
         );
-        let mut lines = vec![format!("n1 = {}, n2 = {}, η = n1/n2 = {}", num(n1), num(n2), num(eta))];
+        let mut lines = vec![format!(
+            "n1 = {}, n2 = {}, η = n1/n2 = {}",
+            narration_number(n1),
+            narration_number(n2),
+            narration_number(eta)
+        )];
         if let Some((_, n_f)) = self.facing(index) {
             let d = self.log.nodes[index].start.direction;
             let c = (-d.dot(n_f)).clamp(-1.0, 1.0);
@@ -100,30 +106,30 @@ impl<V: Dim> Writer<'_, V> {
                 let cos_t = radicand.sqrt();
                 let (sin_i, sin_t) = ((1.0 - c * c).max(0.0).sqrt(), (1.0 - radicand).max(0.0).sqrt());
                 lines.extend([
-                    format!("cos θi = c = −D·N_f = {} → θi = {}", num(c), degrees(c)),
+                    format!("cos θi = c = −D·N_f = {} → θi = {}", narration_number(c), degrees(c)),
                     format!(
                         "k = 1 − η²·(1 − c²) = (1 − η²) + (η·c)² = {}; cos θt = √k = {} → θt = {}",
-                        num(radicand),
-                        num(cos_t),
+                        narration_number(radicand),
+                        narration_number(cos_t),
                         degrees(cos_t)
                     ),
                     format!(
                         "{}: n1·sin θi = {}·{} = {}, n2·sin θt = {}·{} = {}",
                         self.t("check", "verificare"),
-                        num(n1),
-                        num(sin_i),
-                        num(n1 * sin_i),
-                        num(n2),
-                        num(sin_t),
-                        num(n2 * sin_t)
+                        narration_number(n1),
+                        narration_number(sin_i),
+                        narration_number(n1 * sin_i),
+                        narration_number(n2),
+                        narration_number(sin_t),
+                        narration_number(n2 * sin_t)
                     ),
                     format!(
                         "{}: T = L·(n1/n2) − (cos θt + (n1/n2)·(L·N_f))·N_f = L·{} − ({} + {}·({}))·N_f, {}",
                         self.t("the lecture's form", "forma din curs"),
-                        num(eta),
-                        num(cos_t),
-                        num(eta),
-                        num(d.dot(n_f)),
+                        narration_number(eta),
+                        narration_number(cos_t),
+                        narration_number(eta),
+                        narration_number(d.dot(n_f)),
                         self.t("L = D the incoming direction", "L = D direcția incidentă")
                     ),
                 ]);
@@ -150,7 +156,12 @@ impl<V: Dim> Writer<'_, V> {
         let (n1, n2) = n;
         let title =
             self.t("Total internal reflection: no T ray", "Reflexie totală internă: nu există raza T");
-        let mut lines = vec![format!("n1 = {}, n2 = {}, η = n1/n2 = {}", num(n1), num(n2), num(n1 / n2))];
+        let mut lines = vec![format!(
+            "n1 = {}, n2 = {}, η = n1/n2 = {}",
+            narration_number(n1),
+            narration_number(n2),
+            narration_number(n1 / n2)
+        )];
         if let Some((_, n_f)) = self.facing(index) {
             let c = (-self.log.nodes[index].start.direction.dot(n_f)).clamp(-1.0, 1.0);
             let critical = if n2 < n1 {
@@ -158,11 +169,15 @@ impl<V: Dim> Writer<'_, V> {
             } else {
                 String::new()
             };
-            lines.push(format!("cos θi = c = −D·N_f = {} → θi = {}{critical}", num(c), degrees(c)));
+            lines.push(format!(
+                "cos θi = c = −D·N_f = {} → θi = {}{critical}",
+                narration_number(c),
+                degrees(c)
+            ));
         }
         lines.push(format!(
             "k = (1 − η²) + (η·c)² = {} < 0: {} → {}",
-            num(radicand),
+            narration_number(radicand),
             self.t("no cos θt = √k", "nu există cos θt = √k"),
             self.t("the kt·T term is dropped", "termenul kt·T lipsește")
         ));

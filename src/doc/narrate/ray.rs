@@ -3,7 +3,8 @@
 //! its nearest hit I_k with the normal's side, or the background; then the local model, the
 //! secondary rays and the colour (`light`, `optics`).
 
-use super::{num, rgb, vec_str, Indexed, Writer};
+use super::{rgb, vec_str, Indexed, Writer};
+use crate::format::narration_number;
 use crate::geom::slab::widen_exit;
 use crate::record::event::{Event, RayKind};
 use crate::shape::Dim;
@@ -30,14 +31,14 @@ impl<'a, V: Dim> Writer<'a, V> {
                 let roots_s = if roots.is_empty() {
                     self.t("no real root: the ray misses", "nicio rădăcină reală: raza ratează").to_string()
                 } else {
-                    let r: Vec<String> = roots.iter().map(|x| num(*x)).collect();
+                    let r: Vec<String> = roots.iter().map(|x| narration_number(*x)).collect();
                     format!("{} t = {}", self.t("roots", "rădăcini"), r.join(", "))
                 };
                 let acc = match accepted {
                     Some(t) => format!(
                         "→ {} t = {}",
                         self.t("accepted (least t > 0)", "acceptat (cel mai mic t > 0)"),
-                        num(*t)
+                        narration_number(*t)
                     ),
                     None => self.t("→ no root with t > 0", "→ nicio rădăcină cu t > 0").to_string(),
                 };
@@ -49,8 +50,8 @@ impl<'a, V: Dim> Writer<'a, V> {
             Event::NodeVisit { structure, node, .. } => format!("{structure} {node}"),
             Event::NodeSkip { structure, node, t_in, t_best } => format!(
                 "{structure} {node}: tᵢ = {} > t = {} → {}",
-                num(*t_in),
-                num(*t_best),
+                narration_number(*t_in),
+                narration_number(*t_best),
                 self.t("skipped", "sărit")
             ),
             Event::VoxelStep { cell, .. } => format!("{} {cell:?}", self.t("cell", "celula")),
@@ -73,7 +74,11 @@ impl<'a, V: Dim> Writer<'a, V> {
             self.t("t_in > t_out: the interval is empty, a miss", "t_in > t_out: intervalul este vid, ratat")
                 .to_owned()
         };
-        format!("t_in = max tᵢ = {}, t_out = min tₑ = {} → {verdict}", num(t_in), num(t_out))
+        format!(
+            "t_in = max tᵢ = {}, t_out = min tₑ = {} → {verdict}",
+            narration_number(t_in),
+            narration_number(t_out)
+        )
     }
 
     /// The name and kind of a ray node: `P — primary ray`, `R₁ — reflected ray from I₁`.
@@ -236,7 +241,7 @@ impl<'a, V: Dim> Writer<'a, V> {
                     self.step(
                         indent + 1,
                         &title,
-                        &[format!("t ∈ [{}, {}]", num(*t_in), num(*t_out))],
+                        &[format!("t ∈ [{}, {}]", narration_number(*t_in), narration_number(*t_out))],
                         vec![k],
                     );
                 }
@@ -244,8 +249,8 @@ impl<'a, V: Dim> Writer<'a, V> {
                     let title = format!("{} {structure} {node}", self.t("Skip node", "Sare peste nodul"));
                     let line = format!(
                         "tᵢ = {} > t = {}: {}",
-                        num(*t_in),
-                        num(*t_best),
+                        narration_number(*t_in),
+                        narration_number(*t_best),
                         self.t(
                             "its box starts beyond the nearest hit found",
                             "volumul său începe dincolo de cea mai apropiată intersecție găsită"
@@ -256,7 +261,7 @@ impl<'a, V: Dim> Writer<'a, V> {
                 Event::VoxelStep { cell, t_max, objects, .. } => {
                     in_cell = objects.len();
                     let title = format!("{} {cell:?}", self.t("Grid cell", "Celula grilei"));
-                    let t: Vec<String> = t_max.iter().map(|x| num(*x)).collect();
+                    let t: Vec<String> = t_max.iter().map(|x| narration_number(*x)).collect();
                     let exit = t_max.iter().copied().fold(f64::INFINITY, f64::min);
                     let tested = if objects.is_empty() {
                         self.t("no object to test here", "niciun obiect de testat aici").to_owned()
@@ -269,7 +274,7 @@ impl<'a, V: Dim> Writer<'a, V> {
                             "tMax = ({}): {} t = {}",
                             t.join(", "),
                             self.t("the ray leaves the cell at", "raza iese din celulă la"),
-                            num(exit)
+                            narration_number(exit)
                         ),
                         tested,
                         self.t(
@@ -320,17 +325,17 @@ impl<'a, V: Dim> Writer<'a, V> {
         );
         let n_f = if entering { normal } else { -normal };
         let lines = vec![
-            format!("t = {}, {i} = r(t) = {}", num(t), vec_str(point)),
+            format!("t = {}, {i} = r(t) = {}", narration_number(t), vec_str(point)),
             format!(
                 "N = {} ({})",
                 vec_str(normal),
                 self.t("outward unit normal", "normala exterioară unitară")
             ),
-            format!("D·N = {} — {side}", num(dn)),
+            format!("D·N = {} — {side}", narration_number(dn)),
             format!(
                 "V = −D ({}), N_f·V = {}",
                 self.t("back along the ray", "înapoi pe rază"),
-                num(n_f.dot(-d))
+                narration_number(n_f.dot(-d))
             ),
         ];
         self.step(indent, &title, &lines, vec![k]);

@@ -12,10 +12,11 @@ use glam::DVec2;
 use super::Input;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
 use crate::figure::labels::Label;
-use crate::figure::parts::{self, num, rgb_text, swatch, text_column};
+use crate::figure::parts::{self, rgb_text, swatch, text_column};
 use crate::figure::plane::Planar;
 use crate::figure::style::{self, TextSize};
 use crate::figure::FigureError;
+use crate::format::slide_number;
 use crate::record::event::Event;
 use crate::sample::{PixelTrace, SquareRecord};
 
@@ -51,8 +52,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         d.set_caption(&format!("{} · {}", input.traced(traced), input.t(Label::UniformRule)));
     } else {
         d.set_title(input.t(Label::TitleAdaptive));
-        let rule =
-            format!("{} = {}, K = {}", input.t(Label::Threshold), num(pixel.threshold), pixel.max_level);
+        let rule = format!(
+            "{} = {}, K = {}",
+            input.t(Label::Threshold),
+            slide_number(pixel.threshold),
+            pixel.max_level
+        );
         d.set_caption(&format!("{} · {rule}", input.traced(traced)));
     }
     for level in (0..=deepest).filter(|_| !pixel.uniform) {
@@ -249,7 +254,11 @@ fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
     } else {
         vec![
             format!("{}:", input.t(Label::SplitWhen)),
-            format!("   max − min ≥ {} (R, G, B), {} < K = {k}", num(pixel.threshold), input.t(Label::Level)),
+            format!(
+                "   max − min ≥ {} (R, G, B), {} < K = {k}",
+                slide_number(pixel.threshold),
+                input.t(Label::Level)
+            ),
         ]
     };
     let mut lines = rule;

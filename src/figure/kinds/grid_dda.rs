@@ -10,12 +10,14 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::Layout;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
-use crate::figure::labels::{self, Label};
-use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, num, text_column};
+use crate::figure::labels::Label;
+use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, text_column};
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{first_hit, grid_pitfall, search_indexed};
+use crate::figure::source::{first_hit, grid_pitfall, search_indexed, GridPitfall};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
+use crate::format::markup_escape;
+use crate::format::slide_number;
 use crate::record::event::Event;
 
 /// The most cells drawn along one axis of the page: the heuristic's own cap per axis. Denser
@@ -193,7 +195,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             });
         }
     }
-    if let Some((_, _, t, _)) = pitfall {
+    if let Some(GridPitfall { t, .. }) = pitfall {
         d.marker("pitfall", ray_at(t), 22.0, style::WHITE.with_alpha(0.0), pitfall_ring());
     }
     if let Some(h) = hit {
@@ -224,12 +226,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     )];
     for (k, s) in steps.iter().enumerate().take(LISTED) {
         let cell: Vec<String> = s.cell.iter().map(ToString::to_string).collect();
-        let t_max: Vec<String> = s.t_max.iter().map(|t| num(*t)).collect();
+        let t_max: Vec<String> = s.t_max.iter().map(|t| slide_number(*t)).collect();
         let objects: Vec<String> = s
             .objects
             .iter()
             .map(|o| {
-                let name = labels::escape(&scene.object_label(*o, input.lang));
+                let name = markup_escape(&scene.object_label(*o, input.lang));
                 if box_only[k].contains(o) {
                     format!("{name} ({})", input.t(Label::BoxOnly))
                 } else {
@@ -243,23 +245,28 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     if steps.len() > LISTED {
         lines.push("…".to_owned());
     }
-    if let Some((step, object, t, exit)) = pitfall {
+    if let Some(GridPitfall { step, object, t, exit }) = pitfall {
         lines.push(String::new());
         lines.push(format!(
             "{} {}: {}",
             input.t(Label::PitfallIn),
             step + 1,
-            labels::escape(&scene.object_label(object, input.lang))
+            markup_escape(&scene.object_label(object, input.lang))
         ));
-        lines.push(format!("   t = {} > {} = {}", num(t), input.t(Label::CellExitT), num(exit)));
+        lines.push(format!(
+            "   t = {} > {} = {}",
+            slide_number(t),
+            input.t(Label::CellExitT),
+            slide_number(exit)
+        ));
         lines.extend(input.t(Label::PitfallRule).split('\n').map(str::to_owned));
     }
     if let Some(h) = hit {
         lines.push(format!(
             "{}: {} (t = {})",
             input.t(Label::HitPoint),
-            labels::escape(&scene.object_label(h.object.index, input.lang)),
-            num(h.t)
+            markup_escape(&scene.object_label(h.object.index, input.lang)),
+            slide_number(h.t)
         ));
     }
     text_column(

@@ -11,10 +11,11 @@ use glam::DVec2;
 use super::Input;
 use crate::canvas::{Drawing, LegendIcon, Pen};
 use crate::figure::labels::Label;
-use crate::figure::parts::num;
 use crate::figure::plane::Planar;
 use crate::figure::style::{self, Rgba};
 use crate::figure::FigureError;
+use crate::format::markup_escape;
+use crate::format::slide_number;
 use crate::sample::Sampling;
 
 /// Up to this many distinct counts get a colour (and a legend line) each.
@@ -87,7 +88,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         Sampling::Center => "--aa center".to_owned(),
         Sampling::Corners => "--aa corners".to_owned(),
         Sampling::Adaptive { threshold, max_level } => {
-            format!("--aa adaptive, {} = {}, K = {max_level}", input.t(Label::Threshold), num(threshold))
+            format!(
+                "--aa adaptive, {} = {}, K = {max_level}",
+                input.t(Label::Threshold),
+                slide_number(threshold)
+            )
         }
     };
     let pixels = counts.per_pixel.len().max(1);
@@ -96,12 +101,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.set_caption(&format!(
         "{} {} · {mode} · {} · {}: {} · {}: {}{rows}",
         input.t(Label::Scene),
-        crate::figure::labels::escape(&input.traces.scene_name),
+        markup_escape(&input.traces.scene_name),
         input.t(Label::HeatMapCounts),
         input.t(Label::RaysTraced),
         counts.traced,
         input.t(Label::MeanPerPixel),
-        num(sum as f64 / pixels as f64),
+        slide_number(sum as f64 / pixels as f64),
     ));
     // The legend is the scale: every count, or every bin of counts, that a pixel has.
     let unit = input.t(Label::SamplesUnit);

@@ -12,12 +12,13 @@ use super::Input;
 use crate::accel::{Layout, TreeNode};
 use crate::bounds::aabb::Aabb;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
-use crate::figure::labels::{self, Label};
+use crate::figure::labels::Label;
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{first_hit, met, search_events, search_indexed};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
+use crate::format::markup_escape;
 use crate::record::event::Event;
 
 /// What the walk did with a node, and why.
@@ -480,7 +481,7 @@ fn tree<V: Planar>(
                 let names: Vec<String> = n
                     .prims
                     .iter()
-                    .map(|p| labels::escape(&input.scene.object_label(p.object(), input.lang)))
+                    .map(|p| markup_escape(&input.scene.object_label(p.object(), input.lang)))
                     .collect();
                 let o = TextOpts::NOTE
                     .size(TextSize::Small)

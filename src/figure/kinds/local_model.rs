@@ -12,12 +12,13 @@ use super::Input;
 use crate::canvas::{Drawing, LegendIcon, Pen};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
-    self, label_outward, legend_normal, num, object_name, rgb_text, sub, swatch, text_column, Names,
+    self, label_outward, legend_normal, object_name, rgb_text, sub, swatch, text_column, Names,
 };
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::first_hit;
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
+use crate::format::slide_number;
 use crate::record::event::{LightTerm, ObjectRef};
 
 /// At most this many lights are told term by term; the others are summed in I_local only.
@@ -166,19 +167,23 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for t in node.lights.iter().take(TOLD_LIGHTS) {
         let l = name("L", t.light);
         if t.lum == 0.0 {
-            lines.push(format!("{l}: N·L = {} ≤ 0 → lum = 0", num(t.n_dot_l)));
+            lines.push(format!("{l}: N·L = {} ≤ 0 → lum = 0", slide_number(t.n_dot_l)));
             continue;
         }
-        let s = t.shadow.map_or_else(|| "—".to_owned(), num);
-        lines.push(format!("{l}: N·L = {}, lum = 1, fat = {}, s = {s}", num(t.n_dot_l), num(t.fat)));
+        let s = t.shadow.map_or_else(|| "—".to_owned(), slide_number);
+        lines.push(format!(
+            "{l}: N·L = {}, lum = 1, fat = {}, s = {s}",
+            slide_number(t.n_dot_l),
+            slide_number(t.fat)
+        ));
         if let Some(h) = t.l.and_then(|l| (l + view_dir).try_unit()) {
             let n_dot_h = n_f.dot(h);
             lines.push(format!(
                 "{}: N·H = {}, (N·H)^n = {} (n = {})",
                 name("H", t.light),
-                num(n_dot_h),
-                num(material.highlight(n_dot_h)),
-                num(material.n)
+                slide_number(n_dot_h),
+                slide_number(material.highlight(n_dot_h)),
+                slide_number(material.n)
             ));
         }
         lines.push(format!("{src}·fat·s·kd·(N·L) = {}", rgb_text(t.diffuse)));

@@ -13,12 +13,14 @@ use crate::canvas::{Align, Drawing, LegendIcon, Pen, TextOpts, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     camera_plane, draw_objects, draw_observer, draw_ray, label, label_objects, legend_points, legend_role,
-    num, object_extent, plane_note,
+    object_extent, plane_note,
 };
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{FigureTrace, Target};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
+use crate::format::markup_escape;
+use crate::format::slide_number;
 use crate::scene::camera::{Camera, Projection};
 use crate::scene::Scene;
 
@@ -136,7 +138,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.set_caption(&format!(
         "{} {}{row} · {} i = {} · {}{}",
         input.t(Label::Scene),
-        crate::figure::labels::escape(&input.traces.scene_name),
+        markup_escape(&input.traces.scene_name),
         input.t(Label::Columns),
         columns.join(", "),
         input.t(Label::PrimaryOnly),
@@ -290,7 +292,7 @@ fn mark_spacing(d: &mut Drawing, rays: &[Primary], row: &Row) {
     let line = Pen::solid(style::DARK_GREY, style::CONSTRUCTION_WIDTH);
     d.segment("spacing", DVec2::new(a, y), DVec2::new(b, y), line);
     let opts = TextOpts::LABEL.align(Align::ABOVE).offset(0.0, 4.0).avoid_overlap();
-    d.text("spacing", DVec2::new((a + b) / 2.0, y), &format!("Δ = {}", num(b - a)), opts);
+    d.text("spacing", DVec2::new((a + b) / 2.0, y), &format!("Δ = {}", slide_number(b - a)), opts);
 }
 
 /// The window points S of a trace's pixels, on `plane`.

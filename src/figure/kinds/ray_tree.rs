@@ -12,11 +12,13 @@ use glam::DVec2;
 
 use super::Input;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
-use crate::figure::labels::{escape, Label};
-use crate::figure::parts::{self, legend_role, num, swatch, Names};
+use crate::figure::labels::Label;
+use crate::figure::parts::{self, legend_role, swatch, Names};
 use crate::figure::plane::Planar;
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
+use crate::format::markup_escape;
+use crate::format::slide_number;
 use crate::record::event::Event;
 use crate::record::EventLog;
 
@@ -332,7 +334,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 };
                 d.text("name", *p, &names.ray[*k], beside);
                 let what = match log.nodes[*k].end.as_ref().and_then(|e| e.hit) {
-                    Some(h) => escape(&scene.object_label(h.object.index, input.lang)),
+                    Some(h) => markup_escape(&scene.object_label(h.object.index, input.lang)),
                     None => input.t(Label::Background).to_owned(),
                 };
                 // Fixed under the node: the halo keeps it readable over an edge.
@@ -342,7 +344,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 let name = names.shadow_name(*parent, *light);
                 d.text("name", *p, &name, beside.offset(-22.0, 0.0));
                 let s_text = match s {
-                    Some(s) => format!("s = {}", num(*s)),
+                    Some(s) => format!("s = {}", slide_number(*s)),
                     None => "lum = 0".to_owned(),
                 };
                 d.text(

@@ -10,13 +10,36 @@ use super::Input;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{
-    self, deg, draw_arc, label_outward, legend_normal, legend_role, num, object_name, text_column, Names,
+    self, deg, draw_arc, label_outward, legend_normal, legend_role, object_name, text_column, Names,
 };
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{node_events, refraction_node, tir_node, FigureTrace};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
+use crate::format::slide_number;
 use crate::record::event::Event;
+
+// The schematic's coordinates, in units of the recorded unit directions, the hit at the origin.
+/// How far a panel reaches from its hit, each way: the view fits this box.
+const PANEL_HALF: DVec2 = DVec2::new(1.6, 1.45);
+/// The distance between two panels' hits, side by side.
+const PANEL_GAP: f64 = 4.4;
+/// The height kept under two panels for their numbers.
+const NUMBERS_BELOW: f64 = 1.45;
+/// Half the drawn surface's length, and the medium's width.
+const SURFACE_HALF: f64 = 1.5;
+/// The medium's depth beyond the surface.
+const MEDIUM_DEPTH: f64 = 1.35;
+/// Half the drawn normal's length.
+const NORMAL_HALF: f64 = 1.3;
+/// The drawn length of the incident, reflected and transmitted rays.
+const RAY_LEN: f64 = 1.15;
+/// The radius of θᵢ's arc.
+const ARC_I: f64 = 0.42;
+/// The radius of θₜ's arc: unlike [`ARC_I`], so the two arcs never merge.
+const ARC_T: f64 = 0.52;
+/// Where the labels n₁ and n₂ start: left, above and below the surface.
+const INDEX_LABEL: DVec2 = DVec2::new(-1.45, 1.05);
 
 /// What one panel shows: a hit and the recorded rays leaving it.
 struct Case<V> {
@@ -134,15 +157,16 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         LegendIcon::Swatch(style::OBJECT_FILL),
     );
 
-    // One case: its numbers in a column on the right. Two: side by side, 4.4 apart, each with
-    // its numbers below (in smaller type, 1.4 units reserved).
+    // One case: its numbers in a column on the right. Two: side by side, [`PANEL_GAP`] apart,
+    // each with its numbers below (in smaller type, [`NUMBERS_BELOW`] kept for them).
     if let [(traced, c)] = cases.as_slice() {
-        let column = parts::fit_with_column(d, &[DVec2::new(-1.6, -1.45), DVec2::new(1.6, 1.45)], 0.01, 0.48);
+        let column = parts::fit_with_column(d, &[-PANEL_HALF, PANEL_HALF], 0.01, 0.48);
         let lines = panel(input, d, traced, c, DVec2::ZERO);
         text_column(d, column + DVec2::new(0.15, -0.1), &lines, TextSize::Body, 50.0);
     } else {
-        let gap = 4.4;
-        d.fit_view(&[DVec2::new(-1.6, -1.45 - 1.45), DVec2::new(1.6 + gap, 1.45)], 0.01);
+        let gap = PANEL_GAP;
+        let (lo, hi) = (-PANEL_HALF - DVec2::new(0.0, NUMBERS_BELOW), PANEL_HALF + DVec2::new(gap, 0.0));
+        d.fit_view(&[lo, hi], 0.01);
         for (k, (traced, c)) in cases.iter().enumerate() {
             let offset = DVec2::new(gap * k as f64, 0.0);
             let lines = panel(input, d, traced, c, offset);
@@ -172,20 +196,22 @@ fn panel<V: Planar>(
     let Some(plane) = incidence_plane(c) else { return Vec::new() };
     let plane = plane.shifted(offset);
     let i = plane.point(c.point);
-    let len = 1.15;
+    let len = RAY_LEN;
     let at = |v: DVec2| i + v;
 
     // The medium of index n₂ below the surface (or above, for a ray leaving the object: n₂ = 1
     // is outside, so the object is on the incoming side).
     let object_below = c.entering;
     let (lo, hi) = if object_below {
-        (at(DVec2::new(-1.5, -1.35)), at(DVec2::new(1.5, 0.0)))
+        (at(DVec2::new(-SURFACE_HALF, -MEDIUM_DEPTH)), at(DVec2::new(SURFACE_HALF, 0.0)))
     } else {
-        (at(DVec2::new(-1.5, 0.0)), at(DVec2::new(1.5, 1.35)))
+        (at(DVec2::new(-SURFACE_HALF, 0.0)), at(DVec2::new(SURFACE_HALF, MEDIUM_DEPTH)))
     };
     d.rect("medium", lo, hi, Pen::NONE, Some(style::OBJECT_FILL));
-    d.segment("surface", at(DVec2::new(-1.5, 0.0)), at(DVec2::new(1.5, 0.0)), style::object());
-    d.segment("normal", at(DVec2::new(0.0, -1.3)), at(DVec2::new(0.0, 1.3)), style::normal());
+    let (surface, normal) = (DVec2::new(SURFACE_HALF, 0.0), DVec2::new(0.0, NORMAL_HALF));
+    // Written out rather than negated, so that no −0 enters the coordinates.
+    d.segment("surface", at(DVec2::new(-SURFACE_HALF, 0.0)), at(surface), style::object());
+    d.segment("normal", at(DVec2::new(0.0, -NORMAL_HALF)), at(normal), style::normal());
 
     let page = |v: V| plane.dir(v);
     let incident = page(c.d);
@@ -221,7 +247,7 @@ fn panel<V: Planar>(
     let arc = Pen::solid(style::BLACK, style::CONSTRUCTION_WIDTH);
     let cos_i = (-c.d.dot(c.n_f)).clamp(-1.0, 1.0);
     let theta_i = cos_i.acos();
-    let mid_i = draw_arc(d, i, 0.42, DVec2::Y, -incident, arc);
+    let mid_i = draw_arc(d, i, ARC_I, DVec2::Y, -incident, arc);
     let names = Names::of(&traced.log);
     let mut lines = Vec::new();
     // Short names in the wedge; the values head the text column.
@@ -230,10 +256,10 @@ fn panel<V: Planar>(
         let o = TextOpts::LABEL.align(Align { h: HAlign::Left, v: VAlign::Middle });
         d.text("label", at(DVec2::new(x, y)), text, o);
     };
-    let (above, below) = (format!("n_1 = {}", num(c.n1)), format!("n_2 = {}", num(c.n2)));
-    n_text(-1.45, 1.05, &above, d);
-    n_text(-1.45, -1.05, &below, d);
-    d.text("label", at(DVec2::new(0.0, 1.3)), "N", TextOpts::LABEL.align(Align::ABOVE).offset(0.0, 4.0));
+    let (above, below) = (format!("n_1 = {}", slide_number(c.n1)), format!("n_2 = {}", slide_number(c.n2)));
+    n_text(INDEX_LABEL.x, INDEX_LABEL.y, &above, d);
+    n_text(INDEX_LABEL.x, -INDEX_LABEL.y, &below, d);
+    d.text("label", at(normal), "N", TextOpts::LABEL.align(Align::ABOVE).offset(0.0, 4.0));
     if let Some(name) = names.hit_name(c.node) {
         d.with_events(hit_ev, |d| {
             d.text(
@@ -251,7 +277,7 @@ fn panel<V: Planar>(
     );
     d.text(
         "label",
-        at(DVec2::new(1.5, 0.0)),
+        at(surface),
         &surface_name,
         TextOpts::NOTE.align(Align { h: HAlign::Right, v: VAlign::Bottom }).offset(0.0, 8.0),
     );
@@ -265,29 +291,39 @@ fn panel<V: Planar>(
         Some(tt) => format!("θ_i = {}, θ_t = {}", deg(theta_i), deg(tt)),
         None => format!("θ_i = {}", deg(theta_i)),
     });
-    lines.push(format!("η = n_1/n_2 = {}/{} = {}", num(c.n1), num(c.n2), num(eta)));
-    lines.push(format!("n_1·sin θ_i = {} · sin {} = {}", num(c.n1), deg(theta_i), num(c.n1 * theta_i.sin())));
+    lines.push(format!(
+        "η = n_1/n_2 = {}/{} = {}",
+        slide_number(c.n1),
+        slide_number(c.n2),
+        slide_number(eta)
+    ));
+    lines.push(format!(
+        "n_1·sin θ_i = {} · sin {} = {}",
+        slide_number(c.n1),
+        deg(theta_i),
+        slide_number(c.n1 * theta_i.sin())
+    ));
     if let Some(t) = c.t {
         let cos_t = (-t.dot(c.n_f)).clamp(-1.0, 1.0);
         let theta_t = cos_t.acos();
         d.with_events(t_ev, |d| {
-            let mid_t = draw_arc(d, i, 0.52, -DVec2::Y, page(t), arc);
+            let mid_t = draw_arc(d, i, ARC_T, -DVec2::Y, page(t), arc);
             d.text("label", i + (mid_t - i) * 1.4, "θ_t", TextOpts::LABEL.avoid_overlap());
             label_outward(d, i + page(t) * len, page(t), "T");
         });
         lines.push(format!(
             "n_2·sin θ_t = {} · sin {} = {}",
-            num(c.n2),
+            slide_number(c.n2),
             deg(theta_t),
-            num(c.n2 * theta_t.sin())
+            slide_number(c.n2 * theta_t.sin())
         ));
         lines.push("T = η·L − (cos θ_t + η·(L·N))·N, L = D".to_owned());
-        lines.push(format!("L·N = {}, cos θ_t = {}", num(c.d.dot(c.n_f)), num(cos_t)));
+        lines.push(format!("L·N = {}, cos θ_t = {}", slide_number(c.d.dot(c.n_f)), slide_number(cos_t)));
     }
     if let Some(k) = c.k {
         let critical = (c.n2 / c.n1).clamp(-1.0, 1.0).asin();
         lines.push(format!("{} θ_c = asin(n_2/n_1) = {}", input.t(Label::CriticalAngle), deg(critical)));
-        lines.push(format!("k = 1 − η^2·(1 − (L·N)^2) = {} < 0", num(k)));
+        lines.push(format!("k = 1 − η^2·(1 − (L·N)^2) = {} < 0", slide_number(k)));
         lines.push(format!("{}: {}", labels::Label::Tir.text(input.lang), input.t(Label::NoT)));
     }
     if c.r.is_some() {

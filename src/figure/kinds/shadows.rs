@@ -12,12 +12,13 @@ use crate::canvas::{Drawing, Pen};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     self, camera_plane, draw_light, draw_objects, draw_ray, label, label_objects, legend_normal,
-    legend_points, legend_role, num, object_name, plane_note, shadow_block_t, sub, text_column, Names,
+    legend_points, legend_role, object_name, plane_note, shadow_block_t, sub, text_column, Names,
 };
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::shadow_node;
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
+use crate::format::slide_number;
 use crate::record::event::{Event, Occluder};
 
 /// One recorded shadow ray of the node.
@@ -170,7 +171,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for term in &node.lights {
         let name = light_name(term.light);
         let Some(s) = shadows.iter().find(|s| s.light == term.light) else {
-            lines.push(format!("{name}: N·L = {} ≤ 0 → lum = 0", num(term.n_dot_l)));
+            lines.push(format!("{name}: N·L = {} ≤ 0 → lum = 0", slide_number(term.n_dot_l)));
             continue;
         };
         if s.occluders.is_empty() {
@@ -185,18 +186,18 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 if o.kt == 0.0 {
                     format!("{what} ({})", input.t(Label::Opaque))
                 } else {
-                    format!("{what} (kt = {})", num(o.kt))
+                    format!("{what} (kt = {})", slide_number(o.kt))
                 }
             })
             .collect();
         lines.push(format!("{name}: {}", list.join(", ")));
-        let product: Vec<String> = s.occluders.iter().map(|o| num(o.kt)).collect();
+        let product: Vec<String> = s.occluders.iter().map(|o| slide_number(o.kt)).collect();
         lines.push(if s.occluders.iter().any(|o| o.kt == 0.0) {
             "   → s = 0".to_owned()
         } else if product.len() == 1 {
-            format!("   → s = kt = {}", num(s.s))
+            format!("   → s = kt = {}", slide_number(s.s))
         } else {
-            format!("   → s = Π kt = {} = {}", product.join(" · "), num(s.s))
+            format!("   → s = Π kt = {} = {}", product.join(" · "), slide_number(s.s))
         });
     }
     text_column(d, column + DVec2::new(0.02 * view.width(), 0.0), &lines, TextSize::Body, 50.0);

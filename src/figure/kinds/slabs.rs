@@ -13,11 +13,13 @@ use crate::accel::Layout;
 use crate::bounds::BoundingVolume;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
 use crate::figure::labels::Label;
-use crate::figure::parts::{self, clip_line, num, object_name};
+use crate::figure::parts::{self, clip_line, object_name};
 use crate::figure::plane::{PagePlane, Planar};
-use crate::figure::source::{bound_test_index, bound_test_of, FigureTrace, Target};
+use crate::figure::source::{bound_test_index, bound_test_of, BoundTestOf, FigureTrace, Target};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
+use crate::format::markup_escape;
+use crate::format::slide_number;
 use crate::record::event::ObjectRef;
 
 /// The bounding volume of the object the figure `kind` is about, from the per-object volumes the
@@ -144,7 +146,7 @@ pub fn draw<V: Planar>(
         .traces
         .iter()
         .filter_map(|traced| {
-            let (intervals, t_in, t_out, hit) = bound_test_of(&traced.log, focus)?;
+            let BoundTestOf { intervals, t_in, t_out, hit } = bound_test_of(&traced.log, focus)?;
             let root = traced.log.nodes.first()?;
             let main = std::ptr::eq(traced, &input.traces.traces[0]);
             let events = if main {
@@ -176,11 +178,8 @@ pub fn draw<V: Planar>(
 
     d.set_title(input.t(title));
     let object = object_name(scene, ObjectRef { index: focus, triangle: None }, input.lang);
-    let mut caption = format!(
-        "{} {} · {object}",
-        input.t(Label::Scene),
-        crate::figure::labels::escape(&input.traces.scene_name)
-    );
+    let mut caption =
+        format!("{} {} · {object}", input.t(Label::Scene), markup_escape(&input.traces.scene_name));
     for t in &tested {
         let target = t.traced.targets.first().cloned().unwrap_or(Target::Ray);
         let verdict = if t.hit { Label::MeetsVolume } else { Label::MissesVolume };
@@ -348,8 +347,8 @@ pub fn draw<V: Planar>(
             let verdict = if t.hit { Label::MeetsVolume } else { Label::MissesVolume };
             let text = format!(
                 "max t_i = {} {relation} min t_e = {} → {}",
-                num(t.t_in),
-                num(t.t_out),
+                slide_number(t.t_in),
+                slide_number(t.t_out),
                 input.t(verdict)
             );
             let opts = TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Top }).no_halo();

@@ -9,11 +9,12 @@ use glam::DVec2;
 use super::Input;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
 use crate::figure::labels::Label;
-use crate::figure::parts::{num, text_column};
+use crate::figure::parts::text_column;
 use crate::figure::plane::Planar;
 use crate::figure::source::FigureTrace;
 use crate::figure::style::{self, TextSize};
 use crate::figure::FigureError;
+use crate::format::slide_number;
 use crate::record::event::Event;
 use crate::scene::camera::Camera;
 
@@ -89,9 +90,9 @@ fn centre_formula(names: [&str; 5], (lo, hi): (f64, f64), k: usize, n: usize, va
     let [c, lo_name, hi_name, k_name, axis] = names;
     format!(
         "{c} = {lo_name} + ({hi_name} − {lo_name})·({k_name} + 0.5)/N_{axis} = {} + {}·({k} + 0.5)/{n} = {}",
-        num(lo),
-        num(hi - lo),
-        num(value)
+        slide_number(lo),
+        slide_number(hi - lo),
+        slide_number(value)
     )
 }
 
@@ -193,13 +194,13 @@ fn two_panels<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>,
     d.text(
         "label",
         to_window(w.l, w.t),
-        &format!("(l, t) = ({}, {})", num(w.l), num(w.t)),
+        &format!("(l, t) = ({}, {})", slide_number(w.l), slide_number(w.t)),
         corner.align(Align { h: HAlign::Right, v: VAlign::Bottom }).offset(-8.0, 4.0),
     );
     d.text(
         "label",
         to_window(w.r, w.b),
-        &format!("(r, b) = ({}, {})", num(w.r), num(w.b)),
+        &format!("(r, b) = ({}, {})", slide_number(w.r), slide_number(w.b)),
         corner.align(Align { h: HAlign::Right, v: VAlign::Top }).offset(0.0, -8.0),
     );
 
@@ -235,7 +236,8 @@ fn two_panels<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>,
     );
     // The numbers only, as the pixel's (i, j): the formulas under the image name them u and v,
     // and a shorter label keeps off the window's v axis.
-    let uv_text = format!("({}, {})", num(m.uv[0]), num(m.uv.get(1).copied().unwrap_or(0.0)));
+    let uv_text =
+        format!("({}, {})", slide_number(m.uv[0]), slide_number(m.uv.get(1).copied().unwrap_or(0.0)));
     d.with_events([m.event], |d| {
         d.text("label", centre, &format!("({}, {})", m.i, m.j), TextOpts::LABEL.avoid_overlap());
         d.text("label", uv, &uv_text, TextOpts::LABEL.avoid_overlap());
@@ -296,10 +298,10 @@ fn one_row<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>, m:
         above,
     );
     let below = TextOpts::LABEL.align(Align::BELOW).size(TextSize::Body).offset(0.0, -14.0);
-    d.text("label", to_line(w.l), &format!("l = {}", num(w.l)), below);
-    d.text("label", to_line(w.r), &format!("r = {}", num(w.r)), below);
+    d.text("label", to_line(w.l), &format!("l = {}", slide_number(w.l)), below);
+    d.text("label", to_line(w.r), &format!("r = {}", slide_number(w.r)), below);
     d.with_events([m.event], |d| {
-        d.text("label", u, &format!("u = {}", num(m.uv[0])), below.offset(0.0, -60.0));
+        d.text("label", u, &format!("u = {}", slide_number(m.uv[0])), below.offset(0.0, -60.0));
     });
     d.text(
         "label",

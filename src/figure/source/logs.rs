@@ -123,12 +123,25 @@ pub fn met(t_in: f64, t_out: f64) -> bool {
     culling_hit(t_in, t_out)
 }
 
-/// The `bound_test` of object `object` in root 0's search: `(intervals, t_in, t_out, hit)`.
+/// A recorded `bound_test` of one object's volume: what [`bound_test_of`] finds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoundTestOf<'a> {
+    /// Each slab pair's `[t_near, t_far]`.
+    pub intervals: &'a [[f64; 2]],
+    /// The interval's entry: the largest near end.
+    pub t_in: f64,
+    /// The interval's exit: the smallest far end.
+    pub t_out: f64,
+    /// Whether the test counted the volume as met.
+    pub hit: bool,
+}
+
+/// The `bound_test` of object `object` in root 0's search.
 #[must_use]
-pub fn bound_test_of<V>(log: &EventLog<V>, object: usize) -> Option<(&[[f64; 2]], f64, f64, bool)> {
+pub fn bound_test_of<V>(log: &EventLog<V>, object: usize) -> Option<BoundTestOf<'_>> {
     search_events(log, 0).find_map(|e| match e {
         Event::BoundTest { object: Some(o), intervals, t_in, t_out, hit, .. } if o.index == object => {
-            Some((intervals.as_slice(), *t_in, *t_out, *hit))
+            Some(BoundTestOf { intervals: intervals.as_slice(), t_in: *t_in, t_out: *t_out, hit: *hit })
         }
         _ => None,
     })
@@ -142,11 +155,24 @@ pub fn bound_test_index<V>(log: &EventLog<V>, object: usize) -> Option<usize> {
         .map(|(k, _)| k)
 }
 
+/// The lecture's grid pitfall: a hit found in a cell but lying beyond the cell's exit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridPitfall {
+    /// The walk's step (from 0) whose cell found the hit.
+    pub step: usize,
+    /// The object hit.
+    pub object: usize,
+    /// The hit's t.
+    pub t: f64,
+    /// The cell's exit, `min tMax`, which `t` lies beyond.
+    pub exit: f64,
+}
+
 /// The lecture's pitfall in root 0's grid walk: the first step whose cell found a hit (an
-/// accepted `object_test` of an object the cell lists) lying beyond the cell's exit `min tMax`:
-/// `(step, object, t, exit)`. Unbounded objects, tested before the walk, do not count.
+/// accepted `object_test` of an object the cell lists) lying beyond the cell's exit `min tMax`.
+/// Unbounded objects, tested before the walk, do not count.
 #[must_use]
-pub fn grid_pitfall<V>(log: &EventLog<V>) -> Option<(usize, usize, f64, f64)> {
+pub fn grid_pitfall<V>(log: &EventLog<V>) -> Option<GridPitfall> {
     let mut found: Vec<(usize, f64)> = Vec::new();
     let mut step = 0;
     for e in search_events(log, 0) {
@@ -156,7 +182,7 @@ pub fn grid_pitfall<V>(log: &EventLog<V>) -> Option<(usize, usize, f64, f64)> {
                 let exit = t_max.iter().copied().fold(f64::INFINITY, f64::min);
                 let listed = |o: usize| objects.iter().any(|x| x.index == o);
                 if let Some((object, t)) = found.iter().find(|(o, t)| listed(*o) && *t > exit) {
-                    return Some((step, *object, *t, exit));
+                    return Some(GridPitfall { step, object: *object, t: *t, exit });
                 }
                 found.clear();
                 step += 1;

@@ -528,7 +528,7 @@ fn bound_pair<V: Dim>(
                 let object = first_hit(&t.log)
                     .and_then(|k| t.log.nodes[k].end.as_ref()?.hit)
                     .map(|h| h.object.index)?;
-                bound_test_of(&t.log, object).filter(|b| b.3).map(|_| 1.0)
+                bound_test_of(&t.log, object).filter(|b| b.hit).map(|_| 1.0)
             });
             let (i, j) = best.unwrap_or_else(|| default_pixel(rec.scene));
             rec.pixel(i, j, if best.is_some() { Pick::VolumeHit } else { Pick::Default })
@@ -565,7 +565,7 @@ fn bound_pair<V: Dim>(
         .map(|d| (0..V::DIM).fold(0, |m, a| if d[a].abs() < d[m].abs() { a } else { m }));
     let near_miss = rec.best_pixel(|i, j| {
         let t = rec.pixel(i, j, Pick::Given);
-        let (_, t_in, t_out, hit) = bound_test_of(&t.log, focus)?;
+        let BoundTestOf { t_in, t_out, hit, .. } = bound_test_of(&t.log, focus)?;
         let finite = t_in.is_finite() && t_out.is_finite() && t_out > 0.0;
         let ray = &t.log.nodes.first()?.start;
         let (mut origin, mut direction) = (ray.origin, ray.direction);

@@ -4,8 +4,9 @@
 use super::dim::LoadDim;
 use super::required_vector;
 use super::schema::{DEFAULT_P, DEFAULT_PROJECTION, MAX_RESOLUTION};
+use crate::format::as_written;
 use crate::geom::frame::FrameError;
-use crate::json::reader::{num, positive, type_name, Reader};
+use crate::json::reader::{positive, type_name, Reader};
 use crate::json::Value;
 use crate::scene::camera::{Camera, Projection, Window};
 
@@ -93,11 +94,11 @@ fn read_window<V: LoadDim>(r: &mut Reader, v: &Value) -> Option<Window> {
     let (l, rr, b, t) = (l?, rr?, b?, t?);
     let mut ok = true;
     if rr <= l {
-        r.err("camera.window", format!("r must be > l, got l = {}, r = {}", num(l), num(rr)));
+        r.err("camera.window", format!("r must be > l, got l = {}, r = {}", as_written(l), as_written(rr)));
         ok = false;
     }
     if V::DIM == 3 && t <= b {
-        r.err("camera.window", format!("t must be > b, got b = {}, t = {}", num(b), num(t)));
+        r.err("camera.window", format!("t must be > b, got b = {}, t = {}", as_written(b), as_written(t)));
         ok = false;
     }
     // The window's width must itself be finite and non-zero in f64.

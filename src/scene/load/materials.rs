@@ -2,7 +2,8 @@
 //! colours: a material colour is one number (grey) or RGB in [0, 1]; a light colour is RGB ≥ 0.
 
 use super::schema::{CHECKER, DEFAULT_CHECKER_SIZE, MATERIAL, RADIANCE, REFLECTANCE};
-use crate::json::reader::{join, non_negative, num, positive, type_name, unit_interval, Reader};
+use crate::format::as_written;
+use crate::json::reader::{join, non_negative, positive, type_name, unit_interval, Reader};
 use crate::json::{Map, Value};
 use crate::scene::material::{Checker, Material, Rgb};
 
@@ -23,18 +24,18 @@ fn color(r: &mut Reader, v: &Value, path: &str, range: (f64, f64), grey: bool) -
     } else if grey && v.is_number() {
         [r.number(v, path)?; 3]
     } else {
-        let got = v.as_f64().map_or_else(|| type_name(v).to_owned(), num);
+        let got = v.as_f64().map_or_else(|| type_name(v).to_owned(), as_written);
         r.err(path, format!("must be {form}, got {got}"));
         return None;
     };
     for x in rgb {
         if x < range.0 || x > range.1 {
             let bounds = if range.1.is_finite() {
-                format!("in [{}, {}]", num(range.0), num(range.1))
+                format!("in [{}, {}]", as_written(range.0), as_written(range.1))
             } else {
-                format!("≥ {}", num(range.0))
+                format!("≥ {}", as_written(range.0))
             };
-            r.err(path, format!("every channel must be {bounds}, got {}", num(x)));
+            r.err(path, format!("every channel must be {bounds}, got {}", as_written(x)));
             return None;
         }
     }

@@ -7,8 +7,9 @@ use super::materials;
 use super::required_vector;
 use super::schema::{geometry, NAME, OBJECT};
 use super::ReadFile;
+use crate::format::as_written;
 use crate::geom::Vector;
-use crate::json::reader::{join, num, positive, suggest, type_name, ReadError, Reader};
+use crate::json::reader::{join, positive, suggest, type_name, ReadError, Reader};
 use crate::json::{Map, Value};
 use crate::lang::{Both, Lang};
 use crate::scene::material::Material;
@@ -161,8 +162,8 @@ fn read_shape<V: LoadDim>(
                         join(path, "max"),
                         format!(
                             "must exceed min on every axis, got {name}: min {} ≥ max {}",
-                            num(min[axis]),
-                            num(max[axis])
+                            as_written(min[axis]),
+                            as_written(max[axis])
                         ),
                     );
                     return None;
