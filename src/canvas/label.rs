@@ -292,6 +292,40 @@ impl Drawing {
         out
     }
 
+    /// The pairs of text items, as indices into `items`, whose ink overlaps where both back ends
+    /// draw them (under [`Drawing::frame`]'s transform): one label printed on top of another.
+    /// Each label is its advance width across and its glyphs' ink up and down
+    /// ([`text::TextLayout::ink`]), so lines of a column, whose font boxes touch, pass. Empty
+    /// for a legible layout: the check that proves it, not a look at the picture.
+    #[must_use]
+    pub fn overlapping_labels(&self) -> Vec<(usize, usize)> {
+        let tf = self.frame().transform;
+        let boxes: Vec<(usize, PxRect)> = self
+            .items
+            .iter()
+            .enumerate()
+            .filter_map(|(k, item)| match &item.mark {
+                Mark::Text(label) => {
+                    let placed = Self::place_text(label, &tf);
+                    let (above, below) = text::layout(&label.text, placed.size, label.weight).ink();
+                    let (x0, x1) = (placed.bbox.min.x, placed.bbox.max.x);
+                    let y = placed.origin.y;
+                    Some((k, PxRect { min: DVec2::new(x0, y - above), max: DVec2::new(x1, y + below) }))
+                }
+                _ => None,
+            })
+            .collect();
+        let mut out = Vec::new();
+        for (n, (i, a)) in boxes.iter().enumerate() {
+            for (j, b) in &boxes[n + 1..] {
+                if a.overlap(b) > 0.0 {
+                    out.push((*i, *j));
+                }
+            }
+        }
+        out
+    }
+
     /// The pixel boxes of every text item.
     pub(super) fn text_boxes(&self, tf: &Transform) -> Vec<PxRect> {
         self.items

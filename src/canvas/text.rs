@@ -323,6 +323,28 @@ impl TextLayout {
     pub fn height(&self) -> f64 {
         self.ascent + self.descent
     }
+
+    /// How far the glyphs' ink reaches above and below the baseline, in pixels, `(above, below)`
+    /// (below positive): the outlines' own bounds, raised or lowered with their script. Tighter
+    /// than the box, whose ascent and descent are the font's for every line, so two lines set one
+    /// under the other share box but never ink. `(0, 0)` for a line without ink.
+    #[must_use]
+    pub fn ink(&self) -> (f64, f64) {
+        self.glyphs
+            .iter()
+            .filter_map(|g| {
+                // Font units, y up: the outline's lowest and highest point.
+                let bounds = g.face.font().outline(g.id)?.bounds;
+                let scale = g.size / g.face.units_per_em();
+                let (lo, hi) =
+                    (f64::from(bounds.min.y.min(bounds.max.y)), f64::from(bounds.min.y.max(bounds.max.y)));
+                Some((g.rise + hi * scale, -(g.rise + lo * scale)))
+            })
+            .fold(None, |acc: Option<(f64, f64)>, (a, b)| {
+                Some(acc.map_or((a, b), |(x, y)| (x.max(a), y.max(b))))
+            })
+            .unwrap_or((0.0, 0.0))
+    }
 }
 
 /// Lays out one line of markup at font size `size` (em, pixels).
@@ -501,6 +523,20 @@ pub fn outline(laid: &TextLayout, origin: DVec2, sink: &mut impl PathSink) {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ink_reaches_the_cap_height_and_the_descenders_only() {
+        let size = 100.0;
+        let (above, below) = layout("H", size, Weight::Regular).ink();
+        assert!((above - cap_height(size)).abs() < 0.5 && below.abs() < 0.5, "{above} {below}");
+        let (_, below_g) = layout("g", size, Weight::Regular).ink();
+        assert!(below_g > 15.0, "{below_g}");
+        // A subscript goes lower than the letter it follows, and inside the box.
+        let sub = layout("N_1", size, Weight::Regular);
+        let (above_n, below_n) = sub.ink();
+        assert!(below_n > 5.0 && below_n < sub.descent && above_n < sub.ascent, "{below_n} {}", sub.descent);
+        assert_eq!(layout(" ", size, Weight::Regular).ink(), (0.0, 0.0));
+    }
 
     /// Counts what a sink receives.
     #[derive(Default)]

@@ -262,6 +262,10 @@ pub enum Label {
     CellExit,
     /// Legend: a hit found beyond its cell.
     FoundBeyond,
+    /// Legend: an object listed in a visited cell only because its bounding box reaches into it.
+    ListedByBox,
+    /// Table: the same, after the object's name.
+    BoxOnly,
     /// "cell" (table head).
     Cell,
     /// The pitfall: "found while visiting cell".
@@ -504,6 +508,8 @@ impl Label {
             Self::CellVisited => ("cell visited (k: order)", "voxel parcurs (k: ordinea)"),
             Self::CellExit => ("ray leaves the cell (min tMax)", "raza iese din voxel (min tMax)"),
             Self::FoundBeyond => ("hit found beyond its cell", "intersecție găsită dincolo de voxel"),
+            Self::ListedByBox => ("listed via its bounding box only", "listat doar prin volumul încadrator"),
+            Self::BoxOnly => ("box only", "doar volumul"),
             Self::Cell => ("cell", "voxel"),
             Self::PitfallIn => ("the pitfall: hit found in cell", "capcana: intersecție găsită în voxelul"),
             Self::CellExitT => ("its exit", "ieșirea lui"),

@@ -35,6 +35,24 @@ impl<V: Vector> PagePlane<V> {
         Some(Self { origin, x, y, offset: DVec2::ZERO })
     }
 
+    /// The plane through `origin` spanned by `a` and `b`, turned within itself so that the
+    /// scene's `up` is drawn upwards: page y along the part of `up` in the plane, page x
+    /// perpendicular to it in the plane, on the side of `right` (so that the page is not seen
+    /// from behind). [`PagePlane::spanned`] when `up` is perpendicular to the plane; `None` when
+    /// that is refused.
+    #[must_use]
+    pub fn upright(origin: V, a: V, b: V, up: V, right: V) -> Option<Self> {
+        let plane = Self::spanned(origin, a, b)?;
+        let (e1, e2) = (plane.x, plane.y);
+        // `up` in the plane's orthonormal basis (e1, e2); x is (q, −p) or (−q, p) in it.
+        let (p, q) = (up.dot(e1), up.dot(e2));
+        let Some(y) = (e1 * p + e2 * q).try_unit() else { return Some(plane) };
+        let (p, q) = (y.dot(e1), y.dot(e2));
+        let x = e1 * q - e2 * p;
+        let x = if x.dot(right) < 0.0 { -x } else { x };
+        Some(Self { origin, x, y, offset: DVec2::ZERO })
+    }
+
     /// The same plane with its page positions shifted by `offset`.
     #[must_use]
     pub fn shifted(self, offset: DVec2) -> Self {
@@ -295,6 +313,25 @@ mod tests {
         assert!(PagePlane::spanned(DVec3::ZERO, DVec3::X, DVec3::X * 3.0).is_none());
         assert_eq!(p.point(DVec3::new(1.0, 2.0, 5.0)), DVec2::new(1.0, 2.0));
         assert!((p.off_plane(DVec3::new(1.0, 2.0, 5.0)) - 5.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn an_upright_plane_draws_the_scenes_up_upwards_and_keeps_its_right_side() {
+        // The plane of a shadow ray L along (1, 0, 1) and a floor's normal (0, 1, 0): spanned
+        // from L, the floor's normal is drawn at 45°; upright, it is drawn straight up.
+        let (l, n) = (DVec3::new(1.0, 0.0, 1.0), DVec3::Y);
+        let tilted = PagePlane::spanned(DVec3::ZERO, l + n, n).unwrap();
+        assert!(tilted.dir(n).x.abs() > 0.5);
+        let p = PagePlane::upright(DVec3::ZERO, l + n, n, DVec3::Y, DVec3::X).unwrap();
+        assert!((p.dir(DVec3::Y) - DVec2::new(0.0, 1.0)).length() < 1e-12);
+        assert!(p.x.dot(p.y).abs() < 1e-12 && (p.x.length() - 1.0).abs() < 1e-12);
+        // Page x lies in the plane and on the side of `right`.
+        assert!((p.x - l.normalize()).length() < 1e-12);
+        let mirrored = PagePlane::upright(DVec3::ZERO, l + n, n, DVec3::Y, -DVec3::X).unwrap();
+        assert!((mirrored.x + l.normalize()).length() < 1e-12);
+        // `up` perpendicular to the plane: the spanned plane as it is.
+        let flat = PagePlane::upright(DVec3::ZERO, DVec3::X, DVec3::Z, DVec3::Y, DVec3::X).unwrap();
+        assert_eq!((flat.x, flat.y), (DVec3::X, DVec3::Z));
     }
 
     #[test]

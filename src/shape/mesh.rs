@@ -199,6 +199,9 @@ impl Parts<DVec3> for Mesh {
     fn skipped(&self) -> usize {
         self.skipped
     }
+    fn meets_box(&self, k: usize, lo: DVec3, hi: DVec3) -> bool {
+        super::triangle::triangle_meets_box(&self.triangle(k), lo, hi)
+    }
 }
 
 /// 2D scenes have no meshes: this type has no values.
@@ -228,6 +231,9 @@ impl Parts<DVec2> for NoMesh {
         match *self {}
     }
     fn skipped(&self) -> usize {
+        match *self {}
+    }
+    fn meets_box(&self, _: usize, _: DVec2, _: DVec2) -> bool {
         match *self {}
     }
 }

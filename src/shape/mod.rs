@@ -89,6 +89,9 @@ pub trait Facet<V>: Clone + std::fmt::Debug + Send + Sync + 'static {
     fn points(&self) -> Vec<V>;
     /// A short name for messages and `check`: `triangle`, `segment`, `polygon`.
     fn kind(&self) -> &'static str;
+    /// Whether the primitive itself shares a point with the closed box `[lo, hi]` (its bounding
+    /// box may overlap a box it does not reach).
+    fn meets_box(&self, lo: V, hi: V) -> bool;
 }
 
 /// An object made of many parts (a mesh's triangles), each tested on its own.
@@ -109,6 +112,8 @@ pub trait Parts<V>: Clone + std::fmt::Debug + Send + Sync + 'static {
     fn scale(&self) -> f64;
     /// Degenerate parts skipped when it was built.
     fn skipped(&self) -> usize;
+    /// Whether part `k` itself shares a point with the closed box `[lo, hi]`.
+    fn meets_box(&self, k: usize, lo: V, hi: V) -> bool;
 }
 
 /// A primitive of a scene, in 2D or 3D.
@@ -193,6 +198,41 @@ impl<V: Dim> Shape<V> {
             Self::Mesh(m) => m.scale(),
         }
     }
+    /// Whether the object itself, not only its bounding box, shares a point with the closed box
+    /// `[lo, hi]`: what tells an object listed in a grid cell because it reaches into the cell
+    /// from one listed only because its box does (insertion is by boxes, algorithm.md §9).
+    /// A sphere by Arvo's test, the squared distance from its centre to the box
+    /// `Σ (c_a − clamp(c_a, lo_a, hi_a))² ≤ r²`; a plane when the box's corners lie on both
+    /// sides of it or on it; a box by its intervals; flat primitives and meshes by separating
+    /// axes ([`Facet::meets_box`]).
+    #[must_use]
+    pub fn meets_box(&self, lo: V, hi: V) -> bool {
+        match self {
+            Self::Sphere(s) => {
+                let d = s.center - s.center.max_by_axis(lo).min_by_axis(hi);
+                d.dot(d) <= s.radius * s.radius
+            }
+            Self::Plane(p) => {
+                let (mut below, mut above) = (false, false);
+                for k in 0..(1usize << V::DIM) {
+                    let mut corner = lo;
+                    for a in 0..V::DIM {
+                        if k & (1 << a) != 0 {
+                            corner[a] = hi[a];
+                        }
+                    }
+                    let side = (corner - p.point).dot(p.normal);
+                    below |= side <= 0.0;
+                    above |= side >= 0.0;
+                }
+                below && above
+            }
+            Self::Box(b) => (0..V::DIM).all(|a| b.min[a] <= hi[a] && lo[a] <= b.max[a]),
+            Self::Facet(f) => f.meets_box(lo, hi),
+            Self::Mesh(m) => (0..m.count()).any(|k| m.meets_box(k, lo, hi)),
+        }
+    }
+
     /// The type name as the scene file writes it (`circle` and `line` are the 2D names).
     #[must_use]
     pub fn kind(&self) -> &'static str {
@@ -302,6 +342,45 @@ impl<V: Dim> Shape<V> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_object_meets_a_box_only_where_it_reaches_not_where_its_bounding_box_does() {
+        use crate::shape::aabox::AaBox;
+        use crate::shape::polygon::Polygon;
+        use crate::shape::sphere::Sphere;
+        use crate::shape::triangle::Triangle;
+        // A unit circle and the box at its bounding square's corner: the square overlaps, the
+        // circle does not (the corner (0.8, 0.8) is 1.13 from the centre).
+        let circle: Shape<DVec2> = Shape::Sphere(Sphere { center: DVec2::ZERO, radius: 1.0 });
+        assert!(!circle.meets_box(DVec2::splat(0.8), DVec2::splat(2.0)));
+        assert!(circle.meets_box(DVec2::splat(0.7), DVec2::splat(2.0)));
+        // A diagonal segment and a box in the corner of its bounding box.
+        let seg: Shape<DVec2> = Shape::Facet(Polygon::segment(DVec2::ZERO, DVec2::splat(4.0)).unwrap());
+        assert!(!seg.meets_box(DVec2::new(3.0, 0.0), DVec2::new(4.0, 1.0)));
+        assert!(seg.meets_box(DVec2::new(1.0, 0.0), DVec2::new(2.0, 1.0)));
+        // A closed triangle holding the whole box, and one whose edges pass by it.
+        let tri = Polygon::closed(vec![DVec2::ZERO, DVec2::new(10.0, 0.0), DVec2::new(0.0, 10.0)]).unwrap();
+        let tri: Shape<DVec2> = Shape::Facet(tri);
+        assert!(tri.meets_box(DVec2::splat(1.0), DVec2::splat(2.0)));
+        assert!(!tri.meets_box(DVec2::splat(6.0), DVec2::splat(7.0)));
+        // Boxes by their intervals, closed.
+        let b: Shape<DVec2> = Shape::Box(AaBox { min: DVec2::ZERO, max: DVec2::ONE });
+        assert!(b.meets_box(DVec2::ONE, DVec2::splat(2.0)));
+        assert!(!b.meets_box(DVec2::new(1.0, 1.5), DVec2::splat(2.0)));
+        // A 3D triangle across the plane x + y + z = 3: the box at its bounding box's far corner
+        // lies beyond its plane; one at the origin side of it is cut.
+        let t =
+            Triangle::new(DVec3::new(3.0, 0.0, 0.0), DVec3::new(0.0, 3.0, 0.0), DVec3::new(0.0, 0.0, 3.0));
+        let t: Shape<DVec3> = Shape::Facet(t.unwrap());
+        assert!(!t.meets_box(DVec3::splat(2.0), DVec3::splat(3.0)));
+        assert!(t.meets_box(DVec3::splat(0.5), DVec3::splat(1.5)));
+        assert!(!t.meets_box(DVec3::splat(0.0), DVec3::splat(0.9)));
+        // A plane meets the boxes it cuts or touches.
+        let floor: Shape<DVec3> = Shape::Plane(plane::Plane { point: DVec3::ZERO, normal: DVec3::Y });
+        assert!(floor.meets_box(DVec3::splat(-1.0), DVec3::splat(1.0)));
+        assert!(floor.meets_box(DVec3::ZERO, DVec3::ONE));
+        assert!(!floor.meets_box(DVec3::new(0.0, 0.5, 0.0), DVec3::ONE));
+    }
     use crate::shape::plane::Plane;
     use crate::shape::sphere::Sphere;
     use glam::{DVec2, DVec3};

@@ -185,6 +185,41 @@ impl Facet<DVec2> for Polygon {
     fn kind(&self) -> &'static str {
         self.kind
     }
+    /// An edge meets the box, or (a closed polygon) the box lies inside it: then its centre
+    /// does, by the even–odd count of the edges crossed by a ray towards +x.
+    fn meets_box(&self, lo: DVec2, hi: DVec2) -> bool {
+        let n = self.vertices.len();
+        if (0..self.edge_count())
+            .any(|k| segment_meets_box(self.vertices[k], self.vertices[(k + 1) % n], lo, hi))
+        {
+            return true;
+        }
+        if !self.closed {
+            return false;
+        }
+        let c = (lo + hi) * 0.5;
+        let mut inside = false;
+        for k in 0..n {
+            let (a, b) = (self.vertices[k], self.vertices[(k + 1) % n]);
+            if (a.y > c.y) != (b.y > c.y) && c.x < a.x + (c.y - a.y) * (b.x - a.x) / (b.y - a.y) {
+                inside = !inside;
+            }
+        }
+        inside
+    }
+}
+
+/// Whether the closed segment `ab` shares a point with the closed box `[lo, hi]`: no separating
+/// axis among x, y and the segment's normal `n` (the box's projection on `n` is its centre's
+/// `n·c` ± `|n_x|·h_x + |n_y|·h_y`, the segment's a single value `n·a`).
+fn segment_meets_box(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> bool {
+    if a.x.max(b.x) < lo.x || a.x.min(b.x) > hi.x || a.y.max(b.y) < lo.y || a.y.min(b.y) > hi.y {
+        return false;
+    }
+    let d = b - a;
+    let n = DVec2::new(-d.y, d.x);
+    let (c, h) = ((lo + hi) * 0.5, (hi - lo) * 0.5);
+    (n.dot(c) - n.dot(a)).abs() <= n.x.abs() * h.x + n.y.abs() * h.y
 }
 
 #[cfg(test)]

@@ -116,6 +116,30 @@ impl Facet<DVec3> for Triangle {
     fn kind(&self) -> &'static str {
         "triangle"
     }
+    fn meets_box(&self, lo: DVec3, hi: DVec3) -> bool {
+        triangle_meets_box(&self.vertices, lo, hi)
+    }
+}
+
+/// Whether the triangle `vertices` shares a point with the closed box `[lo, hi]`: no separating
+/// axis among the box's 3 normals, the triangle's normal and the 9 products `e_i × a_j` of its
+/// edges and the box's axes (Akenine-Möller's test). On an axis `m`, with the box's centre at
+/// the origin, the triangle projects to `[min m·v_k, max m·v_k]` and the box to
+/// `±Σ h_j·|m_j|`. Shared by scene triangles and mesh triangles.
+pub(crate) fn triangle_meets_box(vertices: &[DVec3; 3], lo: DVec3, hi: DVec3) -> bool {
+    let (c, h) = ((lo + hi) * 0.5, (hi - lo) * 0.5);
+    let v = vertices.map(|p| p - c);
+    let edges = [v[1] - v[0], v[2] - v[1], v[0] - v[2]];
+    let separates = |m: DVec3| {
+        let p = v.map(|q| m.dot(q));
+        let r = h.x * m.x.abs() + h.y * m.y.abs() + h.z * m.z.abs();
+        p[0].min(p[1]).min(p[2]) > r || p[0].max(p[1]).max(p[2]) < -r
+    };
+    let mut axes = vec![DVec3::X, DVec3::Y, DVec3::Z, edges[0].cross(edges[1])];
+    for e in edges {
+        axes.extend([DVec3::X, DVec3::Y, DVec3::Z].map(|a| e.cross(a)));
+    }
+    !axes.into_iter().any(separates)
 }
 
 #[cfg(test)]

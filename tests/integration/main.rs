@@ -6,6 +6,7 @@ mod claims;
 mod cli;
 mod figures;
 mod hardening;
+mod layout;
 mod narration;
 mod numerics;
 mod outputs;

@@ -129,8 +129,10 @@ fn uniform_supersampling_is_its_own_method_not_adaptive_with_an_infinite_thresho
 #[test]
 fn an_opaque_occluder_and_a_transparent_one_draw_different_shadow_rays() {
     let AnyScene::Flat(scene) = lesson_scene("shadows_2d.json") else { panic!("2D") };
+    // Pixel 15: the one the shadows lesson's figure picks, whose two shadow rays are stopped
+    // one by the glass and one by the block.
     for kind in [FigureKind::Shadows, FigureKind::Rays] {
-        let d = drawn(&scene, "shadows_2d", kind, &Aim::Auto, &TraceOptions::SCENE);
+        let d = drawn(&scene, "shadows_2d", kind, &Aim::Pixel(15, 0), &TraceOptions::SCENE);
         assert!(has_legend(&d, Label::BlockedShadowRay), "{kind:?}");
         assert!(has_legend(&d, Label::OpaqueShadowRay), "{kind:?}");
         assert!(tagged(&d, "ray:shadow-opaque") >= 1, "{kind:?}");
@@ -205,4 +207,22 @@ fn the_heat_maps_legend_names_every_count_a_pixel_has() {
     }
     assert!(d.title.as_deref() == Some(Label::TitleHeatMap.text(Lang::En)));
     assert!(d.caption.clone().unwrap_or_default().contains(Label::HeatMapCounts.text(Lang::En)));
+}
+
+#[test]
+fn an_object_listed_in_a_cell_only_through_its_bounding_box_is_drawn_and_named_as_such() {
+    // groups_2d, the grid lesson's walk: cell 2, (4, 2), lists the segment h because h's box
+    // reaches into it; h itself lies below the cell.
+    let AnyScene::Flat(scene) = lesson_scene("groups_2d.json") else { panic!("2D") };
+    let d = drawn(&scene, "groups_2d", FigureKind::GridDda, &Aim::Auto, &TraceOptions::SCENE);
+    assert!(has_legend(&d, Label::ListedByBox));
+    let h = (0..scene.objects.len()).find(|o| scene.object_label(*o, Lang::En) == "h").expect("h");
+    assert_eq!(tagged(&d, &format!("object-box-only:{h}")), 1);
+    let listing = d.to_text();
+    assert!(
+        listing.contains(&format!("2: (4, 2) · (8.482, 8.968) · h ({})", Label::BoxOnly.text(Lang::En))),
+        "{listing}"
+    );
+    // Cell 1 lists e, whose circle does reach into it: no such mark.
+    assert!(listing.contains("1: (4, 3) · (8.482, 7.473) · e\""), "{listing}");
 }

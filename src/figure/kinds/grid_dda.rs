@@ -59,6 +59,25 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         })
         .collect();
     let hit = first_hit(log).filter(|k| *k == 0).and_then(|k| log.nodes[k].end.as_ref()?.hit);
+    // Each visited cell's scene box, and the objects it lists that do not reach into it: the grid
+    // inserts by bounding boxes (algorithm.md §9), so a box may put an object in a cell that the
+    // object itself misses.
+    let cell_box = |c: &[i64]| {
+        let (mut lo, mut hi) = (V::ZERO, V::ZERO);
+        for a in 0..V::DIM {
+            let size = (bounds.max[a] - bounds.min[a]) / cells[a] as f64;
+            lo[a] = bounds.min[a] + c[a] as f64 * size;
+            hi[a] = lo[a] + size;
+        }
+        (lo, hi)
+    };
+    let box_only: Vec<Vec<usize>> = steps
+        .iter()
+        .map(|s| {
+            let (lo, hi) = cell_box(s.cell);
+            s.objects.iter().copied().filter(|o| !scene.objects[*o].shape.meets_box(lo, hi)).collect()
+        })
+        .collect();
     let pitfall = grid_pitfall(log);
 
     // 2D: the scene's plane; 3D: the plane of the two axes the ray moves most along.
@@ -97,6 +116,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.legend_entry(input.t(Label::CellExit), Pen::NONE, LegendIcon::Dot(style::ORANGE));
     if pitfall.is_some() {
         d.legend_entry(input.t(Label::FoundBeyond), pitfall_ring(), LegendIcon::Dot(style::WHITE));
+    }
+    if box_only.iter().any(|b| !b.is_empty()) {
+        d.legend_entry(input.t(Label::ListedByBox), box_only_pen(), LegendIcon::Line);
     }
     // Under the table, in the column kept free of the scene (the table is at most 13 lines).
     d.legend_place = crate::canvas::LegendPlace::Inside(crate::canvas::Corner::BottomRight);
@@ -143,6 +165,21 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     d.rect("grid-box", lo, hi, style::outline(style::DARK_GREY), None);
     let anchors = draw_objects(d, scene, &plane, &scene_part, &[], style::BLACK);
+    // An object listed only through its box: that box, dashed, lit with the cells that list it.
+    let mut outlined: Vec<usize> = Vec::new();
+    for &o in box_only.iter().flatten() {
+        if outlined.contains(&o) {
+            continue;
+        }
+        outlined.push(o);
+        let Some((lo, hi)) = scene.objects[o].shape.bounds() else { continue };
+        let (a, b) = (plane.point(lo), plane.point(hi));
+        let events: Vec<usize> =
+            box_only.iter().zip(&steps).filter(|(b, _)| b.contains(&o)).map(|(_, s)| s.event).collect();
+        d.with_events(events, |d| {
+            d.rect(&format!("object-box-only:{o}"), a.min(b), a.max(b), box_only_pen(), None);
+        });
+    }
 
     // The ray, from where it enters the picture to its hit or the picture's edge.
     let start = parts::entry_point(from, plane.dir(dir), &scene_part);
@@ -190,8 +227,18 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for (k, s) in steps.iter().enumerate().take(LISTED) {
         let cell: Vec<String> = s.cell.iter().map(ToString::to_string).collect();
         let t_max: Vec<String> = s.t_max.iter().map(|t| slide_number(*t)).collect();
-        let objects: Vec<String> =
-            s.objects.iter().map(|o| markup_escape(&scene.object_label(*o, input.lang))).collect();
+        let objects: Vec<String> = s
+            .objects
+            .iter()
+            .map(|o| {
+                let name = markup_escape(&scene.object_label(*o, input.lang));
+                if box_only[k].contains(o) {
+                    format!("{name} ({})", input.t(Label::BoxOnly))
+                } else {
+                    name
+                }
+            })
+            .collect();
         let objects = if objects.is_empty() { "—".to_owned() } else { objects.join(", ") };
         lines.push(format!("{}: ({}) · ({}) · {objects}", k + 1, cell.join(", "), t_max.join(", ")));
     }
@@ -235,6 +282,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
 /// Visited cells: a light fill of the entered-node green.
 fn visited_fill() -> style::Rgba {
     style::BLUISH_GREEN.with_alpha(0.25)
+}
+
+/// The bounding box of an object listed only through it: thin, dashed, reddish purple.
+fn box_only_pen() -> Pen {
+    Pen::solid(style::REDDISH_PURPLE, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH)
 }
 
 /// The ring around a hit found beyond its cell.

@@ -88,6 +88,14 @@ impl Fate {
     }
 }
 
+/// Above this many nodes a hierarchy is dense: its picture names only the nodes at the walk's
+/// frontier (the cost lesson's 31 boxes would otherwise bury the walk under names at slide size).
+const DENSE_NODES: usize = 15;
+
+/// Above this many objects a scene is crowded: its picture names only the objects of the leaves
+/// the walk reached.
+const DENSE_OBJECTS: usize = 15;
+
 /// The entered nodes' colour.
 const ENTERED: Rgba = style::BLUISH_GREEN;
 /// The missed nodes' colour.
@@ -318,9 +326,15 @@ pub fn draw<V: Planar>(
         });
     }
     // Node names at their boxes' upper-left corners, inside; a box sharing that corner with an
-    // ancestor (named first) gets its name on the next line down.
+    // ancestor (named first) gets its name on the next line down. Where the names would pile up
+    // (a dense tree, or an octree whose cells share their parent's corners), the picture names
+    // only the walk's frontier: the nodes it tested whose children it did not; the tree beside
+    // names the opened ones above them.
+    let crowded = structure == "octree" || nodes.len() > DENSE_NODES;
+    let was_tested = |k: usize| !fate[k].untested();
+    let named = |k: usize| !crowded || (was_tested(k) && !nodes[k].children.iter().any(|c| was_tested(*c)));
     for (k, n) in nodes.iter().enumerate() {
-        if fate[k].untested() && nodes.len() > 40 {
+        if !named(k) {
             continue;
         }
         let (lo, hi) = drawn(n);
@@ -334,6 +348,19 @@ pub fn draw<V: Planar>(
             d.text("node-name", DVec2::new(lo.x, hi.y), &letter(k), opts);
         });
     }
+    // A crowded scene's objects are named where the walk reached their leaf (and the hit's): the
+    // others are not part of its point.
+    let reached: Vec<usize> = nodes
+        .iter()
+        .enumerate()
+        .filter(|(k, n)| was_tested(*k) && n.children.is_empty())
+        .flat_map(|(_, n)| n.prims.iter().map(|p| p.object()))
+        .chain(hit.map(|h| h.object.index))
+        .collect();
+    let anchors: Vec<(usize, DVec2)> = anchors
+        .into_iter()
+        .filter(|(o, _)| scene.objects.len() <= DENSE_OBJECTS || reached.contains(o))
+        .collect();
     label_objects(d, scene, &anchors, input.lang);
     tree(d, &nodes, &fate, &visits, input, column, &view);
     Ok(())

@@ -24,6 +24,22 @@ use crate::record::event::{LightTerm, ObjectRef};
 /// At most this many lights are told term by term; the others are summed in I_local only.
 const TOLD_LIGHTS: usize = 2;
 
+// The schematic's coordinates, in units of the recorded unit vectors, the hit at the origin.
+/// Half the drawn surface's length (and the object's body under it).
+const SURFACE_HALF: f64 = 1.5;
+/// The depth of the object's body drawn under the surface.
+const BODY_DEPTH: f64 = 0.4;
+/// The drawn length of N, V and L.
+const VECTOR_LEN: f64 = 1.2;
+/// H's length as a share of [`VECTOR_LEN`]: shorter, so its tip and name stay clear of L's and V's.
+const H_SHARE: f64 = 0.85;
+/// The box the view fits: the surface's width, the body below, the vectors above.
+const VIEW_BOX: [DVec2; 2] = [DVec2::new(-SURFACE_HALF, -0.45), DVec2::new(SURFACE_HALF, SURFACE_HALF)];
+/// The share of the canvas the numbers' column takes, right of the schematic.
+const COLUMN_SHARE: f64 = 0.5;
+/// The view's margin around [`VIEW_BOX`], as a share of its size.
+const VIEW_MARGIN: f64 = 0.02;
+
 /// Draws the figure.
 ///
 /// # Errors
@@ -83,25 +99,30 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     if let Some(local) = end.local {
         d.legend_entry("I_{local}", style::outline(style::BLACK), LegendIcon::Swatch(swatch(local)));
     }
-    let column = parts::fit_with_column(d, &[DVec2::new(-1.5, -0.45), DVec2::new(1.5, 1.5)], 0.02, 0.5);
+    let column = parts::fit_with_column(d, &VIEW_BOX, VIEW_MARGIN, COLUMN_SHARE);
 
     // The surface, the vectors, their names.
     let i = plane.point(hit.point);
     d.rect(
         "object",
-        i + DVec2::new(-1.5, -0.4),
-        i + DVec2::new(1.5, 0.0),
+        i + DVec2::new(-SURFACE_HALF, -BODY_DEPTH),
+        i + DVec2::new(SURFACE_HALF, 0.0),
         Pen::NONE,
         Some(style::OBJECT_FILL),
     );
-    d.segment("surface", i + DVec2::new(-1.5, 0.0), i + DVec2::new(1.5, 0.0), style::object());
+    d.segment(
+        "surface",
+        i + DVec2::new(-SURFACE_HALF, 0.0),
+        i + DVec2::new(SURFACE_HALF, 0.0),
+        style::object(),
+    );
     // A vector at its true angle to N, on the side of N its tangent part leans to.
     let unit = |v: V| {
         let cos = v.dot(n_f).clamp(-1.0, 1.0);
         let side = if plane.dir(v).x < 0.0 { -1.0 } else { 1.0 };
         DVec2::new(side * (1.0 - cos * cos).sqrt(), cos)
     };
-    let len = 1.2;
+    let len = VECTOR_LEN;
     // The events drawn: N and the hit its `hit`, V the ray's events, L and H a light's shadow ray
     // (the hit when the light sends none).
     let hit_ev: Vec<usize> = log.ended_by(k).into_iter().collect();
@@ -135,9 +156,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         tips.push((unit(l), name("L", t.light), events.clone()));
         if let Some(h) = (l + view_dir).try_unit() {
             d.with_events(events.clone(), |d| {
-                d.arrow("vector:H", i, i + unit(h) * len * 0.85, h_style());
+                d.arrow("vector:H", i, i + unit(h) * len * H_SHARE, h_style());
             });
-            tips.push((unit(h) * 0.85, name("H", t.light), events));
+            tips.push((unit(h) * H_SHARE, name("H", t.light), events));
         }
     }
     d.with_events(hit_ev.clone(), |d| {

@@ -67,7 +67,11 @@ fn children<V>(log: &EventLog<V>, k: usize, shadows: bool) -> Vec<Vertex> {
     out
 }
 
-/// Lays the tree out: leaves one unit apart in order, each parent over the middle of its
+/// The distance, in leaf units, between two neighbouring leaves when either is a ray's (a shadow
+/// leaf's words are short: its neighbours stay one unit away).
+const RAY_LEAF_GAP: f64 = 1.5;
+
+/// Lays the tree out: leaves one unit apart in order (ray leaves [`RAY_LEAF_GAP`]), each parent over the middle of its
 /// children, one row per level. Returns every vertex with its position and parent position.
 fn layout<V>(
     log: &EventLog<V>,
@@ -80,7 +84,7 @@ fn layout<V>(
         v: Vertex,
         row: f64,
         (shadows, row_h): (bool, f64),
-        next: &mut f64,
+        next: &mut (f64, Option<bool>),
         out: &mut Vec<(Vertex, DVec2, Option<DVec2>)>,
     ) -> DVec2 {
         let kids = match v {
@@ -90,9 +94,14 @@ fn layout<V>(
         let slot = out.len();
         out.push((v.clone(), DVec2::ZERO, None));
         let at = if kids.is_empty() {
-            let x = *next;
-            *next += 1.0;
-            DVec2::new(x, -row * row_h)
+            // A ray leaf has a word under it (its object, or "background") and its name beside
+            // it: it keeps a wider gap to the leaf before it, so that neither touches.
+            let ray = matches!(v, Vertex::Ray(_));
+            if let Some(last_ray) = next.1 {
+                next.0 += if ray || last_ray { RAY_LEAF_GAP } else { 1.0 };
+            }
+            next.1 = Some(ray);
+            DVec2::new(next.0, -row * row_h)
         } else {
             let xs: Vec<f64> =
                 kids.into_iter().map(|c| walk(log, c, row + 1.0, (shadows, row_h), next, out).x).collect();
@@ -102,7 +111,8 @@ fn layout<V>(
         at
     }
     let mut out = Vec::new();
-    let mut next = 0.0;
+    // The last leaf's x and whether it was a ray's.
+    let mut next = (0.0, None);
     walk(log, Vertex::Ray(root), 0.0, (shadows, row_h), &mut next, &mut out);
     // Each vertex's parent position, from the tree's own structure.
     let positions: Vec<(Vertex, DVec2)> = out.iter().map(|(v, p, _)| (v.clone(), *p)).collect();

@@ -3,7 +3,7 @@
 //! segment from the offset origin to the light — with the objects it meets marked where it meets
 //! them, and the shadow factor s: 1 when nothing is in between, 0 behind an opaque object, the
 //! product of the kt of the transparent ones otherwise. A 3D trace is drawn in the plane of N and
-//! the first blocked L.
+//! the first blocked L, turned so that the scene's up (the camera's v) is drawn upwards.
 
 use glam::DVec2;
 
@@ -69,12 +69,14 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         .collect();
 
     // 2D: the scene's plane. 3D: the plane of N and the first blocked shadow ray through I.
+    // The scene's up stays up: the camera's v, turned into the plane.
+    let frame = &scene.camera.frame;
     let plane = if V::DIM == 2 {
         camera_plane(scene, hit.point, false)
     } else {
         let along = shadows.iter().find(|s| !s.occluders.is_empty()).or(shadows.first()).map(|s| s.direction);
         along
-            .and_then(|l| PagePlane::spanned(hit.point, l, n_f))
+            .and_then(|l| PagePlane::upright(hit.point, l, n_f, frame.v, frame.u))
             .unwrap_or_else(|| camera_plane(scene, hit.point, false))
     };
     let i = plane.point(hit.point);
