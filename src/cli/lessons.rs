@@ -13,16 +13,13 @@ use clap::Args;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use whitted::accel::AccelOptions;
 use whitted::canvas::Drawing;
-use whitted::figure::source::TraceOptions;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::claim::Verdict;
 use whitted::lesson::{self, FigureSpec, Lesson};
 use whitted::request::figure::{figure_checked, Request};
 use whitted::request::options::canvas;
 use whitted::request::parse;
-use whitted::request::target::Target;
 use whitted::sample::Sampling;
 use whitted::scene::load::MAX_SCENE_BYTES;
 use whitted::scene::AnyScene;
@@ -214,19 +211,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             let r = &read[l];
             let spec = &r.lesson.figures[f];
             let scene_path = r.dir.join(&spec.scene);
-            let request = Request {
-                kind: spec.kind,
-                target: Target {
-                    pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))),
-                    ray: spec.ray.clone(),
-                },
-                tracing: TraceOptions {
-                    depth: spec.depth,
-                    sampling: spec.sampling.unwrap_or(Sampling::Center),
-                    accel: AccelOptions { grid: spec.grid.clone(), ..TraceOptions::SCENE.accel },
-                },
-                opts: Options { lang, width, height },
-            };
+            let request = Request::of_lesson(spec, Options { lang, width, height });
             let made = scenes[&scene_path].as_ref().map_err(Clone::clone).and_then(|scene| {
                 figure_checked(scene, &scene_name(&scene_path), &request, &spec.claims)
                     .map(|(mut made, verdicts)| {
@@ -329,11 +314,6 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
     } else {
         Err(Failure::other(failed.join("\n")))
     }
-}
-
-/// A lesson's pixel coordinate as the figure request takes it (past `i64::MAX` is outside anyway).
-fn signed(k: usize) -> i64 {
-    i64::try_from(k).unwrap_or(i64::MAX)
 }
 
 /// The interactive course: a page per lesson and language, the playgrounds, the scripts, and the

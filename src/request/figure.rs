@@ -4,7 +4,7 @@
 use super::options::Aa;
 use super::target::Target;
 use super::Failure;
-use crate::accel::AccelKind;
+use crate::accel::{AccelKind, AccelOptions};
 use crate::canvas::Drawing;
 use crate::doc::TraceTarget;
 use crate::figure::labels::{self, Label};
@@ -12,6 +12,8 @@ use crate::figure::plane::Planar;
 use crate::figure::source::{self, Pick, TraceOptions};
 use crate::figure::{self as fig, FigureKind, Options};
 use crate::lesson::claim::{self, Claim, Verdict};
+use crate::lesson::FigureSpec;
+use crate::sample::Sampling;
 use crate::scene::{AnyScene, Scene};
 
 /// One figure to make: its kind, what to trace, how to draw.
@@ -25,6 +27,29 @@ pub struct Request {
     pub tracing: TraceOptions,
     /// Language and size.
     pub opts: Options,
+}
+
+impl Request {
+    /// The request a lesson's figure makes, drawn with `opts`: its pixel or ray, depth, sampling
+    /// (the centre when it names none) and grid, the rest of the structure as the kind wants it.
+    #[must_use]
+    pub fn of_lesson(spec: &FigureSpec, opts: Options) -> Self {
+        // Past i64::MAX a pixel is outside the image anyway, and is refused as such.
+        let signed = |k: usize| i64::try_from(k).unwrap_or(i64::MAX);
+        Self {
+            kind: spec.kind,
+            target: Target {
+                pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))),
+                ray: spec.ray.clone(),
+            },
+            tracing: TraceOptions {
+                depth: spec.depth,
+                sampling: spec.sampling.unwrap_or(Sampling::Center),
+                accel: AccelOptions { grid: spec.grid.clone(), ..TraceOptions::SCENE.accel },
+            },
+            opts,
+        }
+    }
 }
 
 /// A drawn figure and what it traced.

@@ -1,31 +1,18 @@
 //! Lesson claims (product.md "Lessons", `lesson::claim`): every figure of every lesson states what
 //! it must show and shows it; the old scenes and pixels that did not show their point fail.
 
+use crate::support::lesson_files;
 use std::path::Path;
-use whitted::accel::AccelOptions;
-use whitted::figure::source::TraceOptions;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::claim::Verdict;
 use whitted::lesson::{self, FigureSpec};
 use whitted::request::figure::{figure_checked, Request};
-use whitted::request::target::Target;
-use whitted::sample::Sampling;
 use whitted::scene::load::load_str;
 
 /// The verdicts of one lesson figure's claims, drawn as `whitted lessons` draws it (no PNG).
 fn verdicts(dir: &Path, spec: &FigureSpec, lang: Lang) -> Vec<Verdict> {
     let scene = load_str(&std::fs::read_to_string(dir.join(&spec.scene)).unwrap()).unwrap();
-    let signed = |k: usize| i64::try_from(k).unwrap();
-    let request = Request {
-        kind: spec.kind,
-        target: Target { pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))), ray: spec.ray.clone() },
-        tracing: TraceOptions {
-            depth: spec.depth,
-            sampling: spec.sampling.unwrap_or(Sampling::Center),
-            accel: AccelOptions { grid: spec.grid.clone(), ..TraceOptions::SCENE.accel },
-        },
-        opts: Options::slide(lang),
-    };
+    let request = Request::of_lesson(spec, Options::slide(lang));
     figure_checked(&scene, "scene", &request, &spec.claims).unwrap().1
 }
 
@@ -45,12 +32,7 @@ fn failures(dir: &Path, text: &str, lang: Lang) -> Vec<String> {
 fn every_lesson_figure_states_its_point_and_shows_it_in_both_languages() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
     let mut failed = Vec::new();
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "json") {
-            continue;
-        }
-        let text = std::fs::read_to_string(&path).unwrap();
+    for (path, text) in lesson_files() {
         let lesson = lesson::parse(&text).unwrap();
         for (k, spec) in lesson.figures.iter().enumerate() {
             assert!(!spec.claims.is_empty(), "{} figure {}: no claim", path.display(), k + 1);
@@ -66,14 +48,9 @@ fn every_lesson_figure_states_its_point_and_shows_it_in_both_languages() {
 /// a Romanian caption that wrote 0,5 beside a figure that writes 0.5 would teach two notations.
 #[test]
 fn every_lesson_writes_numbers_with_the_decimal_point_in_both_languages() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
     let mut found = Vec::new();
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "json") {
-            continue;
-        }
-        let lesson = lesson::parse(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    for (path, text) in lesson_files() {
+        let lesson = lesson::parse(&text).unwrap();
         let captions = lesson.figures.iter().map(|f| &f.caption);
         for words in [&lesson.title, &lesson.text].into_iter().chain(captions) {
             for text in [&words.en, &words.ro] {

@@ -1,45 +1,23 @@
 //! Layout (issue 23 item 9): in every lesson figure, in both languages, at slide size, no label
 //! is printed on top of another — checked on the display list's placed boxes.
 
+use crate::support::lesson_files;
 use std::path::Path;
-use whitted::accel::AccelOptions;
 use whitted::canvas::{Drawing, Mark};
-use whitted::figure::source::TraceOptions;
 use whitted::figure::{Lang, Options};
 use whitted::lesson;
 use whitted::request::figure::{figure, Request};
-use whitted::request::target::Target;
-use whitted::sample::Sampling;
 use whitted::scene::load::load_str;
 
 /// Every lesson figure as `whitted lessons` draws it at slide size: `(name, drawing)`.
 fn lesson_figures(lang: Lang) -> Vec<(String, Drawing)> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
-    let mut paths: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "json"))
-        .collect();
-    paths.sort();
     let mut out = Vec::new();
-    for path in paths {
-        let lesson = lesson::parse(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    for (_, text) in lesson_files() {
+        let lesson = lesson::parse(&text).unwrap();
         for (k, spec) in lesson.figures.iter().enumerate() {
             let scene = load_str(&std::fs::read_to_string(dir.join(&spec.scene)).unwrap()).unwrap();
-            let signed = |k: usize| i64::try_from(k).unwrap();
-            let request = Request {
-                kind: spec.kind,
-                target: Target {
-                    pixel: spec.pixel.map(|(i, j)| (signed(i), j.map(signed))),
-                    ray: spec.ray.clone(),
-                },
-                tracing: TraceOptions {
-                    depth: spec.depth,
-                    sampling: spec.sampling.unwrap_or(Sampling::Center),
-                    accel: AccelOptions { grid: spec.grid.clone(), ..TraceOptions::SCENE.accel },
-                },
-                opts: Options::slide(lang),
-            };
+            let request = Request::of_lesson(spec, Options::slide(lang));
             let made = figure(&scene, "scene", &request).unwrap();
             out.push((
                 format!("{}-{}-{} ({})", lesson.name, k + 1, spec.kind.name(), lang.code()),
