@@ -19,6 +19,10 @@ use crate::figure::style::{self, RayRole};
 use crate::figure::FigureError;
 use crate::record::event::Event;
 
+/// The drawn length of a normal N, as a share of the view's smaller side: long enough that its
+/// dashes read at slide size beside a ray that leaves along it.
+const NORMAL_SHARE: f64 = 0.12;
+
 /// Draws the figure.
 ///
 /// # Errors
@@ -140,7 +144,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         });
     }
     // The facing normal N at every hit, dashed.
-    let normal_len = 0.07 * view.width().min(view.height());
+    let normal_len = NORMAL_SHARE * view.width().min(view.height());
     for (node, n) in log.nodes.iter().enumerate() {
         let Some(hit) = n.end.as_ref().and_then(|e| e.hit) else { continue };
         let facing = if hit.entering { hit.normal } else { -hit.normal };
