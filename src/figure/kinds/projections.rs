@@ -19,8 +19,7 @@ use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{FigureTrace, Target};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
-use crate::format::markup_escape;
-use crate::format::slide_number;
+use crate::format::{markup_escape, slide_number};
 use crate::scene::camera::{Camera, Projection};
 use crate::scene::Scene;
 
