@@ -40,8 +40,11 @@ pub struct Drawing {
     /// Where labels placed clear ([`TextOpts::avoid_overlap`]) may go: a world rectangle, or the
     /// whole plot area when `None` ([`Drawing::keep_labels_within`]).
     pub label_area: Option<(DVec2, DVec2)>,
+    /// The tag prefix of the lines a label placed clear keeps off unless it names them
+    /// ([`Drawing::guard_lines`]).
+    pub guard: Option<String>,
     /// The events of the items added now ([`Drawing::with_events`]).
-    events: Vec<usize>,
+    pub(super) events: Vec<usize>,
 }
 
 impl Drawing {
@@ -64,6 +67,7 @@ impl Drawing {
             caption: None,
             title: None,
             label_area: None,
+            guard: None,
             events: Vec::new(),
         }
     }
@@ -109,6 +113,15 @@ impl Drawing {
     /// lands among the tick names).
     pub fn keep_labels_within(&mut self, a: DVec2, b: DVec2) -> &mut Self {
         self.label_area = Some((a.min(b), a.max(b)));
+        self
+    }
+
+    /// Makes the lines tagged `prefix…` (a figure's rays) guarded: a label placed clear from now
+    /// on keeps off each one it does not name, that is, whose events it does not draw
+    /// ([`Drawing::with_events`]), at [`GUARDED_LINE_COST`](super::label::GUARDED_LINE_COST) a crossing; see also
+    /// [`Drawing::labels_on_lines`], the check.
+    pub fn guard_lines(&mut self, prefix: &str) -> &mut Self {
+        self.guard = Some(prefix.to_owned());
         self
     }
 

@@ -7,7 +7,7 @@
 use glam::DVec2;
 
 use super::drawing::Drawing;
-use super::items::{Mark, Text};
+use super::items::{Item, Mark, Text};
 use super::legend::PlacedLegend;
 use super::style::{self, Rgba, TextSize};
 use super::text::{self, Weight};
@@ -100,6 +100,15 @@ pub const LINE_COST: f64 = 1.0;
 pub const OUTSIDE_COST: f64 = 100.0;
 /// What a candidate spot's leader costs per label it would cross.
 pub const LEADER_CROSSING_COST: f64 = 20.0;
+/// A label's ink box lies on a line when the line's stroke crosses it over more than this many
+/// reference pixels ([`Drawing::labels_on_lines`]): a stroke that only grazes a corner leaves
+/// every glyph readable, one that runs through the box hides part of a glyph.
+pub const MIN_CROSSING: f64 = 4.0;
+/// What a candidate spot costs per guarded line ([`Drawing::guard_lines`], a figure's rays) it
+/// crosses and does not name: more than moving to the farthest ring and crossing a few plain
+/// lines, less than covering most of another label, so a name leaves a ray it would hide a part
+/// of whenever a spot allows.
+pub const GUARDED_LINE_COST: f64 = 30.0;
 /// What each ring farther from the anchor costs: a label far from its anchor loses its meaning.
 pub const RING_COST: f64 = 1.5;
 
@@ -254,6 +263,14 @@ impl Drawing {
     /// diagonals, labels' leaders), for the overlap tests of label and legend placement.
     pub(super) fn segments(&self, tf: &Transform) -> Vec<(DVec2, DVec2)> {
         let mut out = Vec::new();
+        for item in &self.items {
+            Self::item_segments(item, tf, &mut out);
+        }
+        out
+    }
+
+    /// The pixel segments of one item's stroke, appended to `out` (see [`Drawing::segments`]).
+    fn item_segments(item: &Item, tf: &Transform, out: &mut Vec<(DVec2, DVec2)>) {
         let chain = |pts: &[DVec2], closed: bool, out: &mut Vec<(DVec2, DVec2)>| {
             let px: Vec<DVec2> = pts.iter().map(|p| tf.to_px(*p)).collect();
             out.extend(px.windows(2).map(|w| (w[0], w[1])));
@@ -261,35 +278,51 @@ impl Drawing {
                 out.push((px[px.len() - 1], px[0]));
             }
         };
-        for item in &self.items {
-            match &item.mark {
-                Mark::Line { points } => chain(points, false, &mut out),
-                Mark::Arrow { from, to, .. } => chain(&[*from, *to], false, &mut out),
-                Mark::Polygon { points, .. } => chain(points, true, &mut out),
-                Mark::Rect { min, max, .. } => {
-                    let corners = [*min, DVec2::new(max.x, min.y), *max, DVec2::new(min.x, max.y)];
-                    chain(&corners, true, &mut out);
-                }
-                Mark::Circle { center, radius, .. } => {
-                    let ring: Vec<DVec2> = (0..48)
-                        .map(|i| {
-                            let a = std::f64::consts::TAU * f64::from(i) / 48.0;
-                            *center + *radius * DVec2::new(a.cos(), a.sin())
-                        })
-                        .collect();
-                    chain(&ring, true, &mut out);
-                }
-                // A leader is a line like any other: a later label keeps off it.
-                Mark::Text(label) => out.extend(Self::place_text(label, tf).leader),
-                Mark::Dot { center, radius, .. } => {
-                    let c = tf.to_px(*center);
-                    let r = tf.ref_px(*radius);
-                    out.push((c - DVec2::splat(r), c + DVec2::splat(r)));
-                    out.push((c + DVec2::new(-r, r), c + DVec2::new(r, -r)));
-                }
+        match &item.mark {
+            Mark::Line { points } => chain(points, false, out),
+            Mark::Arrow { from, to, .. } => chain(&[*from, *to], false, out),
+            Mark::Polygon { points, .. } => chain(points, true, out),
+            Mark::Rect { min, max, .. } => {
+                let corners = [*min, DVec2::new(max.x, min.y), *max, DVec2::new(min.x, max.y)];
+                chain(&corners, true, out);
+            }
+            Mark::Circle { center, radius, .. } => {
+                let ring: Vec<DVec2> = (0..48)
+                    .map(|i| {
+                        let a = std::f64::consts::TAU * f64::from(i) / 48.0;
+                        *center + *radius * DVec2::new(a.cos(), a.sin())
+                    })
+                    .collect();
+                chain(&ring, true, out);
+            }
+            // A leader is a line like any other: a later label keeps off it.
+            Mark::Text(label) => out.extend(Self::place_text(label, tf).leader),
+            Mark::Dot { center, radius, .. } => {
+                let c = tf.to_px(*center);
+                let r = tf.ref_px(*radius);
+                out.push((c - DVec2::splat(r), c + DVec2::splat(r)));
+                out.push((c + DVec2::new(-r, r), c + DVec2::new(r, -r)));
             }
         }
-        out
+    }
+
+    /// The ink box of every text item, with its index into `items`: its advance width across
+    /// and its glyphs' ink up and down ([`text::TextLayout::ink`]), where both back ends draw it.
+    fn ink_boxes(&self, tf: &Transform) -> Vec<(usize, PxRect)> {
+        self.items
+            .iter()
+            .enumerate()
+            .filter_map(|(k, item)| match &item.mark {
+                Mark::Text(label) => {
+                    let placed = Self::place_text(label, tf);
+                    let (above, below) = text::layout(&label.text, placed.size, label.weight).ink();
+                    let (x0, x1) = (placed.bbox.min.x, placed.bbox.max.x);
+                    let y = placed.origin.y;
+                    Some((k, PxRect { min: DVec2::new(x0, y - above), max: DVec2::new(x1, y + below) }))
+                }
+                _ => None,
+            })
+            .collect()
     }
 
     /// The pairs of text items, as indices into `items`, whose ink overlaps where both back ends
@@ -299,22 +332,7 @@ impl Drawing {
     /// for a legible layout: the check that proves it, not a look at the picture.
     #[must_use]
     pub fn overlapping_labels(&self) -> Vec<(usize, usize)> {
-        let tf = self.frame().transform;
-        let boxes: Vec<(usize, PxRect)> = self
-            .items
-            .iter()
-            .enumerate()
-            .filter_map(|(k, item)| match &item.mark {
-                Mark::Text(label) => {
-                    let placed = Self::place_text(label, &tf);
-                    let (above, below) = text::layout(&label.text, placed.size, label.weight).ink();
-                    let (x0, x1) = (placed.bbox.min.x, placed.bbox.max.x);
-                    let y = placed.origin.y;
-                    Some((k, PxRect { min: DVec2::new(x0, y - above), max: DVec2::new(x1, y + below) }))
-                }
-                _ => None,
-            })
-            .collect();
+        let boxes = self.ink_boxes(&self.frame().transform);
         let mut out = Vec::new();
         for (n, (i, a)) in boxes.iter().enumerate() {
             for (j, b) in &boxes[n + 1..] {
@@ -324,6 +342,51 @@ impl Drawing {
             }
         }
         out
+    }
+
+    /// The pairs `(label, line)`, as indices into `items`, of a text item whose ink box (see
+    /// [`Drawing::overlapping_labels`]) lies on a guarded line it does not name: a stroked item
+    /// whose tag starts with `guard` (a figure's rays) sharing none of the label's events
+    /// ([`Item::events`]; a label with no events names no line). "Lies on" means the line's
+    /// stroke, its half width around its centre line, crosses the box over more than
+    /// [`MIN_CROSSING`] reference pixels of the centre line: a corner grazed is not a crossing.
+    /// Empty for a legible layout.
+    #[must_use]
+    pub fn labels_on_lines(&self, guard: &str) -> Vec<(usize, usize)> {
+        let tf = self.frame().transform;
+        let boxes = self.ink_boxes(&tf);
+        let mut out = Vec::new();
+        for (j, line) in self.items.iter().enumerate() {
+            if !Self::guarded(line, guard) {
+                continue;
+            }
+            let mut segments = Vec::new();
+            Self::item_segments(line, &tf, &mut segments);
+            let half = tf.ref_px(line.pen.width) / 2.0;
+            for (i, b) in &boxes {
+                if Self::names(&self.items[*i].events, line) {
+                    continue;
+                }
+                let stroke = b.inflate(half);
+                let inside: f64 = segments.iter().map(|(p, q)| stroke.length_inside(*p, *q)).sum();
+                if inside > tf.ref_px(MIN_CROSSING) {
+                    out.push((*i, j));
+                }
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// Whether a label drawing `events` names `line`: they draw a trace event in common.
+    fn names(events: &[usize], line: &Item) -> bool {
+        events.iter().any(|e| line.events.contains(e))
+    }
+
+    /// Whether `item` is a line labels keep off unless they name it: a stroke (not a label or a
+    /// dot) whose tag starts with `guard`.
+    fn guarded(item: &Item, guard: &str) -> bool {
+        item.tag.starts_with(guard) && !matches!(item.mark, Mark::Text(_) | Mark::Dot { .. })
     }
 
     /// The pixel boxes of every text item.
@@ -373,6 +436,14 @@ impl Drawing {
     pub(super) fn place_clear(&self, label: &mut Text, leader: bool, steps: &[f64]) {
         let PlacedLegend { transform: tf, plot, .. } = self.placed_legend();
         let segments = self.segments(&tf);
+        // The guarded lines this label does not name (it draws none of their events).
+        let mut guarded = Vec::new();
+        if let Some(guard) = &self.guard {
+            let unnamed = |item: &&Item| Self::guarded(item, guard) && !Self::names(&self.events, item);
+            for item in self.items.iter().filter(unnamed) {
+                Self::item_segments(item, &tf, &mut guarded);
+            }
+        }
         let mut boxes = self.text_boxes(&tf);
         // Other points' markers are data: a name must not hide one (its own point is the anchor).
         boxes.extend(self.items.iter().filter_map(|item| match item.mark {
@@ -397,6 +468,7 @@ impl Drawing {
             let area_px = (b.width() * b.height()).max(1.0);
             let overlap: f64 = boxes.iter().map(|o| b.overlap(o)).sum::<f64>() / area_px;
             let crossings = segments.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
+            let guarded_crossings = guarded.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
             let outside = if area.contains_rect(&b) { 0.0 } else { 1.0 };
             // A box that holds the anchor meets every leader: only the others count.
             let leader_over_labels = placed.leader.map_or(0, |(a, c)| {
@@ -404,6 +476,7 @@ impl Drawing {
             });
             COVER_COST * overlap
                 + LINE_COST * crossings as f64
+                + GUARDED_LINE_COST * guarded_crossings as f64
                 + OUTSIDE_COST * outside
                 + LEADER_CROSSING_COST * leader_over_labels as f64
         };
@@ -441,5 +514,65 @@ impl Drawing {
             }
         }
         *label = with_leader(Text { offset: best.1, align: best.2, ..requested });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::canvas::style::test_strokes::BLUE_LINE;
+    use crate::canvas::View;
+
+    fn v(x: f64, y: f64) -> DVec2 {
+        DVec2::new(x, y)
+    }
+
+    /// A drawing of 1 world unit per 100 canvas pixels, with the horizontal ray y = 0 drawing
+    /// event 1.
+    fn with_ray() -> Drawing {
+        let mut d = Drawing::slide();
+        d.set_view(View::new(-9.6, 9.6, -5.4, 5.4).unwrap());
+        d.with_events([1], |d| {
+            d.segment("ray:primary", v(-5.0, 0.0), v(5.0, 0.0), BLUE_LINE);
+        });
+        d
+    }
+
+    #[test]
+    fn a_label_on_a_ray_it_does_not_name_is_found_its_own_is_not() {
+        let mut d = with_ray();
+        // The ray's own name, centred on it; an object's name on it; a name well above it.
+        d.with_events([1], |d| {
+            d.text("label", v(-3.0, 0.0), "P", TextOpts::LABEL);
+        });
+        d.text("object-name", v(0.0, 0.0), "glass", TextOpts::NOTE);
+        d.text("object-name", v(3.0, 1.0), "mirror", TextOpts::NOTE);
+        // Another ray's label, drawing event 2, on it.
+        d.with_events([2], |d| {
+            d.text("label", v(2.0, 0.0), "R_1", TextOpts::LABEL);
+        });
+        assert_eq!(d.labels_on_lines("ray:"), vec![(2, 0), (4, 0)]);
+        // Only lines tagged with the guard count.
+        assert!(d.labels_on_lines("axis").is_empty());
+    }
+
+    #[test]
+    fn a_stroke_that_grazes_a_corner_of_the_ink_is_no_crossing() {
+        let mut d = Drawing::slide();
+        d.set_view(View::new(-9.6, 9.6, -5.4, 5.4).unwrap());
+        d.text("object-name", v(0.0, 0.0), "glass", TextOpts::NOTE.align(Align::RIGHT_OF));
+        let tf = d.frame().transform;
+        let ink = d.ink_boxes(&tf)[0].1;
+        let (half, crossing) = (tf.ref_px(BLUE_LINE.width) / 2.0, tf.ref_px(MIN_CROSSING));
+        // A diagonal through the stroke-widened box's top-left corner, cutting it over less
+        // than MIN_CROSSING, then one moved in along the box's diagonal, cutting it over more.
+        let corner = ink.min - DVec2::splat(half);
+        let graze = tf.to_world(corner + DVec2::new(crossing / 3.0, 0.0));
+        let dir = v(1.0, 1.0);
+        d.segment("ray:shadow", graze - dir, graze + dir, BLUE_LINE);
+        assert!(d.labels_on_lines("ray:").is_empty());
+        let through = tf.to_world(corner + DVec2::new(2.0 * crossing, 0.0));
+        d.segment("ray:shadow", through - dir, through + dir, BLUE_LINE);
+        assert_eq!(d.labels_on_lines("ray:"), vec![(0, 2)]);
     }
 }

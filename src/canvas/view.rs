@@ -144,6 +144,17 @@ impl PxRect {
     /// Whether the segment `a`–`b` meets the rectangle (Liang–Barsky clipping).
     #[must_use]
     pub fn meets_segment(&self, a: DVec2, b: DVec2) -> bool {
+        self.clip_segment(a, b).is_some()
+    }
+    /// How long a stretch of the segment `a`–`b` lies inside the rectangle, in pixels (0 when
+    /// it misses, or only touches a corner).
+    #[must_use]
+    pub fn length_inside(&self, a: DVec2, b: DVec2) -> f64 {
+        self.clip_segment(a, b).map_or(0.0, |(t0, t1)| (t1 - t0) * (b - a).length())
+    }
+    /// The parameters `t0 ≤ t1` in [0, 1] of the part of `a + t·(b − a)` inside the rectangle
+    /// (Liang–Barsky clipping), or `None` when the segment misses it.
+    fn clip_segment(&self, a: DVec2, b: DVec2) -> Option<(f64, f64)> {
         let d = b - a;
         let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
         for (p, q) in [
@@ -154,7 +165,7 @@ impl PxRect {
         ] {
             if p == 0.0 {
                 if q < 0.0 {
-                    return false;
+                    return None;
                 }
             } else {
                 let t = q / p;
@@ -165,7 +176,7 @@ impl PxRect {
                 }
             }
         }
-        t0 <= t1
+        (t0 <= t1).then_some((t0, t1))
     }
 }
 

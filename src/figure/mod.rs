@@ -169,8 +169,10 @@ pub fn draw<V: Planar>(
     scene: &Scene<V>,
     opts: &Options,
 ) -> Result<Drawing, FigureError> {
-    let d = Drawing::new(opts.width, opts.height)
+    let mut d = Drawing::new(opts.width, opts.height)
         .ok_or_else(|| FigureError(format!("a {}×{} canvas is empty", opts.width, opts.height)))?;
+    // No label may hide a ray it does not name (issue 23 item 9).
+    d.guard_lines(style::RAY_TAG);
     let input = kinds::Input { traces, scene, lang: opts.lang };
     kinds::draw(kind, &input, d)
 }

@@ -36,6 +36,10 @@ pub const BLOCKED_DASH: Dash = Dash { on: 22.0, off: 12.0 };
 /// The dash of shadow rays stopped by an opaque object: 8 px on, 8 px off.
 pub const OPAQUE_DASH: Dash = Dash { on: 8.0, off: 8.0 };
 
+/// The prefix of every ray's tag ([`RayRole::tag`]): the lines a label keeps off unless it names
+/// them ([`crate::canvas::Drawing::guard_lines`]).
+pub const RAY_TAG: &str = "ray:";
+
 /// Which ray of the recursion a line shows; each has its own colour (and blocked shadows a dash).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum RayRole {
@@ -143,6 +147,7 @@ mod tests {
             for b in &RayRole::ALL[i + 1..] {
                 assert_ne!(a.color(), b.color(), "{a:?} and {b:?}");
             }
+            assert!(a.tag().starts_with(RAY_TAG), "{a:?}: labels keep off it");
         }
     }
 }
