@@ -313,16 +313,21 @@ impl Drawing {
             .iter()
             .enumerate()
             .filter_map(|(k, item)| match &item.mark {
-                Mark::Text(label) => {
-                    let placed = Self::place_text(label, tf);
-                    let (above, below) = text::layout(&label.text, placed.size, label.weight).ink();
-                    let (x0, x1) = (placed.bbox.min.x, placed.bbox.max.x);
-                    let y = placed.origin.y;
-                    Some((k, PxRect { min: DVec2::new(x0, y - above), max: DVec2::new(x1, y + below) }))
-                }
+                Mark::Text(label) => Some((k, Self::ink_box(label, tf))),
                 _ => None,
             })
             .collect()
+    }
+
+    /// Where a text item's ink lands in pixels under `tf`: its advance width across and its
+    /// glyphs' ink up and down ([`text::TextLayout::ink`]), the box the layout checks use.
+    #[must_use]
+    pub fn ink_box(label: &Text, tf: &Transform) -> PxRect {
+        let placed = Self::place_text(label, tf);
+        let (above, below) = text::layout(&label.text, placed.size, label.weight).ink();
+        let (x0, x1) = (placed.bbox.min.x, placed.bbox.max.x);
+        let y = placed.origin.y;
+        PxRect { min: DVec2::new(x0, y - above), max: DVec2::new(x1, y + below) }
     }
 
     /// The pairs of text items, as indices into `items`, whose ink overlaps where both back ends

@@ -9,7 +9,7 @@ use glam::DVec2;
 
 use super::Input;
 use crate::accel::Layout;
-use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, Text, TextOpts, VAlign, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, text_column};
 use crate::figure::plane::{PagePlane, Planar};
@@ -23,6 +23,9 @@ use crate::record::event::Event;
 /// The most cells drawn along one axis of the page: the heuristic's own cap per axis. Denser
 /// lines would merge at slide size, and `--grid` can ask for 2^24 cells along one axis.
 pub const MAX_DRAWN_CELLS: usize = crate::accel::grid::MAX_CELLS_PER_AXIS;
+
+/// A step's number sits this far inside its cell's corner, in reference pixels (x, y).
+const STEP_INSET: DVec2 = DVec2::new(5.0, 3.0);
 
 /// At most this many steps are listed in the table.
 const LISTED: usize = 7;
@@ -203,15 +206,65 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             d.dot("hit", plane.point(h.point), style::HIT);
         });
     }
+    // Each step's number in its cell's top left corner, or in the first other corner, else
+    // beside the middle of a side, where the ray's stroke does not run through it (else placed
+    // clear near the cell's centre, with a leader): the ray never hides it.
+    let tf = d.transform();
+    let (ray_a, ray_b) = (tf.to_px(start), tf.to_px(end));
+    let stroke = tf.ref_px(style::RAY_WIDTH) / 2.0;
     for (k, s) in steps.iter().enumerate() {
         let (a, b) = cell_rect(s.cell);
-        let opts = TextOpts::NOTE
-            .size(TextSize::Small)
-            .align(Align { h: HAlign::Left, v: VAlign::Top })
-            .offset(5.0, -3.0)
-            .bold();
-        d.with_events([s.event], |d| {
-            d.text("step", DVec2::new(a.x, b.y), &(k + 1).to_string(), opts);
+        let (number, mid) = ((k + 1).to_string(), (a + b) / 2.0);
+        let in_corner = |(at, h, v): (DVec2, HAlign, VAlign)| {
+            let sx = match h {
+                HAlign::Left => 1.0,
+                HAlign::Center => 0.0,
+                HAlign::Right => -1.0,
+            };
+            let sy = match v {
+                VAlign::Top => -1.0,
+                VAlign::Bottom => 1.0,
+                VAlign::Middle | VAlign::Baseline => 0.0,
+            };
+            let opts = TextOpts::NOTE
+                .size(TextSize::Small)
+                .align(Align { h, v })
+                .offset(sx * STEP_INSET.x, sy * STEP_INSET.y)
+                .bold();
+            let label = Text {
+                text: number.clone(),
+                anchor: at,
+                offset: opts.offset,
+                align: opts.align,
+                size: opts.size,
+                weight: opts.weight,
+                leader: false,
+                halo: opts.halo,
+            };
+            let crossed = Drawing::ink_box(&label, &tf).inflate(stroke).length_inside(ray_a, ray_b);
+            (crossed, at, opts)
+        };
+        let corners = [
+            (DVec2::new(a.x, b.y), HAlign::Left, VAlign::Top),
+            (b, HAlign::Right, VAlign::Top),
+            (a, HAlign::Left, VAlign::Bottom),
+            (DVec2::new(b.x, a.y), HAlign::Right, VAlign::Bottom),
+            (DVec2::new(a.x, mid.y), HAlign::Left, VAlign::Middle),
+            (DVec2::new(b.x, mid.y), HAlign::Right, VAlign::Middle),
+            (DVec2::new(mid.x, b.y), HAlign::Center, VAlign::Top),
+            (DVec2::new(mid.x, a.y), HAlign::Center, VAlign::Bottom),
+        ]
+        .map(in_corner);
+        let free = corners.iter().find(|c| c.0 <= 0.0);
+        d.with_events([s.event], |d| match free {
+            Some((_, at, opts)) => {
+                d.text("step", *at, &number, *opts);
+            }
+            // A cell too small for a number beside the ray: near it, clear, with a leader.
+            None => {
+                let opts = TextOpts::NOTE.size(TextSize::Small).bold().avoid_overlap_with_leader();
+                d.text("step", mid, &number, opts);
+            }
         });
     }
     label_objects(d, scene, &anchors, input.lang);

@@ -266,7 +266,10 @@ fn panel<V: Planar>(
                 "label",
                 i,
                 &name,
-                TextOpts::LABEL.align(Align { h: HAlign::Left, v: VAlign::Top }).offset(14.0, -12.0),
+                TextOpts::LABEL
+                    .align(Align { h: HAlign::Left, v: VAlign::Top })
+                    .offset(14.0, -12.0)
+                    .avoid_overlap(),
             );
         });
     }
