@@ -108,6 +108,8 @@ pub enum Label {
     GivenRay,
     /// Nothing in between (s = 1).
     NothingBetween,
+    /// Where L leaves the picture towards a light too far to draw (followed by the light's name).
+    TowardsLight,
     /// Opaque occluder (s = 0).
     Opaque,
     /// The plane of the camera's u and w axes (3D projection note).
@@ -400,6 +402,7 @@ impl Label {
             Self::Scene => ("scene", "scena"),
             Self::GivenRay => ("a given ray", "o rază dată"),
             Self::NothingBetween => ("nothing in between", "nimic între ele"),
+            Self::TowardsLight => ("to the light", "spre Isursa"),
             Self::Opaque => ("opaque", "opac"),
             Self::PlaneUw => (
                 "3D trace projected onto the camera's (u, w) plane",
@@ -640,6 +643,7 @@ mod tests {
         Label::ShadowNotCast,
         Label::HitPoint,
         Label::LightSource,
+        Label::TowardsLight,
         Label::Observer,
         Label::Normal,
         Label::ViewWindow,

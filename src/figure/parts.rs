@@ -324,6 +324,40 @@ pub fn span(points: &[DVec2]) -> f64 {
     }
 }
 
+/// A light lies far when fitting it would leave what the figure is about (the hit, the objects
+/// and rays near it) less than this share of the picture's span: the lecturer then draws L
+/// leaving the picture towards it ([`far_lights`], [`draw_towards_light`]) instead of shrinking
+/// the point into a corner.
+pub const FAR_LIGHT_SHARE: f64 = 0.5;
+
+/// Which of `lights` (page points) are far from the points `core` a figure is about: those that
+/// would make `core`'s span less than [`FAR_LIGHT_SHARE`] of the span of `core` and that light.
+#[must_use]
+pub fn far_lights(core: &[DVec2], lights: &[DVec2]) -> Vec<bool> {
+    let own = span(core);
+    lights
+        .iter()
+        .map(|l| {
+            let mut with = core.to_vec();
+            with.push(*l);
+            own < FAR_LIGHT_SHARE * span(&with)
+        })
+        .collect()
+}
+
+/// A shadow ray towards a far light: from `from` along `dir` to where it leaves `view`, in
+/// `role`'s stroke with its arrow head there, and `name` (e.g. "to the light S") at that end.
+pub fn draw_towards_light(d: &mut Drawing, role: RayRole, from: DVec2, dir: DVec2, view: &View, name: &str) {
+    // Stop short of the border, so the head and the name stay inside the picture.
+    let exit = exit_point(from, dir, view);
+    let to = from + (exit - from) * TOWARDS_LIGHT_REACH;
+    d.arrow(role.tag(), from, to, role.style());
+    label_outward(d, to, dir, name);
+}
+
+/// How far towards the picture's border [`draw_towards_light`] draws L, as a share of the way.
+pub const TOWARDS_LIGHT_REACH: f64 = 0.92;
+
 /// Fits the view so that `points` fill the left `1 − column` of the plot area, leaving a free
 /// column on the right for text; returns the world point at the top left of that column.
 pub fn fit_with_column(d: &mut Drawing, points: &[DVec2], margin: f64, column: f64) -> DVec2 {

@@ -102,16 +102,18 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             crate::canvas::LegendIcon::Dot(RayRole::BlockedShadow.color()),
         );
     }
-    legend_points(d, lang, false, true, false);
-    legend_normal(d, lang);
-
-    // The view: I, the lights, the occluders, and where the incoming ray came from (clipped).
+    // The view: I, the occluders, the near lights, and where the incoming ray came from
+    // (clipped); a far light is left out, its L drawn leaving the picture towards it.
     let occluding: Vec<usize> =
         shadows.iter().flat_map(|s| s.occluders.iter().map(|o| o.object.index)).collect();
     let mut points = vec![i];
-    points.extend(scene.lights.iter().map(|l| plane.point(l.position)));
     points.extend(parts::object_extent(scene, &plane, &occluding));
     points.extend(parts::object_extent(scene, &plane, &[hit.object.index]));
+    let lights: Vec<DVec2> = scene.lights.iter().map(|l| plane.point(l.position)).collect();
+    let far = parts::far_lights(&points, &lights);
+    points.extend(lights.iter().zip(&far).filter(|(_, far)| !**far).map(|(l, _)| *l));
+    legend_points(d, lang, false, far.contains(&false), false);
+    legend_normal(d, lang);
     let span = parts::span(&points);
     let from = plane.point(node.start.origin);
     let incoming =
@@ -126,15 +128,17 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let anchors = draw_objects(d, scene, &plane, &scene_part, &occluding, RayRole::BlockedShadow.color());
     let hit_ev: Vec<usize> = log.ended_by(node_index).into_iter().collect();
     d.with_events(log.ray_events(node_index), |d| draw_ray(d, parts::role(node.start.kind), incoming, i));
+    let light_name = |k: usize| if scene.lights.len() == 1 { "S".to_owned() } else { sub("S", k + 1) };
     for s in &shadows {
         let role = role_of(s);
+        let from = plane.point(s.origin);
         d.with_events([s.event], |d| {
-            d.segment(
-                role.tag(),
-                plane.point(s.origin),
-                plane.point(scene.lights[s.light].position),
-                role.style(),
-            );
+            if far[s.light] {
+                let name = format!("{} {}", input.t(Label::TowardsLight), light_name(s.light));
+                parts::draw_towards_light(d, role, from, plane.dir(s.direction), &scene_part, &name);
+            } else {
+                d.segment(role.tag(), from, lights[s.light], role.style());
+            }
         });
     }
     // Long enough to read beside an incoming ray that runs close to it.
@@ -153,16 +157,15 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             });
         }
     }
-    for l in &scene.lights {
-        draw_light(d, plane.point(l.position));
+    for (l, _) in lights.iter().zip(&far).filter(|(_, far)| !**far) {
+        draw_light(d, *l);
     }
     d.with_events(hit_ev, |d| {
         d.dot("hit", i, style::HIT);
         label(d, i, &hit_name);
     });
-    let light_name = |k: usize| if scene.lights.len() == 1 { "S".to_owned() } else { sub("S", k + 1) };
-    for (k, l) in scene.lights.iter().enumerate() {
-        label(d, plane.point(l.position), &light_name(k));
+    for (k, l) in lights.iter().enumerate().filter(|(k, _)| !far[*k]) {
+        label(d, *l, &light_name(k));
     }
     label_objects(d, scene, &anchors, input.lang);
 
