@@ -48,3 +48,18 @@ fn no_label_of_any_lesson_figure_lies_on_another() {
     }
     assert!(found.is_empty(), "{} overlaps:\n{}", found.len(), found.join("\n"));
 }
+
+/// A view window drawn on a figure is named, in its legend or on the drawing (the rays figures
+/// drew it unnamed).
+#[test]
+fn every_drawn_view_window_is_named_in_the_legend() {
+    for (lang, word) in [(Lang::En, "view window"), (Lang::Ro, "fereastra vizuală")] {
+        for (name, d) in lesson_figures(lang) {
+            if d.tagged("window").next().is_some() {
+                let labelled = d.items.iter().any(|i| matches!(&i.mark, Mark::Text(t) if t.text == word));
+                let in_legend = d.legend.iter().any(|e| e.label == word);
+                assert!(labelled || in_legend, "{name}: the window is not named");
+            }
+        }
+    }
+}
