@@ -76,6 +76,8 @@ pub enum Label {
     Background,
     /// The chosen pixel.
     ChosenPixel,
+    /// The chosen pixel, marked by its centre in a ring (its square too small to see).
+    PixelCentreRinged,
     /// The pixel's cell mapped into the window.
     PixelInWindow,
     /// The window–viewport transform.
@@ -384,6 +386,7 @@ impl Label {
             Self::Image => ("image", "imaginea"),
             Self::Background => ("background", "fond"),
             Self::ChosenPixel => ("the pixel", "pixelul"),
+            Self::PixelCentreRinged => ("the pixel's centre (ringed)", "centrul pixelului (încercuit)"),
             Self::PixelInWindow => ("the pixel in the window", "pixelul în fereastră"),
             Self::WindowViewport => ("window–viewport transform", "transformarea fereastră–poartă"),
             Self::Orthographic => ("orthographic projection", "proiecția ortografică"),

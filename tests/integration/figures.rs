@@ -598,3 +598,16 @@ fn the_3d_bvh_figure_chooses_the_plane_where_sibling_groups_lie_apart() {
     // B is the far group; C holds the two front groups D and E.
     assert!(apart(rect("B"), rect("C")) && apart(rect("D"), rect("E")));
 }
+
+/// On a 640 × 480 image the chosen pixel's square is under a pixel at slide size: the uv-map
+/// legend names what marks it, the ringed centre, not a yellow square no one can see.
+#[test]
+fn the_uv_map_legend_shows_the_pixel_as_it_is_drawn() {
+    let whitted = format!("{}/scenes/whitted.json", env!("CARGO_MANIFEST_DIR"));
+    let AnyScene::Space(scene) = load_str(&std::fs::read_to_string(whitted).unwrap()).unwrap() else {
+        panic!("a 3D scene")
+    };
+    let d = figure_in(&scene, "whitted", FigureKind::UvMap, &Aim::Auto, Lang::En, (1920, 1080));
+    let labels: Vec<&str> = d.legend.iter().map(|e| e.label.as_str()).collect();
+    assert!(labels.contains(&"the pixel's centre (ringed)") && !labels.contains(&"the pixel"), "{labels:?}");
+}
