@@ -589,3 +589,31 @@ fn the_local_model_says_when_no_pixel_keeps_its_vectors_apart() {
         figure(FigureKind::LocalModel, "ortho_box.json", Lang::En, SMALL).caption.unwrap_or_default();
     assert!(caption.contains("N, L, H, V well apart"), "{caption}");
 }
+
+/// The BVH over groups_3d (three groups of four spheres on one level) is drawn from above, in the
+/// plane xz, where the boxes of sibling groups lie apart: in the yz plane the ray's own direction
+/// would suggest, the two front groups would be drawn one over the other.
+#[test]
+fn the_3d_bvh_figure_chooses_the_plane_where_sibling_groups_lie_apart() {
+    let path = format!("{}/lessons/scenes/groups_3d.json", env!("CARGO_MANIFEST_DIR"));
+    let AnyScene::Space(scene) = load_str(&std::fs::read_to_string(path).unwrap()).unwrap() else {
+        panic!("a 3D scene")
+    };
+    let d = figure_in(&scene, "groups_3d", FigureKind::Bvh, &Aim::Auto, Lang::En, (1920, 1080));
+    assert!(d.caption.as_deref().unwrap_or("").ends_with("drawn in the plane xz"), "{:?}", d.caption);
+    let rect = |name: &str| {
+        d.items
+            .iter()
+            .filter(|i| i.tag.starts_with("node-") && i.tag.ends_with(&format!(":{name}")))
+            .find_map(|i| match i.mark {
+                Mark::Rect { min, max, .. } => Some((min, max)),
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("node {name} drawn"))
+    };
+    let apart = |(a0, a1): (DVec2, DVec2), (b0, b1): (DVec2, DVec2)| {
+        a1.x < b0.x || b1.x < a0.x || a1.y < b0.y || b1.y < a0.y
+    };
+    // B is the far group; C holds the two front groups D and E.
+    assert!(apart(rect("B"), rect("C")) && apart(rect("D"), rect("E")));
+}

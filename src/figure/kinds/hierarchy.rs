@@ -14,12 +14,13 @@ use crate::bounds::aabb::Aabb;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
-use crate::figure::plane::{PagePlane, Planar};
+use crate::figure::plane::{Outline, PagePlane, Planar};
 use crate::figure::source::{first_hit, met, search_events, search_indexed};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
 use crate::format::markup_escape;
 use crate::record::event::Event;
+use crate::scene::Scene;
 
 /// What the walk did with a node, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -96,6 +97,10 @@ const DENSE_NODES: usize = 15;
 /// the walk reached.
 const DENSE_OBJECTS: usize = 15;
 
+/// A sphere drawn at least this wide (its radius, in shares of the view's width) carries its name
+/// inside, at its centre: beside a circle, in a group of circles, a name reads as its neighbour's.
+const NAME_INSIDE_RADIUS: f64 = 0.012;
+
 /// The entered nodes' colour.
 const ENTERED: Rgba = style::BLUISH_GREEN;
 /// The missed nodes' colour.
@@ -171,19 +176,112 @@ fn letter(k: usize) -> String {
     out.iter().rev().collect()
 }
 
-/// The page plane: 2D the scene's; 3D the plane of the two axes the ray moves most along
-/// (boxes project to rectangles), through the root box's centre, with y (the scenes' up) up
-/// the page when it is one of them. The axes are returned in index order, for the caption.
-fn page<V: Planar>(centre: V, direction: V) -> (PagePlane<V>, Option<[usize; 2]>) {
+/// How much of the ray's length a 3D page plane must keep: a plane the ray crosses more steeply
+/// than this (|D on the page| < 0.5, over 60° out of it) is chosen only when no other is left.
+const MIN_RAY_ON_PAGE: f64 = 0.5;
+
+/// Two sibling overlaps closer than this (in shares of the smaller box) count as equal.
+const OVERLAP_TIE: f64 = 1e-6;
+
+/// The page plane: 2D the scene's. In 3D one of the three axis planes (boxes project to
+/// rectangles exactly), through the root box's centre: y (the scenes' up) up the page when it is
+/// one of its axes and the ray running left to right, else the view from above. Of the three, the figure takes the one that tells the walk most truly:
+/// first, the ray keeps at least [`MIN_RAY_ON_PAGE`] of its length on the page; then, fewest
+/// boxes the drawn ray would seem to cross while it misses them in space; then, least overlap
+/// between sibling boxes (the groups a ray skips drawn apart); last, the plane the ray moves
+/// most in. The axes are returned in index order, for the caption.
+fn page<V: Planar>(
+    nodes: &[TreeNode<V>],
+    origin: V,
+    direction: V,
+    reach: f64,
+) -> (PagePlane<V>, Option<[usize; 2]>) {
     let fallback = PagePlane { origin: V::ZERO, x: V::axis(0), y: V::axis(1), offset: DVec2::ZERO };
     if V::DIM == 2 {
         return (fallback, None);
     }
-    let dropped = (0..3).fold(0, |m, a| if direction[a].abs() < direction[m].abs() { a } else { m });
+    let score = |dropped: usize| {
+        let kept = [(dropped + 1) % 3, (dropped + 2) % 3];
+        let steep = (1.0 - direction[dropped].powi(2)).max(0.0).sqrt() < MIN_RAY_ON_PAGE;
+        let lies = nodes
+            .iter()
+            .filter(|n| {
+                segment_meets(&n.bounds, origin, direction, reach, &kept)
+                    && !segment_meets(&n.bounds, origin, direction, reach, &[0, 1, 2])
+            })
+            .count();
+        (steep, lies, sibling_overlap(nodes, &kept), direction[dropped].abs())
+    };
+    let better = |a: &(bool, usize, f64, f64), b: &(bool, usize, f64, f64)| {
+        (a.0, a.1).cmp(&(b.0, b.1)).then_with(|| {
+            if (a.2 - b.2).abs() > OVERLAP_TIE {
+                a.2.total_cmp(&b.2)
+            } else {
+                a.3.total_cmp(&b.3)
+            }
+        })
+    };
+    let dropped = (0..3).map(|a| (a, score(a))).min_by(|(_, a), (_, b)| better(a, b)).map_or(2, |(a, _)| a);
+    let centre = (nodes[0].bounds.min + nodes[0].bounds.max) * 0.5;
     let axes: Vec<usize> = (0..3).filter(|a| *a != dropped).collect();
-    let (across, up) = if axes[0] == 1 { (axes[1], axes[0]) } else { (axes[0], axes[1]) };
-    let plane = PagePlane::spanned(centre, V::axis(across), V::axis(up)).unwrap_or(fallback);
+    let (across, up) = if dropped == 1 {
+        // Seen from above (+y toward the viewer): x across, −z up, since x × (−z) = y.
+        (V::axis(0), -V::axis(2))
+    } else {
+        // y up; across the other axis, signed so the ray runs left to right.
+        let other = axes[0] + axes[1] - 1;
+        let sign = if direction[other] < 0.0 { -1.0 } else { 1.0 };
+        (V::axis(other) * sign, V::axis(1))
+    };
+    let plane = PagePlane::spanned(centre, across, up).unwrap_or(fallback);
     (plane, Some([axes[0], axes[1]]))
+}
+
+/// Whether the segment `O + t·D`, `0 ≤ t ≤ reach`, meets box `b` in the coordinates `axes`
+/// (the slab test `max t_near ≤ min t_far` over those axes only). Over all three it is the box in
+/// space; over two it is the box's rectangle on that axis plane, for projecting onto an axis plane
+/// drops one coordinate and keeps every point's t.
+fn segment_meets<V: Planar>(b: &Aabb<V>, origin: V, direction: V, reach: f64, axes: &[usize]) -> bool {
+    let (mut near, mut far) = (0.0_f64, reach);
+    for &a in axes {
+        if direction[a] == 0.0 {
+            if origin[a] < b.min[a] || origin[a] > b.max[a] {
+                return false;
+            }
+            continue;
+        }
+        let (t0, t1) = ((b.min[a] - origin[a]) / direction[a], (b.max[a] - origin[a]) / direction[a]);
+        near = near.max(t0.min(t1));
+        far = far.min(t0.max(t1));
+    }
+    near <= far
+}
+
+/// How much sibling boxes overlap on the axis plane of `axes`: over every pair of children of a
+/// node, the area they share as a share of the smaller one's area, summed.
+fn sibling_overlap<V: Planar>(nodes: &[TreeNode<V>], axes: &[usize; 2]) -> f64 {
+    let side = |b: &Aabb<V>, a: usize| (b.min[a], b.max[a]);
+    let area = |b: &Aabb<V>| axes.iter().map(|&a| (b.max[a] - b.min[a]).max(0.0)).product::<f64>();
+    let mut total = 0.0;
+    for n in nodes {
+        for (i, &p) in n.children.iter().enumerate() {
+            for &q in &n.children[i + 1..] {
+                let (bp, bq) = (&nodes[p].bounds, &nodes[q].bounds);
+                let shared: f64 = axes
+                    .iter()
+                    .map(|&a| {
+                        let ((p0, p1), (q0, q1)) = (side(bp, a), side(bq, a));
+                        (p1.min(q1) - p0.max(q0)).max(0.0)
+                    })
+                    .product();
+                let smaller = area(bp).min(area(bq));
+                if smaller > 0.0 {
+                    total += shared / smaller;
+                }
+            }
+        }
+    }
+    total
 }
 
 /// A box on the page: its projection's bounding rectangle (exact on an axis plane).
@@ -247,8 +345,8 @@ pub fn draw<V: Planar>(
     }
     let root = log.nodes.first().ok_or_else(|| FigureError("no ray was traced".into()))?;
     let hit = first_hit(log).filter(|k| *k == 0).and_then(|k| log.nodes[k].end.as_ref()?.hit);
-    let centre = (nodes[0].bounds.min + nodes[0].bounds.max) * 0.5;
-    let (plane, axes) = page(centre, root.start.direction);
+    let reach = hit.map_or(f64::INFINITY, |h| (h.point - root.start.origin).length());
+    let (plane, axes) = page(&nodes, root.start.origin, root.start.direction, reach);
 
     d.set_title(input.t(title));
     let mut caption = format!(
@@ -364,9 +462,34 @@ pub fn draw<V: Planar>(
         .into_iter()
         .filter(|(o, _)| scene.objects.len() <= DENSE_OBJECTS || reached.contains(o))
         .collect();
-    label_objects(d, scene, &anchors, input.lang);
+    // A name inside its circle unless a node's name is already there; then beside it.
+    let mut beside = Vec::new();
+    for (o, anchor) in anchors {
+        let centre = circle_of(scene, &plane, o).filter(|(_, r)| *r >= NAME_INSIDE_RADIUS * view.width());
+        let Some((centre, _)) = centre else {
+            beside.push((o, anchor));
+            continue;
+        };
+        let opts =
+            TextOpts::NOTE.color(style::DARK_GREY).align(Align { h: HAlign::Center, v: VAlign::Middle });
+        d.text(&format!("object-name:{o}"), centre, &markup_escape(&scene.object_label(o, input.lang)), opts);
+        let last = d.items.len() - 1;
+        if d.overlapping_labels().iter().any(|(a, b)| *a == last || *b == last) {
+            d.items.pop();
+            beside.push((o, anchor));
+        }
+    }
+    label_objects(d, scene, &beside, input.lang);
     tree(d, &nodes, &fate, &visits, input, column, &view);
     Ok(())
+}
+
+/// Object `o`'s section on `plane` when it is a circle: its centre and radius.
+fn circle_of<V: Planar>(scene: &Scene<V>, plane: &PagePlane<V>, o: usize) -> Option<(DVec2, f64)> {
+    V::outlines(&scene.objects[o].shape, plane).into_iter().find_map(|ol| match ol.outline {
+        Outline::Circle { center, radius } if ol.section => Some((center, radius)),
+        _ => None,
+    })
 }
 
 /// The legend: the ray and the fates that occur (the opened boxes always).
