@@ -178,3 +178,36 @@ fn no_edge_of_a_lesson_tree_overlaps_another_or_runs_through_a_node() {
     assert!(trees >= 3, "only {trees} lesson figures draw a hierarchy tree");
     assert!(found.is_empty(), "{}", found.join("\n"));
 }
+
+/// The least distance, in pixels at slide size, between two points where the Kay–Kajiya
+/// figure's meeting ray crosses a plane: a small label's height, so that each crossing's name
+/// can stand beside its own dot.
+const MIN_CROSSING_GAP: f64 = 30.0;
+
+/// Issue 23 item 9: the Kay–Kajiya lesson's meeting ray (pixel 7, the only pixel of the scene
+/// whose ray meets the triangle's volume) passed the triangle's top vertex, where three planes
+/// meet: its crossings I₁₃₅°, I₀°, I₄₅° and the entry I lay 13 px apart, their names piled up.
+/// The lesson now gives a ray that crosses the planes away from the vertex; every two of its
+/// crossings lie `MIN_CROSSING_GAP` apart.
+#[test]
+fn the_kay_kajiya_lesson_spreads_the_meeting_ray_s_crossings() {
+    let figures = lesson_figures(Lang::En);
+    let (_, d) =
+        figures.iter().find(|(name, _)| name.contains("kay-kajiya")).expect("a Kay–Kajiya lesson figure");
+    let tf = d.transform();
+    // The meeting ray's crossings are the ones that draw its events.
+    let crossings: Vec<DVec2> = d
+        .tagged("crossing")
+        .filter(|i| !i.events.is_empty())
+        .filter_map(|i| match i.mark {
+            Mark::Dot { center, .. } => Some(tf.to_px(center)),
+            _ => None,
+        })
+        .collect();
+    assert!(crossings.len() >= 6, "{crossings:?}");
+    for (k, a) in crossings.iter().enumerate() {
+        for b in &crossings[k + 1..] {
+            assert!(a.distance(*b) >= MIN_CROSSING_GAP, "crossings at {a} and {b}: {:.1} px", a.distance(*b));
+        }
+    }
+}
