@@ -439,14 +439,17 @@ pub fn wrap_even(markup: &str, size: f64, weight: Weight, max_width: f64) -> Vec
 /// Symbols that bind the words on both sides: a line never ends or starts with one.
 const RELATIONS: [&str; 8] = ["=", "<", ">", "≤", "≥", "≠", "≈", "×"];
 
-/// `words` with every relation joined to its neighbours: `["K", "=", "2"]` → `["K = 2"]`.
+/// `words` with every relation joined to its neighbours (`["K", "=", "2"]` → `["K = 2"]`), and
+/// a name ending in a colon joined to the number after it (`["opened:", "6"]` → `["opened: 6"]`).
 fn unbreakable(words: Vec<String>) -> Vec<String> {
     let mut out: Vec<String> = Vec::new();
     let mut bind_next = false;
     for word in words {
         let relation = RELATIONS.contains(&word.as_str());
+        let value = word.starts_with(|c: char| c.is_ascii_digit())
+            && out.last().is_some_and(|last| last.ends_with(':'));
         match out.last_mut() {
-            Some(last) if relation || bind_next => {
+            Some(last) if relation || bind_next || value => {
                 last.push(' ');
                 last.push_str(&word);
             }
@@ -708,6 +711,13 @@ mod tests {
         assert_eq!(even.len(), 2);
         let widths: Vec<f64> = even.iter().map(|l| layout(l, 40.0, Weight::Regular).width).collect();
         assert!(widths[1] > 0.6 * widths[0], "{even:?}");
+    }
+
+    #[test]
+    fn wrapping_keeps_a_count_with_its_name() {
+        let lines = wrap("noduri testate: 11, deschise: 6", 40.0, Weight::Regular, 10.0);
+        assert!(lines.contains(&"deschise: 6".to_owned()), "{lines:?}");
+        assert!(lines.contains(&"testate: 11,".to_owned()), "{lines:?}");
     }
 
     #[test]

@@ -145,6 +145,13 @@ pub const fn normal() -> Pen {
     Pen { color: NORMAL, width: CONSTRUCTION_WIDTH, dash: Some(CONSTRUCTION_DASH) }
 }
 
+/// The stroke of the view window (the lecture's "fereastra vizuală"): dark grey, half again as
+/// wide as an object's outline, so it never reads as an object.
+#[must_use]
+pub const fn view_window() -> Pen {
+    Pen { color: DARK_GREY, width: OBJECT_WIDTH * 1.5, dash: None }
+}
+
 /// A solid stroke of `color` at [`CONSTRUCTION_WIDTH`], for outlines of highlights and markers.
 #[must_use]
 pub const fn outline(color: Rgba) -> Pen {

@@ -113,6 +113,8 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
           "claims": [ { "kind": "false-crossings", "max": 0 } ], "caption": { "en": "", "ro": "" } },
         { "kind": "local-model", "scene": "../../../scenes/flat.json", "pixel": [20],
           "claims": [ { "kind": "apart", "min": 10 } ], "caption": { "en": "", "ro": "" } },
+        { "kind": "refraction", "scene": "prism-old.json",
+          "claims": [ { "kind": "incidence", "min": 20, "max": 60 } ], "caption": { "en": "", "ro": "" } },
         { "kind": "rays", "scene": "../../../scenes/flat.json", "pixel": [20], "depth": 0,
           "claims": [ { "kind": "apart", "min": 10 } ], "caption": { "en": "", "ro": "" } } ] }"#;
     let failed = failures(&dir, old, Lang::En);
@@ -123,7 +125,8 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
         "old figure 4 (bvh): claim nodes: wanted ≥ 5, measured 1",
         "old figure 5 (shadows): claim false-crossings: wanted ≤ 0, measured 2",
         "old figure 6 (local-model): claim apart (least angle between N, V, L, H, °): wanted ≥ 10, measured 3.25",
-        "old figure 7 (rays): claim apart (least angle between N, V, L, H, °): wanted ≥ 10, measured 3.25",
+        "old figure 7 (refraction): claim incidence",
+        "old figure 8 (rays): claim apart (least angle between N, V, L, H, °): wanted ≥ 10, measured 3.25",
     ];
     assert_eq!(failed.len(), expected.len(), "{}", failed.join("\n"));
     for (line, want) in failed.iter().zip(expected) {

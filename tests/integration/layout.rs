@@ -211,3 +211,18 @@ fn the_kay_kajiya_lesson_spreads_the_meeting_ray_s_crossings() {
         }
     }
 }
+
+/// A view window drawn on a figure is named, in its legend or on the drawing (the rays figures
+/// drew it unnamed).
+#[test]
+fn every_drawn_view_window_is_named_in_the_legend() {
+    for (lang, word) in [(Lang::En, "view window"), (Lang::Ro, "fereastra vizuală")] {
+        for (name, d) in lesson_figures(lang) {
+            if d.tagged("window").next().is_some() {
+                let labelled = d.items.iter().any(|i| matches!(&i.mark, Mark::Text(t) if t.text == word));
+                let in_legend = d.legend.iter().any(|e| e.label == word);
+                assert!(labelled || in_legend, "{name}: the window is not named");
+            }
+        }
+    }
+}
