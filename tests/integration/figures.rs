@@ -571,6 +571,25 @@ fn the_aliasing_figure_marks_the_ray_spacing_at_each_row_of_discs() {
     assert_eq!(marks, ["Δ = 0.5", "Δ = 0.5", "Δ = 1", "Δ = 3"]);
 }
 
+/// The local model's pick says "N, L, H, V well apart" only when they are: on `lens_2d` every
+/// lit pixel tried draws two of them within 10° (2.455° at the one picked), and the caption says
+/// so in both languages, while `ortho_box`'s (15°) keeps the old words.
+#[test]
+fn the_local_model_says_when_no_pixel_keeps_its_vectors_apart() {
+    let crowded = [
+        (Lang::En, "no pixel tried keeps N, L, H, V 10° apart"),
+        (Lang::Ro, "în niciun pixel încercat N, L, H, V nu sunt la 10° unul de altul"),
+    ];
+    for (lang, words) in crowded {
+        let caption = figure(FigureKind::LocalModel, "lens_2d.json", lang, SMALL).caption.unwrap_or_default();
+        assert!(caption.contains(words), "{caption}");
+        assert!(!caption.contains("well apart") && !caption.contains("distincte"), "{caption}");
+    }
+    let caption =
+        figure(FigureKind::LocalModel, "ortho_box.json", Lang::En, SMALL).caption.unwrap_or_default();
+    assert!(caption.contains("N, L, H, V well apart"), "{caption}");
+}
+
 /// The BVH over groups_3d (three groups of four spheres on one level) is drawn from above, in the
 /// plane xz, where the boxes of sibling groups lie apart: in the yz plane the ray's own direction
 /// would suggest, the two front groups would be drawn one over the other.

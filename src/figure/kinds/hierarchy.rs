@@ -110,6 +110,9 @@ const SKIPPED: Rgba = style::VERMILLION;
 /// The dash of skipped nodes: dots, apart from the missed nodes' dashes.
 const SKIPPED_DASH: crate::canvas::Dash = crate::canvas::Dash { on: 5.0, off: 9.0 };
 
+/// The radius of a tree node's disc, in reference pixels.
+const TREE_NODE: f64 = 25.0;
+
 /// The tree's top, as a fraction of the view's height below its top, under a legend of up to
 /// [`LEGEND_LINES_FREE`] lines.
 const TREE_TOP: f64 = 0.36;
@@ -518,9 +521,57 @@ fn fate_style(f: Fate) -> Pen {
     }
 }
 
-/// The tree in the column whose top-left is `column`: leaves one unit apart, parents over their
-/// children, each node a disc of its fate's colour with its name, the entry order beside it and
-/// a leaf's objects under it.
+/// Where each shown node of the subtree under `k` goes across the page, in units, its root at 0:
+/// the children's subtrees side by side, each as close to the ones before as keeps every two
+/// nodes of one level at least a unit apart, and the parent over the middle of its first and last
+/// child (a tidy layout after Reingold and Tilford, without their centring of the small subtrees
+/// between two large ones). Packing by levels, rather than giving every leaf its own column, keeps
+/// a parent near its leaf children: beside a wide sibling they no longer sit so far off that
+/// their edges leave the parent almost along one line.
+fn tidy<V>(k: usize, nodes: &[TreeNode<V>], shown: &[bool]) -> Tidy {
+    let mut placed: Vec<(usize, f64)> = Vec::new();
+    let mut extent: Vec<(f64, f64)> = Vec::new();
+    let mut roots: Vec<f64> = Vec::new();
+    for &c in nodes[k].children.iter().filter(|c| shown[**c]) {
+        let Tidy { placed: sub, levels: sub_extent } = tidy(c, nodes, shown);
+        // The least shift that keeps this subtree a unit clear of the ones before, level by level.
+        let shift = extent
+            .iter()
+            .zip(&sub_extent)
+            .map(|(before, next)| before.1 + 1.0 - next.0)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let shift = if extent.is_empty() { 0.0 } else { shift };
+        placed.extend(sub.into_iter().map(|(n, x)| (n, x + shift)));
+        for (level, (lo, hi)) in sub_extent.into_iter().enumerate() {
+            match extent.get_mut(level) {
+                Some(e) => *e = (e.0.min(lo + shift), e.1.max(hi + shift)),
+                None => extent.push((lo + shift, hi + shift)),
+            }
+        }
+        roots.push(shift);
+    }
+    // The parent over the middle of its first and last child; everything shifted to put it at 0.
+    let middle = match (roots.first(), roots.last()) {
+        (Some(first), Some(last)) => (first + last) / 2.0,
+        _ => 0.0,
+    };
+    let mut out = vec![(k, 0.0)];
+    out.extend(placed.into_iter().map(|(n, x)| (n, x - middle)));
+    let mut levels = vec![(0.0, 0.0)];
+    levels.extend(extent.into_iter().map(|(lo, hi)| (lo - middle, hi - middle)));
+    Tidy { placed: out, levels }
+}
+
+/// A subtree laid out by [`tidy`], its root at x = 0.
+struct Tidy {
+    /// Every shown node of it with its x, in units.
+    placed: Vec<(usize, f64)>,
+    /// Its extent `(least, greatest x)` on each level, its root's first.
+    levels: Vec<(f64, f64)>,
+}
+
+/// The tree in the column whose top-left is `column`, laid out by [`tidy`], each node a disc of
+/// its fate's colour with its name, the entry order beside it and a leaf's objects under it.
 fn tree<V: Planar>(
     d: &mut Drawing,
     nodes: &[TreeNode<V>],
@@ -540,21 +591,13 @@ fn tree<V: Planar>(
                     .any(|(p, n)| matches!(fate[p], Fate::Entered(_)) && n.children.contains(&k))
         })
         .collect();
+    let Tidy { placed, levels } = tidy(0, nodes, &shown);
+    let least = levels.iter().map(|l| l.0).fold(f64::INFINITY, f64::min);
+    let units = levels.iter().map(|l| l.1).fold(f64::NEG_INFINITY, f64::max) - least;
     let mut x = vec![0.0; nodes.len()];
-    let mut next = 0.0;
-    fn place<V>(k: usize, nodes: &[TreeNode<V>], shown: &[bool], x: &mut [f64], next: &mut f64) {
-        let kids: Vec<usize> = nodes[k].children.iter().copied().filter(|c| shown[*c]).collect();
-        if kids.is_empty() {
-            x[k] = *next;
-            *next += 1.0;
-        } else {
-            for &c in &kids {
-                place(c, nodes, shown, x, next);
-            }
-            x[k] = (x[kids[0]] + x[kids[kids.len() - 1]]) / 2.0;
-        }
+    for (k, at) in placed {
+        x[k] = at - least;
     }
-    place(0, nodes, &shown, &mut x, &mut next);
     let depth = nodes.iter().zip(&shown).filter(|(_, s)| **s).map(|(n, _)| n.depth).max().unwrap_or(0);
     let width = view.xmax() - column.x;
     let (left, right) = (column.x + 0.08 * width, view.xmax() - 0.06 * width);
@@ -563,7 +606,7 @@ fn tree<V: Planar>(
     let below_legend = TREE_TOP + LEGEND_LINE * f64::from(u32::try_from(extra).unwrap_or(u32::MAX));
     let (top, bottom) = (view.ymax() - below_legend * view.height(), view.ymin() + 0.1 * view.height());
     let at = |k: usize| {
-        let fx = if next > 1.0 { x[k] / (next - 1.0) } else { 0.5 };
+        let fx = if units > 0.0 { x[k] / units } else { 0.5 };
         let fy = if depth > 0 { f64::from(nodes[k].depth) / f64::from(depth) } else { 0.0 };
         DVec2::new(left + fx * (right - left), top - fy * (top - bottom))
     };
@@ -582,13 +625,8 @@ fn tree<V: Planar>(
         let f = fate[k];
         let fill = if matches!(f, Fate::Entered(_)) { ENTERED } else { style::WHITE };
         d.with_events(visits[k].iter().copied(), |d| {
-            d.marker(
-                &format!("tree-node-{}", f.class()),
-                at(k),
-                25.0,
-                fill,
-                fate_style(f).with_width(style::CONSTRUCTION_WIDTH),
-            );
+            let ring = fate_style(f).with_width(style::CONSTRUCTION_WIDTH);
+            parts::node_disc(d, &format!("tree-node-{}", f.class()), at(k), TREE_NODE, fill, ring);
             let name = TextOpts::NOTE.size(TextSize::Small).align(Align::CENTER).no_halo();
             d.text("tree-name", at(k), &letter(k), name);
             if let Fate::Entered(order) = f {

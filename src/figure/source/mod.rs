@@ -60,6 +60,9 @@ pub enum Pick {
     Rich,
     /// The pixel whose primary hit is lit with the clearest N, L, H, V.
     Lit,
+    /// The pixel whose primary hit is lit with the clearest N, L, H, V, although two of them lie
+    /// closer than [`MIN_APART_DEG`]: no pixel tried keeps them apart.
+    LitCrowded,
     /// The pixel whose adaptive subdivision mixes the most levels.
     Subdivided,
     /// The pixel whose primary ray's walk through the structure is the most telling.
@@ -219,9 +222,15 @@ pub fn record<V: Dim>(
             traces
         }
         FigureKind::LocalModel => {
-            let main = tracer.aimed(aim, Pick::Lit, |log| lit_score(scene, log));
+            let mut main = tracer.aimed(aim, Pick::Lit, |log| lit_score(scene, log));
             if first_hit(&main.log).is_none() {
                 return Err(FigureError(missing(aim, "hit")));
+            }
+            // The best pixel may still draw two vectors one over the other: the caption says so.
+            let crowded =
+                main.log.nodes.first().and_then(vectors_apart_deg).is_none_or(|a| a < MIN_APART_DEG);
+            if main.pick == Pick::Lit && crowded {
+                main.pick = Pick::LitCrowded;
             }
             vec![main]
         }
