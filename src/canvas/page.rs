@@ -94,7 +94,7 @@ impl Drawing {
         };
         let k = self.px_scale();
         let max_width = f64::from(self.width()) - 2.0 * style::MARGIN * k;
-        text::wrap(caption, TextSize::Body.px() * k, Weight::Regular, max_width)
+        text::wrap_even(caption, TextSize::Body.px() * k, Weight::Regular, max_width)
     }
 
     /// The world → pixel map: the view scaled uniformly to fit the plot area, centred (the plot

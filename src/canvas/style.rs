@@ -61,6 +61,27 @@ impl Rgba {
     pub fn hex(self) -> String {
         format!("#{:02x}{:02x}{:02x}", self.r, self.g, self.b)
     }
+
+    /// The contrast ratio of this colour, laid over a white page at its opacity, against the
+    /// page: `(1 + 0.05) / (L + 0.05)` in WCAG 2.1's definition, where the relative luminance is
+    /// `L = 0.2126·R + 0.7152·G + 0.0722·B` of the linear channels, each `c/12.92` when the sRGB
+    /// value `c ≤ 0.04045` and `((c + 0.055)/1.055)^2.4` above. 1 for white (or transparent),
+    /// 21 for black.
+    #[must_use]
+    pub fn contrast_on_white(self) -> f64 {
+        let alpha = self.opacity();
+        let linear = |byte: u8| {
+            // Composited over white: the page shows through what the colour leaves.
+            let c = alpha * f64::from(byte) / 255.0 + (1.0 - alpha);
+            if c <= 0.040_45 {
+                c / 12.92
+            } else {
+                ((c + 0.055) / 1.055).powf(2.4)
+            }
+        };
+        let luminance = 0.2126 * linear(self.r) + 0.7152 * linear(self.g) + 0.0722 * linear(self.b);
+        1.05 / (luminance + 0.05)
+    }
 }
 
 /// `round(255·v)` for `v` in [0, 1], as a byte.
@@ -239,6 +260,19 @@ mod tests {
         assert_eq!(BLUE.with_alpha(0.5).a, 128);
         assert_eq!(BLUE.with_alpha(f64::NAN).a, 0);
         assert!((WHITE.opacity() - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn contrast_on_white_follows_wcag() {
+        assert!((BLACK.contrast_on_white() - 21.0).abs() < 1e-9);
+        assert!((WHITE.contrast_on_white() - 1.0).abs() < 1e-12);
+        assert!((BLACK.with_alpha(0.0).contrast_on_white() - 1.0).abs() < 1e-12);
+        // #777777 is the usual example of a grey just under 4.5:1 (4.48).
+        assert!((Rgba::rgb(0x77, 0x77, 0x77).contrast_on_white() - 4.48).abs() < 0.01);
+        // Half-transparent black (alpha 128/255) is about #7F7F7F on white.
+        let half = BLACK.with_alpha(0.5).contrast_on_white();
+        assert!((half - Rgba::rgb(0x7F, 0x7F, 0x7F).contrast_on_white()).abs() < 0.01, "{half}");
+        assert!(LIGHT_GREY.contrast_on_white() < 3.0 && DARK_GREY.contrast_on_white() > 3.0);
     }
 }
 

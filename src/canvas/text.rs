@@ -414,17 +414,42 @@ pub fn wrap(markup: &str, size: f64, weight: Weight, max_width: f64) -> Vec<Stri
     lines
 }
 
+/// How close the balanced width of [`wrap_even`] gets to the narrowest that keeps the line count,
+/// in pixels.
+const EVEN_WIDTH_STEP: f64 = 1.0;
+
+/// [`wrap`] into as few lines, made as even as they can be: the narrowest width (to
+/// [`EVEN_WIDTH_STEP`]) at which [`wrap`] still needs no more lines, found by bisection. A caption
+/// never ends on an orphaned word.
+#[must_use]
+pub fn wrap_even(markup: &str, size: f64, weight: Weight, max_width: f64) -> Vec<String> {
+    let greedy = wrap(markup, size, weight, max_width);
+    let (mut narrow, mut wide) = (0.0, max_width);
+    while wide - narrow > EVEN_WIDTH_STEP {
+        let mid = 0.5 * (narrow + wide);
+        if wrap(markup, size, weight, mid).len() > greedy.len() {
+            narrow = mid;
+        } else {
+            wide = mid;
+        }
+    }
+    wrap(markup, size, weight, wide)
+}
+
 /// Symbols that bind the words on both sides: a line never ends or starts with one.
 const RELATIONS: [&str; 8] = ["=", "<", ">", "≤", "≥", "≠", "≈", "×"];
 
-/// `words` with every relation joined to its neighbours: `["K", "=", "2"]` → `["K = 2"]`.
+/// `words` with every relation joined to its neighbours (`["K", "=", "2"]` → `["K = 2"]`), and
+/// a name ending in a colon joined to the number after it (`["opened:", "6"]` → `["opened: 6"]`).
 fn unbreakable(words: Vec<String>) -> Vec<String> {
     let mut out: Vec<String> = Vec::new();
     let mut bind_next = false;
     for word in words {
         let relation = RELATIONS.contains(&word.as_str());
+        let value = word.starts_with(|c: char| c.is_ascii_digit())
+            && out.last().is_some_and(|last| last.ends_with(':'));
         match out.last_mut() {
-            Some(last) if relation || bind_next => {
+            Some(last) if relation || bind_next || value => {
                 last.push(' ');
                 last.push_str(&word);
             }
@@ -672,6 +697,27 @@ mod tests {
         assert!(lines.len() >= 3, "{lines:?}");
         assert!(lines.iter().any(|l| l.contains("t_{a b}")));
         assert_eq!(wrap("", 40.0, Weight::Regular, 10.0), vec![String::new()]);
+    }
+
+    #[test]
+    fn even_wrapping_leaves_no_orphan_and_no_more_lines() {
+        let caption = "scene whitted · reference: the same sampling, traced deeper · times in the table";
+        let width = layout(caption, 40.0, Weight::Regular).width;
+        // Just narrower than the whole: greedy leaves one word alone on the second line.
+        let greedy = wrap(caption, 40.0, Weight::Regular, width - 5.0);
+        assert_eq!(greedy.len(), 2);
+        assert!(!greedy[1].contains(' '), "{greedy:?}");
+        let even = wrap_even(caption, 40.0, Weight::Regular, width - 5.0);
+        assert_eq!(even.len(), 2);
+        let widths: Vec<f64> = even.iter().map(|l| layout(l, 40.0, Weight::Regular).width).collect();
+        assert!(widths[1] > 0.6 * widths[0], "{even:?}");
+    }
+
+    #[test]
+    fn wrapping_keeps_a_count_with_its_name() {
+        let lines = wrap("noduri testate: 11, deschise: 6", 40.0, Weight::Regular, 10.0);
+        assert!(lines.contains(&"deschise: 6".to_owned()), "{lines:?}");
+        assert!(lines.contains(&"testate: 11,".to_owned()), "{lines:?}");
     }
 
     #[test]

@@ -4,9 +4,9 @@
 //! `canvas::text` (`n_1` → n₁, `θ_i` → θᵢ); the kinds compose them with numbers, never with words
 //! of their own.
 
-use super::source::{Pick, Target};
+use super::source::{Pick, Target, MIN_APART_DEG};
 use super::Lang;
-use crate::format::markup_escape;
+use crate::format::{markup_escape, slide_number};
 
 /// A fixed label or caption piece.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -76,6 +76,8 @@ pub enum Label {
     Background,
     /// The chosen pixel.
     ChosenPixel,
+    /// The chosen pixel, marked by its centre in a ring (its square too small to see).
+    PixelCentreRinged,
     /// The pixel's cell mapped into the window.
     PixelInWindow,
     /// The window–viewport transform.
@@ -386,6 +388,7 @@ impl Label {
             Self::Image => ("image", "imaginea"),
             Self::Background => ("background", "fond"),
             Self::ChosenPixel => ("the pixel", "pixelul"),
+            Self::PixelCentreRinged => ("the pixel's centre (ringed)", "centrul pixelului (încercuit)"),
             Self::PixelInWindow => ("the pixel in the window", "pixelul în fereastră"),
             Self::WindowViewport => ("window–viewport transform", "transformarea fereastră–poartă"),
             Self::Orthographic => ("orthographic projection", "proiecția ortografică"),
@@ -533,7 +536,7 @@ impl Label {
 
 /// Why the figure picked its pixel, as a caption phrase.
 #[must_use]
-pub fn pick_reason(pick: Pick, lang: Lang) -> Option<&'static str> {
+pub fn pick_reason(pick: Pick, lang: Lang) -> Option<String> {
     let (en, ro) = match pick {
         Pick::Given => return None,
         Pick::Walk => {
@@ -560,11 +563,23 @@ pub fn pick_reason(pick: Pick, lang: Lang) -> Option<&'static str> {
         Pick::Lit => {
             ("its hit is lit, N, L, H, V well apart", "intersecția e luminată, N, L, H, V distincte")
         }
+        Pick::LitCrowded => {
+            let least = slide_number(MIN_APART_DEG);
+            return Some(match lang {
+                Lang::En => format!("its hit is lit; no pixel tried keeps N, L, H, V {least}° apart"),
+                Lang::Ro => {
+                    format!("intersecția e luminată; în niciun pixel încercat N, L, H, V nu sunt la {least}° unul de altul")
+                }
+            });
+        }
     };
-    Some(match lang {
-        Lang::En => en,
-        Lang::Ro => ro,
-    })
+    Some(
+        match lang {
+            Lang::En => en,
+            Lang::Ro => ro,
+        }
+        .to_owned(),
+    )
 }
 
 /// The traced pixel or ray as a caption phrase: `pixel (3, 2)` (`pixel 5` in 2D).

@@ -271,6 +271,18 @@ pub fn draw_light(d: &mut Drawing, at: DVec2) {
     d.marker("light", at, style::LIGHT_RADIUS, style::LIGHT, style::outline(style::BLACK));
 }
 
+/// A tree's node: a disc of `radius` reference pixels filled with `fill` and ringed with `ring`,
+/// tagged `tag`; when those colours would fade into the white page ([`style::node_outline`]), a
+/// thin dark outline just outside the ring, tagged `outline:` + `tag`, keeps it visible.
+pub fn node_disc(d: &mut Drawing, tag: &str, at: DVec2, radius: f64, fill: Rgba, ring: Pen) {
+    if let Some(outline) = style::node_outline(fill, ring) {
+        let ring_width = if ring.strokes() { ring.width } else { 0.0 };
+        let around = radius + 0.5 * (ring_width + outline.width);
+        d.marker(&format!("outline:{tag}"), at, around, style::WHITE.with_alpha(0.0), outline);
+    }
+    d.marker(tag, at, radius, fill, ring);
+}
+
 /// A label placed clear of lines and other labels near `at`.
 pub fn label(d: &mut Drawing, at: DVec2, markup: &str) {
     d.text("label", at, markup, TextOpts::LABEL.avoid_overlap());

@@ -40,6 +40,24 @@ pub const OPAQUE_DASH: Dash = Dash { on: 8.0, off: 8.0 };
 /// them ([`crate::canvas::Drawing::guard_lines`]).
 pub const RAY_TAG: &str = "ray:";
 
+/// The least contrast against the white page ([`Rgba::contrast_on_white`]) that a tree node's
+/// ring or fill must reach to be seen: 3:1, what WCAG 2.1 (success criterion 1.4.11, "Non-text
+/// Contrast") asks of the graphical objects a reader needs. A node whose colours fall short
+/// (a light grey ring, an orange one, a fill that clamps to white) gets a [`node_outline`].
+pub const MIN_NODE_CONTRAST: f64 = 3.0;
+/// The outline of a node whose own colours fall short of [`MIN_NODE_CONTRAST`]: thin, dark grey.
+pub const NODE_OUTLINE: Pen = Pen { color: DARK_GREY, width: GRID_WIDTH, dash: None };
+
+/// The outline a tree node of `fill` ringed with `ring` needs to stay visible on the white page:
+/// [`NODE_OUTLINE`] when neither its fill nor its ring (if it strokes at all) reaches
+/// [`MIN_NODE_CONTRAST`], else none (its own colours already stand out).
+#[must_use]
+pub fn node_outline(fill: Rgba, ring: Pen) -> Option<Pen> {
+    let seen = |c: Rgba| c.contrast_on_white() >= MIN_NODE_CONTRAST;
+    let ring_seen = ring.strokes() && seen(ring.color);
+    (!ring_seen && !seen(fill)).then_some(NODE_OUTLINE)
+}
+
 /// Which ray of the recursion a line shows; each has its own colour (and blocked shadows a dash).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum RayRole {
@@ -131,6 +149,13 @@ pub const fn normal() -> Pen {
     Pen { color: NORMAL, width: CONSTRUCTION_WIDTH, dash: Some(CONSTRUCTION_DASH) }
 }
 
+/// The stroke of the view window (the lecture's "fereastra vizuală"): dark grey, half again as
+/// wide as an object's outline, so it never reads as an object.
+#[must_use]
+pub const fn view_window() -> Pen {
+    Pen { color: DARK_GREY, width: OBJECT_WIDTH * 1.5, dash: None }
+}
+
 /// A solid stroke of `color` at [`CONSTRUCTION_WIDTH`], for outlines of highlights and markers.
 #[must_use]
 pub const fn outline(color: Rgba) -> Pen {
@@ -140,6 +165,21 @@ pub const fn outline(color: Rgba) -> Pen {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_node_gets_an_outline_only_when_its_colours_fade_into_the_page() {
+        // White or light fills ringed in light grey, orange or yellow: outlined.
+        for ring in [LIGHT_GREY, ORANGE, YELLOW] {
+            assert_eq!(node_outline(WHITE, outline(ring)), Some(NODE_OUTLINE), "{ring:?}");
+        }
+        assert_eq!(node_outline(Rgba::rgb(0xE3, 0xE3, 0xE3), Pen::NONE), Some(NODE_OUTLINE));
+        // A ring or a fill of enough contrast is seen on its own.
+        assert_eq!(node_outline(WHITE, outline(BLUE)), None);
+        assert_eq!(node_outline(BLUISH_GREEN, outline(LIGHT_GREY)), None);
+        assert_eq!(node_outline(WHITE, outline(REDDISH_PURPLE)), None);
+        // The outline itself is seen.
+        assert!(NODE_OUTLINE.color.contrast_on_white() >= MIN_NODE_CONTRAST);
+    }
 
     #[test]
     fn ray_roles_have_distinct_colours() {

@@ -94,7 +94,8 @@ fn every_lesson_scene_names_its_objects_in_both_languages() {
 /// nearer sphere (its box leaked into it, the ray ran along a cell boundary), the 3D slab chart
 /// of a near-axis ray, the flat heat map of corner sampling, the BVH of one node, and Whitted's
 /// shadow figure whose primary ray was drawn through the glass sphere, and the 2D local model
-/// whose L and N lay 3.25° apart.
+/// whose L and N lay 3.25° apart — the same hit on the mirror that the ray-casting lesson drew,
+/// its N hidden under L.
 #[test]
 fn the_old_scenes_and_pixels_fail_their_claims() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/claims");
@@ -111,6 +112,10 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
         { "kind": "shadows", "scene": "../../../scenes/whitted.json", "pixel": [292, 227],
           "claims": [ { "kind": "false-crossings", "max": 0 } ], "caption": { "en": "", "ro": "" } },
         { "kind": "local-model", "scene": "../../../scenes/flat.json", "pixel": [20],
+          "claims": [ { "kind": "apart", "min": 10 } ], "caption": { "en": "", "ro": "" } },
+        { "kind": "refraction", "scene": "prism-old.json",
+          "claims": [ { "kind": "incidence", "min": 20, "max": 60 } ], "caption": { "en": "", "ro": "" } },
+        { "kind": "rays", "scene": "../../../scenes/flat.json", "pixel": [20], "depth": 0,
           "claims": [ { "kind": "apart", "min": 10 } ], "caption": { "en": "", "ro": "" } } ] }"#;
     let failed = failures(&dir, old, Lang::En);
     let expected = [
@@ -120,6 +125,8 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
         "old figure 4 (bvh): claim nodes: wanted ≥ 5, measured 1",
         "old figure 5 (shadows): claim false-crossings: wanted ≤ 0, measured 1",
         "old figure 6 (local-model): claim apart (least angle between N, V, L, H, °): wanted ≥ 10, measured 3.25",
+        "old figure 7 (refraction): claim incidence",
+        "old figure 8 (rays): claim apart (least angle between N, V, L, H, °): wanted ≥ 10, measured 3.25",
     ];
     assert_eq!(failed.len(), expected.len(), "{}", failed.join("\n"));
     for (line, want) in failed.iter().zip(expected) {

@@ -570,3 +570,63 @@ fn the_aliasing_figure_marks_the_ray_spacing_at_each_row_of_discs() {
     marks.sort_unstable();
     assert_eq!(marks, ["Δ = 0.5", "Δ = 0.5", "Δ = 1", "Δ = 3"]);
 }
+
+/// The local model's pick says "N, L, H, V well apart" only when they are: on `lens_2d` every
+/// lit pixel tried draws two of them within 10° (2.455° at the one picked), and the caption says
+/// so in both languages, while `ortho_box`'s (15°) keeps the old words.
+#[test]
+fn the_local_model_says_when_no_pixel_keeps_its_vectors_apart() {
+    let crowded = [
+        (Lang::En, "no pixel tried keeps N, L, H, V 10° apart"),
+        (Lang::Ro, "în niciun pixel încercat N, L, H, V nu sunt la 10° unul de altul"),
+    ];
+    for (lang, words) in crowded {
+        let caption = figure(FigureKind::LocalModel, "lens_2d.json", lang, SMALL).caption.unwrap_or_default();
+        assert!(caption.contains(words), "{caption}");
+        assert!(!caption.contains("well apart") && !caption.contains("distincte"), "{caption}");
+    }
+    let caption =
+        figure(FigureKind::LocalModel, "ortho_box.json", Lang::En, SMALL).caption.unwrap_or_default();
+    assert!(caption.contains("N, L, H, V well apart"), "{caption}");
+}
+
+/// The BVH over groups_3d (three groups of four spheres on one level) is drawn from above, in the
+/// plane xz, where the boxes of sibling groups lie apart: in the yz plane the ray's own direction
+/// would suggest, the two front groups would be drawn one over the other.
+#[test]
+fn the_3d_bvh_figure_chooses_the_plane_where_sibling_groups_lie_apart() {
+    let path = format!("{}/lessons/scenes/groups_3d.json", env!("CARGO_MANIFEST_DIR"));
+    let AnyScene::Space(scene) = load_str(&std::fs::read_to_string(path).unwrap()).unwrap() else {
+        panic!("a 3D scene")
+    };
+    let d = figure_in(&scene, "groups_3d", FigureKind::Bvh, &Aim::Auto, Lang::En, (1920, 1080));
+    assert!(d.caption.as_deref().unwrap_or("").ends_with("drawn in the plane xz"), "{:?}", d.caption);
+    let rect = |name: &str| {
+        d.items
+            .iter()
+            .filter(|i| i.tag.starts_with("node-") && i.tag.ends_with(&format!(":{name}")))
+            .find_map(|i| match i.mark {
+                Mark::Rect { min, max, .. } => Some((min, max)),
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("node {name} drawn"))
+    };
+    let apart = |(a0, a1): (DVec2, DVec2), (b0, b1): (DVec2, DVec2)| {
+        a1.x < b0.x || b1.x < a0.x || a1.y < b0.y || b1.y < a0.y
+    };
+    // B is the far group; C holds the two front groups D and E.
+    assert!(apart(rect("B"), rect("C")) && apart(rect("D"), rect("E")));
+}
+
+/// On a 640 × 480 image the chosen pixel's square is under a pixel at slide size: the uv-map
+/// legend names what marks it, the ringed centre, not a yellow square no one can see.
+#[test]
+fn the_uv_map_legend_shows_the_pixel_as_it_is_drawn() {
+    let whitted = format!("{}/scenes/whitted.json", env!("CARGO_MANIFEST_DIR"));
+    let AnyScene::Space(scene) = load_str(&std::fs::read_to_string(whitted).unwrap()).unwrap() else {
+        panic!("a 3D scene")
+    };
+    let d = figure_in(&scene, "whitted", FigureKind::UvMap, &Aim::Auto, Lang::En, (1920, 1080));
+    let labels: Vec<&str> = d.legend.iter().map(|e| e.label.as_str()).collect();
+    assert!(labels.contains(&"the pixel's centre (ringed)") && !labels.contains(&"the pixel"), "{labels:?}");
+}

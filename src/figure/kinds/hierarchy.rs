@@ -14,12 +14,13 @@ use crate::bounds::aabb::Aabb;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
-use crate::figure::plane::{PagePlane, Planar};
+use crate::figure::plane::{Outline, PagePlane, Planar};
 use crate::figure::source::{first_hit, met, search_events, search_indexed};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
 use crate::format::markup_escape;
 use crate::record::event::Event;
+use crate::scene::Scene;
 
 /// What the walk did with a node, and why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -96,6 +97,10 @@ const DENSE_NODES: usize = 15;
 /// the walk reached.
 const DENSE_OBJECTS: usize = 15;
 
+/// A sphere drawn at least this wide (its radius, in shares of the view's width) carries its name
+/// inside, at its centre: beside a circle, in a group of circles, a name reads as its neighbour's.
+const NAME_INSIDE_RADIUS: f64 = 0.012;
+
 /// The entered nodes' colour.
 const ENTERED: Rgba = style::BLUISH_GREEN;
 /// The missed nodes' colour.
@@ -104,6 +109,9 @@ const MISSED: Rgba = style::REDDISH_PURPLE;
 const SKIPPED: Rgba = style::VERMILLION;
 /// The dash of skipped nodes: dots, apart from the missed nodes' dashes.
 const SKIPPED_DASH: crate::canvas::Dash = crate::canvas::Dash { on: 5.0, off: 9.0 };
+
+/// The radius of a tree node's disc, in reference pixels.
+const TREE_NODE: f64 = 25.0;
 
 /// The tree's top, as a fraction of the view's height below its top, under a legend of up to
 /// [`LEGEND_LINES_FREE`] lines.
@@ -168,19 +176,112 @@ fn letter(k: usize) -> String {
     out.iter().rev().collect()
 }
 
-/// The page plane: 2D the scene's; 3D the plane of the two axes the ray moves most along
-/// (boxes project to rectangles), through the root box's centre, with y (the scenes' up) up
-/// the page when it is one of them. The axes are returned in index order, for the caption.
-fn page<V: Planar>(centre: V, direction: V) -> (PagePlane<V>, Option<[usize; 2]>) {
+/// How much of the ray's length a 3D page plane must keep: a plane the ray crosses more steeply
+/// than this (|D on the page| < 0.5, over 60° out of it) is chosen only when no other is left.
+const MIN_RAY_ON_PAGE: f64 = 0.5;
+
+/// Two sibling overlaps closer than this (in shares of the smaller box) count as equal.
+const OVERLAP_TIE: f64 = 1e-6;
+
+/// The page plane: 2D the scene's. In 3D one of the three axis planes (boxes project to
+/// rectangles exactly), through the root box's centre: y (the scenes' up) up the page when it is
+/// one of its axes and the ray running left to right, else the view from above. Of the three, the figure takes the one that tells the walk most truly:
+/// first, the ray keeps at least [`MIN_RAY_ON_PAGE`] of its length on the page; then, fewest
+/// boxes the drawn ray would seem to cross while it misses them in space; then, least overlap
+/// between sibling boxes (the groups a ray skips drawn apart); last, the plane the ray moves
+/// most in. The axes are returned in index order, for the caption.
+fn page<V: Planar>(
+    nodes: &[TreeNode<V>],
+    origin: V,
+    direction: V,
+    reach: f64,
+) -> (PagePlane<V>, Option<[usize; 2]>) {
     let fallback = PagePlane { origin: V::ZERO, x: V::axis(0), y: V::axis(1), offset: DVec2::ZERO };
     if V::DIM == 2 {
         return (fallback, None);
     }
-    let dropped = (0..3).fold(0, |m, a| if direction[a].abs() < direction[m].abs() { a } else { m });
+    let score = |dropped: usize| {
+        let kept = [(dropped + 1) % 3, (dropped + 2) % 3];
+        let steep = (1.0 - direction[dropped].powi(2)).max(0.0).sqrt() < MIN_RAY_ON_PAGE;
+        let lies = nodes
+            .iter()
+            .filter(|n| {
+                segment_meets(&n.bounds, origin, direction, reach, &kept)
+                    && !segment_meets(&n.bounds, origin, direction, reach, &[0, 1, 2])
+            })
+            .count();
+        (steep, lies, sibling_overlap(nodes, &kept), direction[dropped].abs())
+    };
+    let better = |a: &(bool, usize, f64, f64), b: &(bool, usize, f64, f64)| {
+        (a.0, a.1).cmp(&(b.0, b.1)).then_with(|| {
+            if (a.2 - b.2).abs() > OVERLAP_TIE {
+                a.2.total_cmp(&b.2)
+            } else {
+                a.3.total_cmp(&b.3)
+            }
+        })
+    };
+    let dropped = (0..3).map(|a| (a, score(a))).min_by(|(_, a), (_, b)| better(a, b)).map_or(2, |(a, _)| a);
+    let centre = (nodes[0].bounds.min + nodes[0].bounds.max) * 0.5;
     let axes: Vec<usize> = (0..3).filter(|a| *a != dropped).collect();
-    let (across, up) = if axes[0] == 1 { (axes[1], axes[0]) } else { (axes[0], axes[1]) };
-    let plane = PagePlane::spanned(centre, V::axis(across), V::axis(up)).unwrap_or(fallback);
+    let (across, up) = if dropped == 1 {
+        // Seen from above (+y toward the viewer): x across, −z up, since x × (−z) = y.
+        (V::axis(0), -V::axis(2))
+    } else {
+        // y up; across the other axis, signed so the ray runs left to right.
+        let other = axes[0] + axes[1] - 1;
+        let sign = if direction[other] < 0.0 { -1.0 } else { 1.0 };
+        (V::axis(other) * sign, V::axis(1))
+    };
+    let plane = PagePlane::spanned(centre, across, up).unwrap_or(fallback);
     (plane, Some([axes[0], axes[1]]))
+}
+
+/// Whether the segment `O + t·D`, `0 ≤ t ≤ reach`, meets box `b` in the coordinates `axes`
+/// (the slab test `max t_near ≤ min t_far` over those axes only). Over all three it is the box in
+/// space; over two it is the box's rectangle on that axis plane, for projecting onto an axis plane
+/// drops one coordinate and keeps every point's t.
+fn segment_meets<V: Planar>(b: &Aabb<V>, origin: V, direction: V, reach: f64, axes: &[usize]) -> bool {
+    let (mut near, mut far) = (0.0_f64, reach);
+    for &a in axes {
+        if direction[a] == 0.0 {
+            if origin[a] < b.min[a] || origin[a] > b.max[a] {
+                return false;
+            }
+            continue;
+        }
+        let (t0, t1) = ((b.min[a] - origin[a]) / direction[a], (b.max[a] - origin[a]) / direction[a]);
+        near = near.max(t0.min(t1));
+        far = far.min(t0.max(t1));
+    }
+    near <= far
+}
+
+/// How much sibling boxes overlap on the axis plane of `axes`: over every pair of children of a
+/// node, the area they share as a share of the smaller one's area, summed.
+fn sibling_overlap<V: Planar>(nodes: &[TreeNode<V>], axes: &[usize; 2]) -> f64 {
+    let side = |b: &Aabb<V>, a: usize| (b.min[a], b.max[a]);
+    let area = |b: &Aabb<V>| axes.iter().map(|&a| (b.max[a] - b.min[a]).max(0.0)).product::<f64>();
+    let mut total = 0.0;
+    for n in nodes {
+        for (i, &p) in n.children.iter().enumerate() {
+            for &q in &n.children[i + 1..] {
+                let (bp, bq) = (&nodes[p].bounds, &nodes[q].bounds);
+                let shared: f64 = axes
+                    .iter()
+                    .map(|&a| {
+                        let ((p0, p1), (q0, q1)) = (side(bp, a), side(bq, a));
+                        (p1.min(q1) - p0.max(q0)).max(0.0)
+                    })
+                    .product();
+                let smaller = area(bp).min(area(bq));
+                if smaller > 0.0 {
+                    total += shared / smaller;
+                }
+            }
+        }
+    }
+    total
 }
 
 /// A box on the page: its projection's bounding rectangle (exact on an axis plane).
@@ -244,8 +345,8 @@ pub fn draw<V: Planar>(
     }
     let root = log.nodes.first().ok_or_else(|| FigureError("no ray was traced".into()))?;
     let hit = first_hit(log).filter(|k| *k == 0).and_then(|k| log.nodes[k].end.as_ref()?.hit);
-    let centre = (nodes[0].bounds.min + nodes[0].bounds.max) * 0.5;
-    let (plane, axes) = page(centre, root.start.direction);
+    let reach = hit.map_or(f64::INFINITY, |h| (h.point - root.start.origin).length());
+    let (plane, axes) = page(&nodes, root.start.origin, root.start.direction, reach);
 
     d.set_title(input.t(title));
     let mut caption = format!(
@@ -361,9 +462,34 @@ pub fn draw<V: Planar>(
         .into_iter()
         .filter(|(o, _)| scene.objects.len() <= DENSE_OBJECTS || reached.contains(o))
         .collect();
-    label_objects(d, scene, &anchors, input.lang);
+    // A name inside its circle unless a node's name is already there; then beside it.
+    let mut beside = Vec::new();
+    for (o, anchor) in anchors {
+        let centre = circle_of(scene, &plane, o).filter(|(_, r)| *r >= NAME_INSIDE_RADIUS * view.width());
+        let Some((centre, _)) = centre else {
+            beside.push((o, anchor));
+            continue;
+        };
+        let opts =
+            TextOpts::NOTE.color(style::DARK_GREY).align(Align { h: HAlign::Center, v: VAlign::Middle });
+        d.text(&format!("object-name:{o}"), centre, &markup_escape(&scene.object_label(o, input.lang)), opts);
+        let last = d.items.len() - 1;
+        if d.overlapping_labels().iter().any(|(a, b)| *a == last || *b == last) {
+            d.items.pop();
+            beside.push((o, anchor));
+        }
+    }
+    label_objects(d, scene, &beside, input.lang);
     tree(d, &nodes, &fate, &visits, input, column, &view);
     Ok(())
+}
+
+/// Object `o`'s section on `plane` when it is a circle: its centre and radius.
+fn circle_of<V: Planar>(scene: &Scene<V>, plane: &PagePlane<V>, o: usize) -> Option<(DVec2, f64)> {
+    V::outlines(&scene.objects[o].shape, plane).into_iter().find_map(|ol| match ol.outline {
+        Outline::Circle { center, radius } if ol.section => Some((center, radius)),
+        _ => None,
+    })
 }
 
 /// The legend: the ray and the fates that occur (the opened boxes always).
@@ -395,9 +521,57 @@ fn fate_style(f: Fate) -> Pen {
     }
 }
 
-/// The tree in the column whose top-left is `column`: leaves one unit apart, parents over their
-/// children, each node a disc of its fate's colour with its name, the entry order beside it and
-/// a leaf's objects under it.
+/// Where each shown node of the subtree under `k` goes across the page, in units, its root at 0:
+/// the children's subtrees side by side, each as close to the ones before as keeps every two
+/// nodes of one level at least a unit apart, and the parent over the middle of its first and last
+/// child (a tidy layout after Reingold and Tilford, without their centring of the small subtrees
+/// between two large ones). Packing by levels, rather than giving every leaf its own column, keeps
+/// a parent near its leaf children: beside a wide sibling they no longer sit so far off that
+/// their edges leave the parent almost along one line.
+fn tidy<V>(k: usize, nodes: &[TreeNode<V>], shown: &[bool]) -> Tidy {
+    let mut placed: Vec<(usize, f64)> = Vec::new();
+    let mut extent: Vec<(f64, f64)> = Vec::new();
+    let mut roots: Vec<f64> = Vec::new();
+    for &c in nodes[k].children.iter().filter(|c| shown[**c]) {
+        let Tidy { placed: sub, levels: sub_extent } = tidy(c, nodes, shown);
+        // The least shift that keeps this subtree a unit clear of the ones before, level by level.
+        let shift = extent
+            .iter()
+            .zip(&sub_extent)
+            .map(|(before, next)| before.1 + 1.0 - next.0)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let shift = if extent.is_empty() { 0.0 } else { shift };
+        placed.extend(sub.into_iter().map(|(n, x)| (n, x + shift)));
+        for (level, (lo, hi)) in sub_extent.into_iter().enumerate() {
+            match extent.get_mut(level) {
+                Some(e) => *e = (e.0.min(lo + shift), e.1.max(hi + shift)),
+                None => extent.push((lo + shift, hi + shift)),
+            }
+        }
+        roots.push(shift);
+    }
+    // The parent over the middle of its first and last child; everything shifted to put it at 0.
+    let middle = match (roots.first(), roots.last()) {
+        (Some(first), Some(last)) => (first + last) / 2.0,
+        _ => 0.0,
+    };
+    let mut out = vec![(k, 0.0)];
+    out.extend(placed.into_iter().map(|(n, x)| (n, x - middle)));
+    let mut levels = vec![(0.0, 0.0)];
+    levels.extend(extent.into_iter().map(|(lo, hi)| (lo - middle, hi - middle)));
+    Tidy { placed: out, levels }
+}
+
+/// A subtree laid out by [`tidy`], its root at x = 0.
+struct Tidy {
+    /// Every shown node of it with its x, in units.
+    placed: Vec<(usize, f64)>,
+    /// Its extent `(least, greatest x)` on each level, its root's first.
+    levels: Vec<(f64, f64)>,
+}
+
+/// The tree in the column whose top-left is `column`, laid out by [`tidy`], each node a disc of
+/// its fate's colour with its name, the entry order beside it and a leaf's objects under it.
 fn tree<V: Planar>(
     d: &mut Drawing,
     nodes: &[TreeNode<V>],
@@ -417,21 +591,13 @@ fn tree<V: Planar>(
                     .any(|(p, n)| matches!(fate[p], Fate::Entered(_)) && n.children.contains(&k))
         })
         .collect();
+    let Tidy { placed, levels } = tidy(0, nodes, &shown);
+    let least = levels.iter().map(|l| l.0).fold(f64::INFINITY, f64::min);
+    let units = levels.iter().map(|l| l.1).fold(f64::NEG_INFINITY, f64::max) - least;
     let mut x = vec![0.0; nodes.len()];
-    let mut next = 0.0;
-    fn place<V>(k: usize, nodes: &[TreeNode<V>], shown: &[bool], x: &mut [f64], next: &mut f64) {
-        let kids: Vec<usize> = nodes[k].children.iter().copied().filter(|c| shown[*c]).collect();
-        if kids.is_empty() {
-            x[k] = *next;
-            *next += 1.0;
-        } else {
-            for &c in &kids {
-                place(c, nodes, shown, x, next);
-            }
-            x[k] = (x[kids[0]] + x[kids[kids.len() - 1]]) / 2.0;
-        }
+    for (k, at) in placed {
+        x[k] = at - least;
     }
-    place(0, nodes, &shown, &mut x, &mut next);
     let depth = nodes.iter().zip(&shown).filter(|(_, s)| **s).map(|(n, _)| n.depth).max().unwrap_or(0);
     let width = view.xmax() - column.x;
     let (left, right) = (column.x + 0.08 * width, view.xmax() - 0.06 * width);
@@ -440,7 +606,7 @@ fn tree<V: Planar>(
     let below_legend = TREE_TOP + LEGEND_LINE * f64::from(u32::try_from(extra).unwrap_or(u32::MAX));
     let (top, bottom) = (view.ymax() - below_legend * view.height(), view.ymin() + 0.1 * view.height());
     let at = |k: usize| {
-        let fx = if next > 1.0 { x[k] / (next - 1.0) } else { 0.5 };
+        let fx = if units > 0.0 { x[k] / units } else { 0.5 };
         let fy = if depth > 0 { f64::from(nodes[k].depth) / f64::from(depth) } else { 0.0 };
         DVec2::new(left + fx * (right - left), top - fy * (top - bottom))
     };
@@ -459,13 +625,8 @@ fn tree<V: Planar>(
         let f = fate[k];
         let fill = if matches!(f, Fate::Entered(_)) { ENTERED } else { style::WHITE };
         d.with_events(visits[k].iter().copied(), |d| {
-            d.marker(
-                &format!("tree-node-{}", f.class()),
-                at(k),
-                25.0,
-                fill,
-                fate_style(f).with_width(style::CONSTRUCTION_WIDTH),
-            );
+            let ring = fate_style(f).with_width(style::CONSTRUCTION_WIDTH);
+            parts::node_disc(d, &format!("tree-node-{}", f.class()), at(k), TREE_NODE, fill, ring);
             let name = TextOpts::NOTE.size(TextSize::Small).align(Align::CENTER).no_halo();
             d.text("tree-name", at(k), &letter(k), name);
             if let Fate::Entered(order) = f {

@@ -145,7 +145,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     ));
     legend_role(d, RayRole::Primary, lang);
     legend_points(d, lang, true, false, false);
-    d.legend_entry(input.t(Label::ViewWindow), window_style(), LegendIcon::Line);
+    d.legend_entry(input.t(Label::ViewWindow), style::view_window(), LegendIcon::Line);
     // Room above the panels for their headings.
     d.fit_view(&[lo, hi + shift + DVec2::new(0.0, 2.5 * pad)], 0.0);
 
@@ -155,7 +155,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let clip = View::new(lo.x + offset.x, hi.x + offset.x, lo.y, hi.y).unwrap_or(d.view);
         anchors.push((draw_objects(d, scene, &panel, &clip, &[], style::BLACK), offset));
         let (a, b) = window(&panel);
-        d.segment("window", a, b, window_style());
+        d.segment("window", a, b, style::view_window());
         for p in primaries(traced, &panel) {
             draw_ray(d, RayRole::Primary, p.from, end(&p, offset));
         }
@@ -308,9 +308,4 @@ fn window_points<V: Planar>(traced: &FigureTrace<V>, plane: &PagePlane<V>, cam: 
         })
         .map(|(u, v)| plane.point(cam.window_point(u, v)))
         .collect()
-}
-
-/// The view window's stroke: thick dark grey.
-fn window_style() -> Pen {
-    Pen::solid(style::DARK_GREY, style::OBJECT_WIDTH * 1.5)
 }

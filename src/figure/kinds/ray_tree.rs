@@ -299,7 +299,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 let role = parts::role(node.start.kind);
                 let fill = node.end.as_ref().map_or(style::WHITE, |e| swatch(e.color));
                 let ring = Pen::solid(role.color(), style::RAY_WIDTH);
-                d.marker("node", *p, RAY_NODE, fill, ring);
+                parts::node_disc(d, "node", *p, RAY_NODE, fill, ring);
                 if stopped.contains(k) {
                     let limit = log.indices_of(*k, |e| matches!(e, Event::DepthLimit { .. }));
                     d.with_events(events_of(v).into_iter().chain(limit), |d| {
@@ -308,11 +308,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 }
             }
             Vertex::Shadow { s: None, .. } => {
-                d.marker("node:shadow", *p, SHADOW_NODE, style::WHITE, uncast_style());
+                parts::node_disc(d, "node:shadow", *p, SHADOW_NODE, style::WHITE, uncast_style());
             }
             Vertex::Shadow { role, .. } => {
                 let ring = Pen { width: style::RAY_WIDTH * 0.8, ..role.style() };
-                d.marker("node:shadow", *p, SHADOW_NODE, style::WHITE, ring);
+                parts::node_disc(d, "node:shadow", *p, SHADOW_NODE, style::WHITE, ring);
             }
         });
     }

@@ -7,7 +7,7 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Drawing, Pen};
+use crate::canvas::{Drawing, LegendIcon, Pen};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
     self, camera_plane, draw_light, draw_objects, draw_observer, draw_ray, exit_point, label, label_objects,
@@ -112,6 +112,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     if first.is_some() {
         legend_normal(d, lang);
     }
+    if window.is_some() {
+        d.legend_entry(input.t(Label::ViewWindow), style::view_window(), LegendIcon::Line);
+    }
 
     // The view: every origin, hit, light, the observer and the window; misses get some room.
     let mut points: Vec<DVec2> = segments.iter().flat_map(|s| [Some(s.from), s.to]).flatten().collect();
@@ -156,7 +159,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         }
     }
     if let Some((a, b)) = window {
-        d.segment("window", a, b, Pen::solid(style::DARK_GREY, style::OBJECT_WIDTH * 1.5));
+        d.segment("window", a, b, style::view_window());
         draw_observer(d, plane.point(cam.eye));
     }
     for s in &shadows {

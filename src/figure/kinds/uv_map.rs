@@ -27,6 +27,11 @@ struct Mapped {
     event: usize,
 }
 
+/// Above this many pixels across (or down) the image, the chosen pixel's own square is drawn under
+/// about 8 px at slide size (the image is drawn some 450 px tall): what marks it is the ring around
+/// its centre, and the legend says so.
+const SWATCH_MAX_PIXELS: usize = 60;
+
 /// Draws the figure.
 ///
 /// # Errors
@@ -39,11 +44,21 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.set_title(input.t(Label::TitleUvMap));
     let rows = if V::DIM == 2 { String::new() } else { format!(" · {}", input.t(Label::RowsFromBottom)) };
     d.set_caption(&format!("{}{rows}", input.traced(traced)));
-    d.legend_entry(
-        input.t(Label::ChosenPixel),
-        style::outline(style::BLACK),
-        LegendIcon::Swatch(style::HIGHLIGHT),
-    );
+    // The legend shows the pixel as it is seen: its yellow square, or the ringed centre when the
+    // square is too small to see.
+    if cam.nx.max(cam.ny) > SWATCH_MAX_PIXELS {
+        d.legend_entry(
+            input.t(Label::PixelCentreRinged),
+            style::outline(style::BLACK),
+            LegendIcon::Dot(style::HIT),
+        );
+    } else {
+        d.legend_entry(
+            input.t(Label::ChosenPixel),
+            style::outline(style::BLACK),
+            LegendIcon::Swatch(style::HIGHLIGHT),
+        );
+    }
     d.legend_entry(input.t(Label::WindowViewport), style::normal(), LegendIcon::Arrow);
     if V::DIM == 2 {
         one_row(input, d, cam, &mapped);

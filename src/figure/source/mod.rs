@@ -60,6 +60,9 @@ pub enum Pick {
     Rich,
     /// The pixel whose primary hit is lit with the clearest N, L, H, V.
     Lit,
+    /// The pixel whose primary hit is lit with the clearest N, L, H, V, although two of them lie
+    /// closer than [`MIN_APART_DEG`]: no pixel tried keeps them apart.
+    LitCrowded,
     /// The pixel whose adaptive subdivision mixes the most levels.
     Subdivided,
     /// The pixel whose primary ray's walk through the structure is the most telling.
@@ -219,9 +222,15 @@ pub fn record<V: Dim>(
             traces
         }
         FigureKind::LocalModel => {
-            let main = tracer.aimed(aim, Pick::Lit, |log| lit_score(scene, log));
+            let mut main = tracer.aimed(aim, Pick::Lit, |log| lit_score(scene, log));
             if first_hit(&main.log).is_none() {
                 return Err(FigureError(missing(aim, "hit")));
+            }
+            // The best pixel may still draw two vectors one over the other: the caption says so.
+            let crowded =
+                main.log.nodes.first().and_then(vectors_apart_deg).is_none_or(|a| a < MIN_APART_DEG);
+            if main.pick == Pick::Lit && crowded {
+                main.pick = Pick::LitCrowded;
             }
             vec![main]
         }
@@ -661,7 +670,12 @@ pub fn clearance<V: Dim>(volume: &BoundingVolume<V>, origin: V, direction: V) ->
     Some((over(0.5 * (a + b)), size))
 }
 
-/// `bvh` and `octree`: a primary ray that enters several nodes and passes others by.
+/// What a walk ending at a hit adds to a hierarchy walk's score: half a node, so it only breaks
+/// ties between walks that test as much, in favour of one that finds its object in a leaf.
+const WALK_HIT_BONUS: f64 = 0.5;
+
+/// `bvh` and `octree`: a primary ray that enters several nodes and passes others by,
+/// `10·min(entered, 6) + min(missed, 6)`, and [`WALK_HIT_BONUS`] when it hits.
 fn tree_score<V>(log: &EventLog<V>) -> Option<f64> {
     let (mut entered, mut missed) = (0usize, 0usize);
     for e in search_events(log, 0) {
@@ -673,7 +687,8 @@ fn tree_score<V>(log: &EventLog<V>) -> Option<f64> {
             }
         }
     }
-    (entered > 1).then(|| 10.0 * entered.min(6) as f64 + missed.min(6) as f64)
+    let hit = if first_hit(log) == Some(0) { WALK_HIT_BONUS } else { 0.0 };
+    (entered > 1).then(|| 10.0 * entered.min(6) as f64 + missed.min(6) as f64 + hit)
 }
 
 /// `grid-dda`: a walk of several cells, best one that shows the pitfall (a hit found in a cell
