@@ -116,7 +116,9 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
         { "kind": "refraction", "scene": "prism-old.json",
           "claims": [ { "kind": "incidence", "min": 20, "max": 60 } ], "caption": { "en": "", "ro": "" } },
         { "kind": "rays", "scene": "../../../scenes/flat.json", "pixel": [20], "depth": 0,
-          "claims": [ { "kind": "apart", "min": 10 } ], "caption": { "en": "", "ro": "" } } ] }"#;
+          "claims": [ { "kind": "apart", "min": 10 } ], "caption": { "en": "", "ro": "" } },
+        { "kind": "bvh", "scene": "../../../lessons/scenes/crowd_2d.json", "pixel": [13],
+          "claims": [ { "kind": "events", "event": "hit", "min": 1 } ], "caption": { "en": "", "ro": "" } } ] }"#;
     let failed = failures(&dir, old, Lang::En);
     let expected = [
         "old figure 1 (grid-dda): claim grid-pitfall (voxels from the early find to the accepted hit): wanted ≥ 1, measured 0",
@@ -127,6 +129,7 @@ fn the_old_scenes_and_pixels_fail_their_claims() {
         "old figure 6 (local-model): claim apart (least angle between N, V, L, H, °): wanted ≥ 10, measured 3.25",
         "old figure 7 (refraction): claim incidence",
         "old figure 8 (rays): claim apart (least angle between N, V, L, H, °): wanted ≥ 10, measured 3.25",
+        "old figure 9 (bvh): claim events hit: wanted ≥ 1, measured 0",
     ];
     assert_eq!(failed.len(), expected.len(), "{}", failed.join("\n"));
     for (line, want) in failed.iter().zip(expected) {
