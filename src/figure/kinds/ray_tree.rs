@@ -71,6 +71,10 @@ fn children<V>(log: &EventLog<V>, k: usize, shadows: bool) -> Vec<Vertex> {
 /// leaf's words are short: its neighbours stay one unit away).
 const RAY_LEAF_GAP: f64 = 1.5;
 
+/// The distance, in leaf units, between two neighbouring shadow leaves on one row: their words
+/// (`lum = 0`, `s = 0.9`) side by side touched at one unit.
+const SHADOW_ROW_GAP: f64 = 1.25;
+
 /// Lays the tree out: leaves one unit apart in order (ray leaves [`RAY_LEAF_GAP`]), each parent over the middle of its
 /// children, one row per level. Returns every vertex with its position and parent position.
 fn layout<V>(
@@ -84,7 +88,7 @@ fn layout<V>(
         v: Vertex,
         row: f64,
         (shadows, row_h): (bool, f64),
-        next: &mut (f64, Option<bool>),
+        next: &mut (f64, Option<(bool, f64)>),
         out: &mut Vec<(Vertex, DVec2, Option<DVec2>)>,
     ) -> DVec2 {
         let kids = match v {
@@ -97,10 +101,16 @@ fn layout<V>(
             // A ray leaf has a word under it (its object, or "background") and its name beside
             // it: it keeps a wider gap to the leaf before it, so that neither touches.
             let ray = matches!(v, Vertex::Ray(_));
-            if let Some(last_ray) = next.1 {
-                next.0 += if ray || last_ray { RAY_LEAF_GAP } else { 1.0 };
+            if let Some((last_ray, last_row)) = next.1 {
+                #[allow(clippy::float_cmp)] // rows are whole numbers
+                let same_row = last_row == row;
+                next.0 += match (ray || last_ray, same_row) {
+                    (true, _) => RAY_LEAF_GAP,
+                    (false, true) => SHADOW_ROW_GAP,
+                    (false, false) => 1.0,
+                };
             }
-            next.1 = Some(ray);
+            next.1 = Some((ray, row));
             DVec2::new(next.0, -row * row_h)
         } else {
             let xs: Vec<f64> =
@@ -111,7 +121,7 @@ fn layout<V>(
         at
     }
     let mut out = Vec::new();
-    // The last leaf's x and whether it was a ray's.
+    // The last leaf's x, whether it was a ray's and its row.
     let mut next = (0.0, None);
     walk(log, Vertex::Ray(root), 0.0, (shadows, row_h), &mut next, &mut out);
     // Each vertex's parent position, from the tree's own structure.
