@@ -5,7 +5,7 @@
 
 use glam::DVec2;
 
-use super::items::{Item, Mark, Text};
+use super::items::{Item, Mark};
 use super::label::{Placement, TextOpts, FAR_STEPS, NEAR_STEPS};
 use super::legend::{LegendEntry, LegendIcon, LegendPlace};
 use super::style::{self, Pen, Rgba};
@@ -234,16 +234,7 @@ impl Drawing {
     /// it (at most [`STACK_LINES`] lines, never below its floor; if none is clear, to the least
     /// covered).
     pub fn text(&mut self, tag: &str, anchor: DVec2, markup: &str, opts: TextOpts) -> &mut Self {
-        let mut label = Text {
-            text: markup.to_owned(),
-            anchor,
-            offset: opts.offset,
-            align: opts.align,
-            size: opts.size,
-            weight: opts.weight,
-            leader: false,
-            halo: opts.halo,
-        };
+        let mut label = opts.label(markup, anchor);
         match opts.placement {
             Placement::AsGiven => {}
             Placement::Clear => {
@@ -380,7 +371,7 @@ mod tests {
         }
     }
 
-    pub(super) fn text_items(d: &Drawing) -> Vec<&Text> {
+    pub(super) fn text_items(d: &Drawing) -> Vec<&crate::canvas::items::Text> {
         d.items
             .iter()
             .filter_map(|item| if let Mark::Text(t) = &item.mark { Some(t) } else { None })

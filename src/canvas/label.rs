@@ -138,6 +138,21 @@ pub enum Placement {
 }
 
 impl TextOpts {
+    /// The label `markup` at `anchor` as these options lay it out, before any placement moves it.
+    #[must_use]
+    pub fn label(&self, markup: &str, anchor: DVec2) -> Text {
+        Text {
+            text: markup.to_owned(),
+            anchor,
+            offset: self.offset,
+            align: self.align,
+            size: self.size,
+            weight: self.weight,
+            leader: false,
+            halo: self.halo,
+        }
+    }
+
     /// A diagram label: label size, centred on its anchor, dark, with a halo.
     pub const LABEL: Self = Self {
         offset: DVec2::ZERO,

@@ -9,7 +9,7 @@ use glam::DVec2;
 
 use super::Input;
 use crate::accel::Layout;
-use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, Text, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, text_column};
 use crate::figure::plane::{PagePlane, Planar};
@@ -231,16 +231,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 .align(Align { h, v })
                 .offset(sx * STEP_INSET.x, sy * STEP_INSET.y)
                 .bold();
-            let label = Text {
-                text: number.clone(),
-                anchor: at,
-                offset: opts.offset,
-                align: opts.align,
-                size: opts.size,
-                weight: opts.weight,
-                leader: false,
-                halo: opts.halo,
-            };
+            let label = opts.label(&number, at);
             let crossed = Drawing::ink_box(&label, &tf).inflate(stroke).length_inside(ray_a, ray_b);
             (crossed, at, opts)
         };
