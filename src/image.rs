@@ -54,30 +54,11 @@ impl Image {
         }
         out
     }
-    /// 8-bit RGBA bytes in file order (top row first), alpha 255: the pixels of [`Image::to_png`]
-    /// as a browser's `ImageData` takes them.
+    /// 8-bit RGBA bytes in file order (top row first), alpha 255: the pixels of the command line's
+    /// PNG as a browser's `ImageData` takes them.
     #[must_use]
     pub fn to_rgba8(&self) -> Vec<u8> {
         self.to_rgb8().chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], u8::MAX]).collect()
-    }
-    /// The image as PNG bytes.
-    ///
-    /// # Errors
-    /// Only if the encoder fails (it does not for valid sizes).
-    pub fn to_png(&self) -> Result<Vec<u8>, String> {
-        let mut bytes = Vec::new();
-        let width = u32::try_from(self.width).map_err(|e| e.to_string())?;
-        let height = u32::try_from(self.height).map_err(|e| e.to_string())?;
-        let encoder = image::codecs::png::PngEncoder::new(&mut bytes);
-        image::ImageEncoder::write_image(
-            encoder,
-            &self.to_rgb8(),
-            width,
-            height,
-            image::ExtendedColorType::Rgb8,
-        )
-        .map_err(|e| e.to_string())?;
-        Ok(bytes)
     }
 }
 

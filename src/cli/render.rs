@@ -11,6 +11,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 use whitted::accel::AccelOptions;
+use whitted::image::Image;
 use whitted::request::options::resize;
 use whitted::request::parse;
 use whitted::request::render::{self as job, Job, Outcome};
@@ -71,7 +72,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             pool.install(|| render_scene(&s, args, sampling, &options, rows))
         }
     }?;
-    let png = outcome.rendered.image.to_png().map_err(Failure::other)?;
+    let png = png(&outcome.rendered.image).map_err(Failure::other)?;
     write_file(&output, &png)?;
     let stats = &outcome.rendered.stats;
     let rays = stats.rays;
@@ -150,4 +151,21 @@ fn render_scene<V: Dim>(
         bar.finish_and_clear();
     }
     Ok(outcome)
+}
+
+/// The image as PNG bytes, 8-bit RGB in file order ([`Image::to_rgb8`]). The command line's own:
+/// the `image` crate is a dependency of the `cli` feature only, so the library built for the
+/// browser (which never writes a PNG) does not compile it.
+///
+/// # Errors
+/// Only if the encoder fails (it does not for valid sizes).
+fn png(image: &Image) -> Result<Vec<u8>, String> {
+    use image::ImageEncoder;
+    let width = u32::try_from(image.width).map_err(|e| e.to_string())?;
+    let height = u32::try_from(image.height).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut bytes)
+        .write_image(&image.to_rgb8(), width, height, image::ExtendedColorType::Rgb8)
+        .map_err(|e| e.to_string())?;
+    Ok(bytes)
 }
