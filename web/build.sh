@@ -7,17 +7,20 @@
 # gives /usr/bin/rustc, /usr/bin/cargo (1.96), the standard library's sources and wasm-ld; the
 # standard library is then compiled for wasm32 with the module (-Zbuild-std, allowed by
 # RUSTC_BOOTSTRAP=1). When something is missing this script says what on stderr, with the command
-# that installs it, and exits 3; with --install it runs that command itself (as root).
+# that installs it, and exits 3; with --install it runs that command itself (as root). With --check
+# it stops there: exit 0 when the toolchain is complete, 3 when not, and builds nothing.
 #
 # Its target folder is target/wasm-build: another rustc's artefacts must not share the native one
 # (mixing them gives E0514).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 install=no
+check=no
 for arg in "$@"; do
   case "$arg" in
     --install) install=yes ;;
-    *) echo "web/build.sh: unknown argument \`$arg\` (only --install)" >&2; exit 2 ;;
+    --check) check=yes ;;
+    *) echo "web/build.sh: unknown argument \`$arg\` (only --install, --check)" >&2; exit 2 ;;
   esac
 done
 
@@ -36,11 +39,12 @@ missing() {
     sysroot=$("$rustc" --print sysroot)
     [ -f "$sysroot/lib/rustlib/src/rust/library/Cargo.lock" ] \
       || echo "  the standard library's sources under $sysroot/lib/rustlib/src (Debian package rust-web-src)"
-    # image 0.25 needs rustc 1.88; without `apt-get update` Debian offers rustc-web 1.85.
-    local minor
+    # The crates' rust-version (Cargo.toml); without `apt-get update` Debian offers rustc-web 1.85.
+    local minor want
+    want=$(sed -nE 's/^rust-version = "1\.([0-9]+)"/\1/p' "$root/Cargo.toml")
     minor=$("$rustc" --version | sed -E 's/^rustc 1\.([0-9]+).*/\1/')
-    [ "$minor" -ge 88 ] 2>/dev/null \
-      || echo "  rustc ≥ 1.88 at $rustc (it is $("$rustc" --version); run apt-get update first)"
+    [ "$minor" -ge "$want" ] 2>/dev/null \
+      || echo "  rustc ≥ 1.$want at $rustc (it is $("$rustc" --version); run apt-get update first)"
   fi
 }
 
@@ -63,6 +67,7 @@ if [ -n "$gaps" ]; then
   } >&2
   exit 3
 fi
+[ "$check" = no ] || exit 0
 
 cd "$root"
 build_dir="$root/target/wasm-build"
