@@ -100,10 +100,9 @@ impl Mistake {
     #[must_use]
     pub fn what(self, lang: Lang) -> &'static str {
         let (en, ro) = match self {
-            Self::UnnormalizedDirection => (
-                "the direction is not of unit length",
-                "direcția nu are lungimea 1",
-            ),
+            Self::UnnormalizedDirection => {
+                ("the direction is not of unit length", "direcția nu are lungimea 1")
+            }
             Self::UnnormalizedNormal => ("the normal is not of unit length", "normala nu are lungimea 1"),
             Self::NormalNotFlipped => (
                 "inside the object the normal was not turned toward the incoming ray",
@@ -130,25 +129,23 @@ impl Mistake {
                 "the ray goes through the pixel's corner: the +0.5 of the centre is missing",
                 "raza trece prin colțul pixelului: lipsește +0.5 al centrului",
             ),
-            Self::RowsFromTop => (
-                "the rows were counted from the top",
-                "rândurile au fost numărate de sus",
-            ),
+            Self::RowsFromTop => ("the rows were counted from the top", "rândurile au fost numărate de sus"),
             Self::PhongRv => (
                 "the highlight was computed with Phong's (R·V)^n",
                 "reflexia speculară a fost calculată cu (R·V)^n al lui Phong",
             ),
             Self::NoAttenuation => ("the attenuation f_at was left out", "atenuarea f_at a fost omisă"),
-            Self::UnclampedAttenuation => (
-                "the attenuation f_at was not clamped to 1",
-                "atenuarea f_at nu a fost limitată la 1",
-            ),
+            Self::UnclampedAttenuation => {
+                ("the attenuation f_at was not clamped to 1", "atenuarea f_at nu a fost limitată la 1")
+            }
             Self::DepthOffByOne => ("the depth limit is off by one", "limita de adâncime e greșită cu unu"),
             Self::TransmitKt0 => (
                 "a transmitted ray was spawned for an object with kt = 0",
                 "s-a generat o rază transmisă pentru un obiect cu kt = 0",
             ),
-            Self::LocalTwice => ("the local term was counted twice", "termenul local a fost numărat de două ori"),
+            Self::LocalTwice => {
+                ("the local term was counted twice", "termenul local a fost numărat de două ori")
+            }
             Self::ClampBeforeSum => (
                 "the colours were clamped to [0, 1] before being summed",
                 "culorile au fost limitate la [0, 1] înainte de însumare",
@@ -286,7 +283,12 @@ pub struct Spawn<V> {
 
 /// The mistake that explains a secondary ray's wrong direction, if one does.
 #[must_use]
-pub fn direction<V: Vector>(found: V, expected: V, transmitted: Option<Spawn<V>>, tol: f64) -> Option<Mistake> {
+pub fn direction<V: Vector>(
+    found: V,
+    expected: V,
+    transmitted: Option<Spawn<V>>,
+    tol: f64,
+) -> Option<Mistake> {
     if unnormalized(found, expected, tol) {
         return Some(Mistake::UnnormalizedDirection);
     }

@@ -18,7 +18,9 @@ fn t(lang: Lang, en: &'static str, ro: &'static str) -> &'static str {
 #[must_use]
 pub fn shown_text(s: &Shown, lang: Lang) -> String {
     match s {
-        Shown::Vector(v) => format!("({})", v.iter().map(|x| narration_number(*x)).collect::<Vec<_>>().join(", ")),
+        Shown::Vector(v) => {
+            format!("({})", v.iter().map(|x| narration_number(*x)).collect::<Vec<_>>().join(", "))
+        }
         Shown::Number(x) => narration_number(*x),
         Shown::Name(n) if n.is_empty() => t(lang, "an object (unnamed)", "un obiect (nenumit)").to_owned(),
         Shown::Name(n) => n.clone(),
@@ -143,12 +145,7 @@ fn divergence(out: &mut String, d: &Divergence, lang: Lang) {
     if !d.inputs.is_empty() {
         let inputs: Vec<String> =
             d.inputs.iter().map(|(name, v)| format!("{name} = {}", shown_text(v, lang))).collect();
-        let _ = writeln!(
-            out,
-            "  {:width$} {}",
-            t(lang, "with", "cu"),
-            inputs.join(", ")
-        );
+        let _ = writeln!(out, "  {:width$} {}", t(lang, "with", "cu"), inputs.join(", "));
         let _ = writeln!(
             out,
             "  {:width$} {}",
@@ -161,7 +158,8 @@ fn divergence(out: &mut String, d: &Divergence, lang: Lang) {
         );
     }
     if let Some(m) = d.diagnosis {
-        let _ = writeln!(out, "  {:width$} {} [{}]", t(lang, "diagnosis", "diagnostic"), m.what(lang), m.name());
+        let _ =
+            writeln!(out, "  {:width$} {} [{}]", t(lang, "diagnosis", "diagnostic"), m.what(lang), m.name());
         let _ = writeln!(out, "  {:width$} {}", t(lang, "the rule", "regula"), m.rule(lang));
     }
     let _ = writeln!(

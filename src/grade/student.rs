@@ -159,7 +159,10 @@ fn pixel(r: &mut Reader, map: &Map<'_>, dim: usize, (nx, ny): (usize, usize)) ->
         match usize::try_from(n).ok().filter(|n| *n < limits[k]) {
             Some(n) => out.push(n),
             None => {
-                r.err(format!("pixel[{k}]"), format!("{n} is outside the image: must be below {}", limits[k]));
+                r.err(
+                    format!("pixel[{k}]"),
+                    format!("{n} is outside the image: must be below {}", limits[k]),
+                );
                 return None;
             }
         }

@@ -202,8 +202,11 @@ impl<V: Dim> Walker<'_, V> {
         let origin_of = |a: f64, b: f64| cam.primary_ray(a, b).origin.to_vec();
         let direction_of = |a: f64, b: f64| cam.primary_ray(a, b).dir.to_vec();
         let s = &doc.ray;
-        let p_formula =
-            if cam.projection == Projection::Perspective { formula::PERSPECTIVE } else { formula::ORTHOGRAPHIC };
+        let p_formula = if cam.projection == Projection::Perspective {
+            formula::PERSPECTIVE
+        } else {
+            formula::ORTHOGRAPHIC
+        };
         let found_uv = doc.window_point.clone().unwrap_or_else(|| uv(u, v));
         let s_point = cam.window_point(found_uv[0], found_uv.get(1).copied().unwrap_or(0.0));
         let p_inputs = vec![
@@ -279,7 +282,13 @@ impl<V: Dim> Walker<'_, V> {
     /// One ray node and its subtree; returns its colour (the student's where given, for the
     /// parent's sum). `top_colour` stands for P's colour when P does not give its own.
     #[allow(clippy::too_many_lines)] // the narration's order, one quantity after the other
-    fn node(&mut self, s: &RayNode<V>, start: &Start<V>, place: &Place, top_colour: Option<Rgb>) -> Flow<Rgb> {
+    fn node(
+        &mut self,
+        s: &RayNode<V>,
+        start: &Start<V>,
+        place: &Place,
+        top_colour: Option<Rgb>,
+    ) -> Flow<Rgb> {
         let tol = self.tol;
         // A secondary ray's origin and direction (P's were compared with the pixel).
         if let Some((kind, point, spawn)) = start.spawn {
@@ -392,7 +401,10 @@ impl<V: Dim> Walker<'_, V> {
                             ObjectId::Index(i) => *i == index,
                             ObjectId::Name(n) => {
                                 *n == index.to_string()
-                                    || scene.objects[index].name.as_ref().is_some_and(|b| b.en == *n || b.ro == *n)
+                                    || scene.objects[index]
+                                        .name
+                                        .as_ref()
+                                        .is_some_and(|b| b.en == *n || b.ro == *n)
                             }
                         };
                         if !same {
@@ -579,15 +591,20 @@ impl<V: Dim> Walker<'_, V> {
                 match (whitted, student) {
                     (Some(c), Some(sc)) => {
                         let node = &log.nodes[c];
-                        let start =
-                            Start { origin: node.start.origin, direction: node.start.direction, spawn: Some((kind, h.point, spawn)) };
+                        let start = Start {
+                            origin: node.start.origin,
+                            direction: node.start.direction,
+                            spawn: Some((kind, h.point, spawn)),
+                        };
                         let colour = self.node(sc, &start, &child, None)?;
                         weighted.push((weight, colour));
                     }
                     (None, None) => {}
                     (whitted, _) => {
                         let missing = whitted.is_some();
-                        let tir = log.events.iter().any(|e| e.ray == Some(0) && matches!(e.event, Event::TotalInternalReflection { .. }));
+                        let tir = log.events.iter().any(|e| {
+                            e.ray == Some(0) && matches!(e.event, Event::TotalInternalReflection { .. })
+                        });
                         let diagnosis = if missing {
                             (place.level == scene.max_depth).then_some(Mistake::DepthOffByOne)
                         } else if place.level > scene.max_depth {
@@ -610,7 +627,16 @@ impl<V: Dim> Walker<'_, V> {
                             ("ks".to_owned(), Shown::Number(material.ks)),
                             ("kt".to_owned(), Shown::Number(material.kt)),
                         ];
-                        return Err(self.diverge(&child, quantity, None, expected, found, formula::SPAWNS, inputs, diagnosis));
+                        return Err(self.diverge(
+                            &child,
+                            quantity,
+                            None,
+                            expected,
+                            found,
+                            formula::SPAWNS,
+                            inputs,
+                            diagnosis,
+                        ));
                     }
                 }
             }
@@ -649,14 +675,32 @@ impl<V: Dim> Walker<'_, V> {
         for (k, c) in weighted {
             inputs.push((format!("k = {}", crate::format::narration_number(*k)), rgb(*c)));
         }
-        Err(self.diverge(place, Quantity::Colour, None, rgb(expected), rgb(found), formula::COLOUR, inputs, diagnosis))
+        Err(self.diverge(
+            place,
+            Quantity::Colour,
+            None,
+            rgb(expected),
+            rgb(found),
+            formula::COLOUR,
+            inputs,
+            diagnosis,
+        ))
     }
 
     /// Why a shadow factor differs: the object hit counted as its own occluder (found = s·kt of
     /// itself), or the segment taken as a half-line past the light.
-    fn shadow_mistake(&self, log: &EventLog<V>, light: usize, found: f64, expected: f64, kt_self: f64) -> Option<Mistake> {
+    fn shadow_mistake(
+        &self,
+        log: &EventLog<V>,
+        light: usize,
+        found: f64,
+        expected: f64,
+        kt_self: f64,
+    ) -> Option<Mistake> {
         let tol = self.tol;
-        if !close(&[expected * kt_self], &[expected], tol, 0.0) && close(&[found], &[expected * kt_self], tol, 0.0) {
+        if !close(&[expected * kt_self], &[expected], tol, 0.0)
+            && close(&[found], &[expected * kt_self], tol, 0.0)
+        {
             return Some(Mistake::NoShadowOffset);
         }
         let (origin, direction) = log.events.iter().find_map(|e| match &e.event {
@@ -667,11 +711,18 @@ impl<V: Dim> Walker<'_, V> {
         })?;
         let mut s = 1.0;
         let scene = self.scene;
-        self.accel.occluders(scene, &Ray::new(origin, direction), MAX_MAGNITUDE, &mut Stats::default(), &mut NoRecorder, |o| {
-            let kt = scene.material_of(o.index).kt;
-            s *= kt;
-            kt > 0.0
-        });
+        self.accel.occluders(
+            scene,
+            &Ray::new(origin, direction),
+            MAX_MAGNITUDE,
+            &mut Stats::default(),
+            &mut NoRecorder,
+            |o| {
+                let kt = scene.material_of(o.index).kt;
+                s *= kt;
+                kt > 0.0
+            },
+        );
         close(&[found], &[s], tol, 0.0).then_some(Mistake::OccludersBeyondLight)
     }
 }
@@ -705,7 +756,8 @@ fn step_of<V: Dim>(scene: &Scene<V>, pixel: &[usize], d: &Divergence) -> Option<
         Quantity::Origin | Quantity::Direction => {
             let event = log.spawned_by(node)?;
             // P's primary event is told by the pixel's step and then by P's own.
-            let with: Vec<usize> = (1..=told.events.len()).filter(|k| told.events[k - 1].contains(&event)).collect();
+            let with: Vec<usize> =
+                (1..=told.events.len()).filter(|k| told.events[k - 1].contains(&event)).collect();
             with.get(usize::from(node == 0)).or(with.first()).copied()
         }
         Quantity::Object | Quantity::T | Quantity::Point | Quantity::Normal => first_with(hit?),
@@ -724,7 +776,10 @@ fn step_of<V: Dim>(scene: &Scene<V>, pixel: &[usize], d: &Divergence) -> Option<
             let spawns = log.indices_of(node, |e| {
                 matches!(
                     e,
-                    Event::Reflect { .. } | Event::Refract { .. } | Event::TotalInternalReflection { .. } | Event::DepthLimit { .. }
+                    Event::Reflect { .. }
+                        | Event::Refract { .. }
+                        | Event::TotalInternalReflection { .. }
+                        | Event::DepthLimit { .. }
                 )
             });
             spawns.first().and_then(|&e| first_with(e)).or_else(|| last_with(hit?))
