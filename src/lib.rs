@@ -21,6 +21,7 @@ pub mod doc;
 pub mod figure;
 pub mod format;
 pub mod geom;
+pub mod grade;
 pub mod image;
 pub mod json;
 pub mod lang;

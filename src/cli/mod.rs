@@ -9,6 +9,7 @@
 mod accel;
 mod check;
 mod figure;
+mod grade;
 mod lessons;
 mod output;
 mod render;
@@ -50,6 +51,10 @@ enum Command {
     /// tests and time against its error to a reference differing in that sweep only; Markdown
     /// tables (or --json), plots with --out.
     Tradeoff(tradeoff::TradeoffArgs),
+    /// Check a student's trace of one pixel (docs/grading.md) against whitted's: the first
+    /// divergence with its formula and, where a classic mistake explains it, that mistake; exit 0
+    /// when everything agrees, 1 at a divergence, 2 for a bad document.
+    Grade(grade::GradeArgs),
 }
 
 /// An error with its exit code: 2 for bad input (scene, arguments), 1 for anything else.
@@ -138,11 +143,15 @@ pub fn main() -> u8 {
         Command::Figure(args) => figure::run(&args),
         Command::Lessons(args) => lessons::run(&args),
         Command::Tradeoff(args) => tradeoff::run(&args),
+        Command::Grade(args) => grade::run(&args),
     };
     match result {
         Ok(()) => 0,
         Err(f) => {
-            eprintln!("{}", prefix_lines(&f.message));
+            // An empty message: the answer was printed and only the exit code remains to say.
+            if !f.message.is_empty() {
+                eprintln!("{}", prefix_lines(&f.message));
+            }
             f.code()
         }
     }

@@ -11,10 +11,12 @@
 //! - [`check`]: what a valid scene models (`whitted check`);
 //! - [`trace`]: one pixel's or ray's trace document and narration (`whitted trace`);
 //! - [`render`]: an image and its statistics (`whitted render --json`);
-//! - [`figure`]: one diagram (`whitted figure`), with the pixel it picked.
+//! - [`figure`]: one diagram (`whitted figure`), with the pixel it picked;
+//! - [`grade`]: a student's trace document checked (`whitted grade`).
 
 pub mod check;
 pub mod figure;
+pub mod grade;
 pub mod options;
 pub mod parse;
 pub mod render;
