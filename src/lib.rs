@@ -17,6 +17,7 @@ pub mod accel;
 pub mod bounds;
 pub mod canvas;
 pub mod clock;
+pub mod complexity;
 pub mod doc;
 pub mod figure;
 pub mod format;

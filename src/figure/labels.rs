@@ -278,6 +278,80 @@ pub enum Label {
     CellExitT,
     /// The pitfall's rule.
     PitfallRule,
+    /// Title of `backward`.
+    TitleBackward,
+    /// Title of `camera-frame`.
+    TitleCameraFrame,
+    /// Title of `discriminant`.
+    TitleDiscriminant,
+    /// Title of `jagged-edges`.
+    TitleJagged,
+    /// Title of `complexity`.
+    TitleComplexity,
+    /// `backward`'s left panel.
+    InReality,
+    /// `backward`'s right panel.
+    InRayTracing,
+    /// `backward`'s legend: what the arrows say.
+    ArrowsTravel,
+    /// `backward`'s caption: the lecture's words on P.
+    PixelTakesI,
+    /// `camera-frame`'s legend: u, v, w.
+    FrameAxes,
+    /// `camera-frame`'s legend: the up vector.
+    UpGiven,
+    /// `camera-frame`'s legend: from O towards C.
+    ViewLine,
+    /// `camera-frame`'s legend: the window.
+    WindowAtP,
+    /// `camera-frame`'s caption: how 3D is drawn.
+    ObliqueView,
+    /// `discriminant`: the ray that misses.
+    DeltaMiss,
+    /// `discriminant`: the tangent ray.
+    DeltaTangent,
+    /// `discriminant`: the ray through the sphere.
+    DeltaTwo,
+    /// `discriminant`'s legend: a root's point.
+    Root,
+    /// `discriminant`'s caption: the equation.
+    Quadratic,
+    /// `discriminant`'s caption: which root is the hit.
+    NearestRoot,
+    /// `discriminant`'s caption: the rays.
+    ThreeRays,
+    /// `jagged-edges`: the centre-sampled panel.
+    OneRayPerPixel,
+    /// `jagged-edges`' caption: the crop.
+    Crop,
+    /// `jagged-edges`' caption: the pixels the two differ in.
+    ChangedPixels,
+    /// `jagged-edges`' caption: primary rays of the whole image.
+    PrimaryForImage,
+    /// `complexity`'s left plot.
+    ObjectTestsPerRay,
+    /// `complexity`'s right plot.
+    AllTestsPerRay,
+    /// `complexity`'s x axis.
+    ObjectsN,
+    /// `complexity`: brute force.
+    BruteForce,
+    /// `complexity`: a bounding volume per object.
+    PerObjectVolumes,
+    /// `complexity`: the grid.
+    RegularGrid,
+    /// `complexity`: the octree.
+    OctreeName,
+    /// `complexity`'s caption: what was rendered.
+    CrowdCaption,
+    /// `complexity`'s caption: how.
+    RayCastingCount,
+    /// `jagged-edges`: the panel sampled at the corners.
+    CornersPanel,
+    /// `jagged-edges`: the panel sampled adaptively (followed by its threshold and K).
+    AdaptivePanel,
+    /// `complexity`: the BVH.
+    BvhName,
 }
 
 impl Label {
@@ -530,6 +604,154 @@ impl Label {
                 "each panel drawn in the plane of its row of rays (u and the row's direction)",
                 "fiecare panou desenat în planul rândului său de raze (u și direcția rândului)",
             ),
+            Self::TitleBackward => (
+                "Rays are traced backwards, against the light",
+                "Razele din ray tracing au sensul invers celor din realitate",
+            ),
+            Self::TitleCameraFrame => (
+                "The camera frame built by lookAt(O, C, up)",
+                "Sistemul de coordonate al camerei: lookAt(O, C, up)",
+            ),
+            Self::TitleDiscriminant => (
+                "Ray and sphere: the discriminant Δ of the quadratic in t",
+                "Rază și sferă: discriminantul Δ al ecuației de grad 2 în t",
+            ),
+            Self::TitleJagged => (
+                "Jagged edges: one ray per pixel against more rays per pixel",
+                "Margini zimțate: o rază pe pixel față de mai multe raze pe pixel",
+            ),
+            Self::TitleComplexity => (
+                "Tests per ray against the number of objects n, measured",
+                "Teste pe rază în funcție de numărul de obiecte n, măsurate",
+            ),
+            Self::InReality => (
+                "In reality:\nthe light goes S → I → O",
+                "În realitate:\nlumina merge S → I → O",
+            ),
+            Self::InRayTracing => (
+                "Ray tracing:\nthe rays go O → I, then I → S",
+                "În ray tracing:\nrazele merg O → I, apoi I → S",
+            ),
+            Self::ArrowsTravel => (
+                "arrow: the direction of travel",
+                "săgeata: sensul deplasării",
+            ),
+            Self::PixelTakesI => (
+                "the pixel takes the colour of I; P is the direction along which the light of I reaches the observer, traced the other way",
+                "pixelul este colorat în culoarea punctului I; P este direcția pe care lumina din I ajunge la observator, parcursă în sens invers",
+            ),
+            Self::FrameAxes => (
+                "camera axes u, v, w (unit vectors)",
+                "axele camerei u, v, w (versori)",
+            ),
+            Self::UpGiven => (
+                "up, as given to lookAt",
+                "vectorul up, dat lui lookAt",
+            ),
+            Self::ViewLine => (
+                "from O towards C: along −w",
+                "de la O spre C: de-a lungul lui −w",
+            ),
+            Self::WindowAtP => (
+                "view window, at distance p along −w",
+                "fereastra vizuală, la distanța p pe −w",
+            ),
+            Self::ObliqueView => (
+                "drawn in an oblique view; the scene's objects are left out",
+                "desenat în vedere oblică; obiectele scenei nu sunt desenate",
+            ),
+            Self::DeltaMiss => (
+                "the ray misses the sphere",
+                "raza nu intersectează sfera",
+            ),
+            Self::DeltaTangent => (
+                "the ray is tangent to the sphere",
+                "raza este tangentă la sferă",
+            ),
+            Self::DeltaTwo => (
+                "two roots t₁ < t₂",
+                "două rădăcini t₁ < t₂",
+            ),
+            Self::Root => (
+                "r(t) at a root t",
+                "r(t) într-o rădăcină t",
+            ),
+            Self::Quadratic => (
+                "|O + t·D − C|² = r² gives t² + b·t + c = 0 with b = 2D·(O − C), c = |O − C|² − r², Δ = b² − 4c",
+                "din |O + t·D − C|² = r² rezultă t² + b·t + c = 0, cu b = 2D·(O − C), c = |O − C|² − r², Δ = b² − 4c",
+            ),
+            Self::NearestRoot => (
+                "the hit is r(min(t₁, t₂)), the least root t > 0",
+                "intersecția este r(min(t₁, t₂)), cea mai mică rădăcină t > 0",
+            ),
+            Self::ThreeRays => (
+                "three rays along the camera's −w",
+                "trei raze de-a lungul lui −w al camerei",
+            ),
+            Self::OneRayPerPixel => (
+                "1 ray per pixel (its centre)",
+                "o rază pe pixel (prin centru)",
+            ),
+            Self::Crop => (
+                "crop",
+                "decupajul",
+            ),
+            Self::ChangedPixels => (
+                "pixels changed in the crop",
+                "pixeli schimbați în decupaj",
+            ),
+            Self::PrimaryForImage => (
+                "primary rays for the image",
+                "raze primare pentru imagine",
+            ),
+            Self::ObjectTestsPerRay => (
+                "object tests per ray",
+                "teste rază–obiect pe rază",
+            ),
+            Self::AllTestsPerRay => (
+                "all tests per ray:\nobjects, volumes, nodes, voxels",
+                "toate testele pe rază:\nobiecte, volume, noduri, voxeli",
+            ),
+            Self::ObjectsN => (
+                "n: objects in the scene",
+                "n: obiecte în scenă",
+            ),
+            Self::BruteForce => (
+                "brute force",
+                "forța brută",
+            ),
+            Self::PerObjectVolumes => (
+                "a volume per object",
+                "un volum pe obiect",
+            ),
+            Self::RegularGrid => (
+                "regular grid",
+                "grilă regulată",
+            ),
+            Self::OctreeName => (
+                "octree",
+                "arbore octal",
+            ),
+            Self::CrowdCaption => (
+                "in its view: n random spheres",
+                "în câmpul ei vizual: n sfere aleatoare",
+            ),
+            Self::RayCastingCount => (
+                "ray casting, one ray per pixel, shadow rays counted; one render per point",
+                "ray casting, o rază pe pixel, razele de umbră numărate; o randare pe punct",
+            ),
+            Self::CornersPanel => (
+                "4 rays per pixel (its corners, shared)",
+                "4 raze pe pixel (colțurile, comune cu vecinii)",
+            ),
+            Self::AdaptivePanel => (
+                "adaptive subdivision",
+                "subdivizare adaptivă",
+            ),
+            Self::BvhName => (
+                "bounding volume hierarchy (BVH)",
+                "ierarhie de volume încadratoare (BVH)",
+            ),
         }
     }
 }
@@ -560,6 +782,10 @@ pub fn pick_reason(pick: Pick, lang: Lang) -> Option<String> {
             ("a shadow ray of its trace meets an object", "o rază de umbră a traseului întâlnește un obiect")
         }
         Pick::Rich => ("its trace has the most kinds of rays", "traseul are cele mai multe tipuri de raze"),
+        Pick::LitDirectly => (
+            "the light reaches its hit with nothing in between",
+            "lumina ajunge în punctul său de intersecție fără obstacole",
+        ),
         Pick::Lit => {
             ("its hit is lit, N, L, H, V well apart", "intersecția e luminată, N, L, H, V distincte")
         }
@@ -681,6 +907,43 @@ mod tests {
         Label::NodeUnderSkipped,
         Label::NodeUntested,
         Label::NodesSkipped,
+        Label::TitleBackward,
+        Label::TitleCameraFrame,
+        Label::TitleDiscriminant,
+        Label::TitleJagged,
+        Label::TitleComplexity,
+        Label::InReality,
+        Label::InRayTracing,
+        Label::ArrowsTravel,
+        Label::PixelTakesI,
+        Label::FrameAxes,
+        Label::UpGiven,
+        Label::ViewLine,
+        Label::WindowAtP,
+        Label::ObliqueView,
+        Label::DeltaMiss,
+        Label::DeltaTangent,
+        Label::DeltaTwo,
+        Label::Root,
+        Label::Quadratic,
+        Label::NearestRoot,
+        Label::ThreeRays,
+        Label::OneRayPerPixel,
+        Label::Crop,
+        Label::ChangedPixels,
+        Label::PrimaryForImage,
+        Label::ObjectTestsPerRay,
+        Label::AllTestsPerRay,
+        Label::ObjectsN,
+        Label::BruteForce,
+        Label::PerObjectVolumes,
+        Label::RegularGrid,
+        Label::OctreeName,
+        Label::CrowdCaption,
+        Label::RayCastingCount,
+        Label::CornersPanel,
+        Label::AdaptivePanel,
+        Label::BvhName,
     ];
 
     #[test]

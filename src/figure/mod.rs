@@ -27,6 +27,10 @@ pub use crate::doc::narrate::Lang;
 /// The diagrams of product.md, one per `whitted figure KIND`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum FigureKind {
+    /// Rays traced backwards: from the observer against the light's own path.
+    BackwardRays,
+    /// The camera frame lookAt builds: O, C, up → u, v, w, the window at distance p.
+    CameraFrame,
     /// Pixel (i, j) → window point (u, v).
     UvMap,
     /// Orthographic vs perspective primary rays.
@@ -41,6 +45,12 @@ pub enum FigureKind {
     RayTree,
     /// Shadow rays from a hit to every light and the factor s.
     Shadows,
+    /// Jagged edges: one ray per pixel beside supersampling, the same crop.
+    JaggedEdges,
+    /// Tests per ray against the number of objects, brute force and each structure.
+    Complexity,
+    /// The ray–sphere discriminant: Δ < 0, Δ = 0, Δ > 0 and the roots.
+    Discriminant,
     /// The slab test of an axis-aligned box.
     SlabTest,
     /// Kay–Kajiya slabs.
@@ -59,7 +69,9 @@ pub enum FigureKind {
 
 impl FigureKind {
     /// Every kind, in the lecture's order.
-    pub const ALL: [Self; 14] = [
+    pub const ALL: [Self; 19] = [
+        Self::BackwardRays,
+        Self::CameraFrame,
         Self::UvMap,
         Self::Projections,
         Self::Rays,
@@ -67,6 +79,9 @@ impl FigureKind {
         Self::LocalModel,
         Self::RayTree,
         Self::Shadows,
+        Self::JaggedEdges,
+        Self::Complexity,
+        Self::Discriminant,
         Self::SlabTest,
         Self::KayKajiya,
         Self::Bvh,
@@ -80,6 +95,11 @@ impl FigureKind {
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
+            Self::BackwardRays => "backward",
+            Self::CameraFrame => "camera-frame",
+            Self::JaggedEdges => "jagged-edges",
+            Self::Complexity => "complexity",
+            Self::Discriminant => "discriminant",
             Self::UvMap => "uv-map",
             Self::Projections => "projections",
             Self::Rays => "rays",
@@ -107,6 +127,11 @@ impl FigureKind {
     #[must_use]
     pub const fn description(self) -> &'static str {
         match self {
+            Self::BackwardRays => "the light's path (S → I → O) beside the rays traced backwards (O → I, then L from I towards S)",
+            Self::CameraFrame => "the camera frame lookAt builds: O, C, up → w, u, v with their numbers, the window at distance p",
+            Self::JaggedEdges => "the same crop of the image with one ray per pixel and supersampled: the jagged edge and its smoothing",
+            Self::Complexity => "tests per ray against n = 10 … 10 000 objects, measured: brute force O(n) and each structure",
+            Self::Discriminant => "three rays and a sphere: Δ < 0 (miss), Δ = 0 (tangent), Δ > 0 (roots t₁, t₂)",
             Self::UvMap => "the pixel grid and the view window: pixel (i, j), rows from the bottom, its centre → (u, v) with the numbers",
             Self::Projections => "orthographic and perspective primary rays side by side for the same window (D = [0, 0, −1] vs S − O)",
             Self::Rays => "every ray of one pixel's trace by kind (primary, reflected, transmitted, shadow; blocked ones dashed), hits I₁, I₂ …",

@@ -406,6 +406,18 @@ pub fn plane_note(dim: usize, plane: Label, through: Option<&str>, lang: Lang) -
     format!(" · {}{}; {}", plane.text(lang), through.unwrap_or_default(), Label::SectionsNote.text(lang))
 }
 
+/// A panel's heading above `at`: its first line bold, the rest under it.
+pub fn panel_heading(d: &mut Drawing, at: DVec2, text: &str) {
+    /// The step between lines, in reference pixels.
+    const LINE: f64 = 44.0;
+    let lines: Vec<&str> = text.lines().collect();
+    for (k, line) in lines.iter().enumerate() {
+        let up = 12.0 + LINE * (lines.len() - 1 - k) as f64;
+        let opts = TextOpts::LABEL.align(Align::ABOVE).size(TextSize::Body).offset(0.0, up);
+        d.text("panel-title", at, line, if k == 0 { opts.bold() } else { opts });
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

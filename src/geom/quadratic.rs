@@ -12,9 +12,7 @@ use super::Vector;
 #[must_use]
 pub fn sphere_roots<V: Vector>(ray: &Ray<V>, center: V, radius: f64) -> SphereRoots {
     let f = ray.origin - center;
-    let b = f.dot(ray.dir);
-    let perp = f - ray.dir * b;
-    let delta = radius * radius - perp.dot(perp);
+    let (b, delta) = half_b_discriminant(ray, center, radius);
     if !(delta >= 0.0) {
         return SphereRoots::None;
     }
@@ -28,6 +26,17 @@ pub fn sphere_roots<V: Vector>(ray: &Ray<V>, center: V, radius: f64) -> SphereRo
     let c = f.dot(f) - radius * radius;
     let (t0, t1) = (q, c / q);
     SphereRoots::Two(t0.min(t1), t0.max(t1))
+}
+
+/// `b'` and `Δ'` of the half-b form of `|O + t·D − C|² = r²` for a unit `D` (§11):
+/// `f = O − C`, `b' = f·D`, `Δ' = r² − |f − b'·D|²`, the squared half-chord. In the lecture's
+/// form `t² + b·t + c = 0` (`a = D·D = 1`) these are `b = 2b'` and `Δ = b² − 4ac = 4Δ'`.
+#[must_use]
+pub fn half_b_discriminant<V: Vector>(ray: &Ray<V>, center: V, radius: f64) -> (f64, f64) {
+    let f = ray.origin - center;
+    let b = f.dot(ray.dir);
+    let perp = f - ray.dir * b;
+    (b, radius * radius - perp.dot(perp))
 }
 
 /// The real roots of the sphere equation, ascending.

@@ -13,8 +13,9 @@
 use glam::DVec2;
 
 use super::unknown;
-use crate::accel::Layout;
+use crate::accel::{AccelKind, Layout};
 use crate::canvas::{Drawing, Item, Mark};
+use crate::complexity::Cost;
 use crate::figure::plane::Planar;
 use crate::figure::source::{
     first_hit, grid_pitfall, incidence_deg, met, refraction_node, search_events, tir_node, vectors_apart_deg,
@@ -118,11 +119,27 @@ pub enum Measure {
     /// the image's size, on the nearer-to-centre axis (rows from the bottom are visible only
     /// away from the middle).
     OffCentre,
+    /// `frame-error`: how far the camera frame the `camera-frame` figure prints is from lookAt's
+    /// definition (§2): the largest of `|w − (O − C)/|O − C||`, `|u·up|`, `|u·w|`, `|v − w × u|`
+    /// and `||u| − 1|` (in 2D, `|u − (w_y, −w_x)|`).
+    FrameError,
+    /// `discriminant-cases`: how many of the three cases (no root, one root, two roots) the
+    /// `discriminant` figure's rays show, read from their `object_test` events on its sphere.
+    DiscriminantCases,
+    /// `changed-pixels`: the pixels of the `jagged-edges` crop whose colour (in the file's bytes)
+    /// supersampling changed.
+    ChangedPixels,
+    /// `brute-force-growth`: brute force's object tests per ray at the `complexity` figure's
+    /// largest n over those at its smallest (the lecture's O(n): about their ratio, 1000).
+    BruteForceGrowth,
+    /// `structure-growth`: the largest growth, over the same range of n, of all tests per ray of
+    /// a hierarchy or grid (`bvh`, `grid`, `octree`).
+    StructureGrowth,
 }
 
 impl Measure {
     /// The kinds' names in a lesson file, in this order.
-    pub const KINDS: [&'static str; 16] = [
+    pub const KINDS: [&'static str; 21] = [
         "events",
         "level",
         "shadows",
@@ -139,6 +156,11 @@ impl Measure {
         "false-crossings",
         "off-centre",
         "apart",
+        "frame-error",
+        "discriminant-cases",
+        "changed-pixels",
+        "brute-force-growth",
+        "structure-growth",
     ];
 
     /// The claim's name with its parameter: `events voxel_step`, `shadows blocked`.
@@ -163,6 +185,13 @@ impl Measure {
             Self::FalseCrossings => name(13),
             Self::OffCentre => "off-centre (% of the image)".into(),
             Self::Apart => "apart (least angle between N, V, L, H, °)".into(),
+            Self::FrameError => name(16),
+            Self::DiscriminantCases => name(17),
+            Self::ChangedPixels => name(18),
+            Self::BruteForceGrowth => {
+                "brute-force-growth (object tests per ray, largest n over smallest)".into()
+            }
+            Self::StructureGrowth => "structure-growth (all tests per ray, largest n over smallest)".into(),
         }
     }
 }
@@ -296,6 +325,11 @@ pub fn parse(value: Option<&Value>, path: &str, errors: &mut Vec<String>) -> Vec
             "false-crossings" => Some(Measure::FalseCrossings),
             "off-centre" => Some(Measure::OffCentre),
             "apart" => Some(Measure::Apart),
+            "frame-error" => Some(Measure::FrameError),
+            "discriminant-cases" => Some(Measure::DiscriminantCases),
+            "changed-pixels" => Some(Measure::ChangedPixels),
+            "brute-force-growth" => Some(Measure::BruteForceGrowth),
+            "structure-growth" => Some(Measure::StructureGrowth),
             _ => {
                 errors.push(format!("{at}.kind: must be one of {}", Measure::KINDS.join(", ")));
                 None
@@ -419,7 +453,64 @@ pub fn measure<V: Planar>(
                 crate::figure::source::Target::Ray => None,
             }
         }
+        Measure::FrameError => Some(frame_error(scene)),
+        Measure::DiscriminantCases => {
+            let log = log?;
+            let focus = traces.focus?;
+            let mut counts: Vec<usize> = log
+                .roots()
+                .filter_map(|k| {
+                    log.events.iter().filter(|l| l.ray == Some(k)).find_map(|l| match &l.event {
+                        Event::ObjectTest { object, roots, .. } if object.index == focus => Some(roots.len()),
+                        _ => None,
+                    })
+                })
+                .collect();
+            counts.sort_unstable();
+            counts.dedup();
+            count(counts.len())
+        }
+        Measure::ChangedPixels => count(traces.jagged.as_ref()?.changed()),
+        Measure::BruteForceGrowth => growth(&traces.costs, &[AccelKind::None], Cost::object_tests_per_ray),
+        Measure::StructureGrowth => {
+            growth(&traces.costs, &[AccelKind::Bvh, AccelKind::Grid, AccelKind::Octree], Cost::tests_per_ray)
+        }
     }
+}
+
+/// [`Measure::FrameError`].
+fn frame_error<V: Planar>(scene: &Scene<V>) -> f64 {
+    let cam = &scene.camera;
+    let f = &cam.frame;
+    let Some(w) = (cam.eye - cam.center).try_unit() else { return f64::INFINITY };
+    let mut errors = vec![(f.w - w).length(), (f.u.length() - 1.0).abs(), f.u.dot(f.w).abs()];
+    if V::DIM == 3 {
+        let mut v = V::ZERO;
+        // v = w × u, written out on the axes.
+        v[0] = f.w[1] * f.u[2] - f.w[2] * f.u[1];
+        v[1] = f.w[2] * f.u[0] - f.w[0] * f.u[2];
+        v[2] = f.w[0] * f.u[1] - f.w[1] * f.u[0];
+        errors.extend([(f.v - v).length(), f.u.dot(cam.up).abs() / cam.up.length()]);
+    } else {
+        let mut u = V::ZERO;
+        u[0] = w[1];
+        u[1] = -w[0];
+        errors.push((f.u - u).length());
+    }
+    errors.into_iter().fold(0.0, f64::max)
+}
+
+/// The largest ratio, over `kinds`, of `value` at the largest n measured to `value` at the
+/// smallest.
+fn growth(costs: &[Cost], kinds: &[AccelKind], value: fn(&Cost) -> f64) -> Option<f64> {
+    let (lo, hi) = (costs.iter().map(|c| c.n).min()?, costs.iter().map(|c| c.n).max()?);
+    kinds
+        .iter()
+        .filter_map(|k| {
+            let at = |n: usize| costs.iter().find(|c| c.kind == *k && c.n == n).map(value);
+            Some(at(hi)? / at(lo)?)
+        })
+        .reduce(f64::max)
 }
 
 /// θᵢ at the node the `refraction` figure draws: its clearest refraction, else the first total

@@ -70,7 +70,7 @@ pub struct Made {
 #[must_use]
 pub fn default_aa(kind: FigureKind) -> Aa {
     match kind {
-        FigureKind::Adaptive | FigureKind::HeatMap => Aa::Adaptive,
+        FigureKind::Adaptive | FigureKind::HeatMap | FigureKind::JaggedEdges => Aa::Adaptive,
         _ => Aa::Center,
     }
 }
@@ -84,6 +84,7 @@ pub fn structure(kind: FigureKind, asked: AccelKind) -> AccelKind {
         FigureKind::Bvh => AccelKind::Bvh,
         FigureKind::GridDda => AccelKind::Grid,
         FigureKind::Octree => AccelKind::Octree,
+        FigureKind::Discriminant => AccelKind::None,
         _ => asked,
     }
 }

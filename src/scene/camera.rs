@@ -37,6 +37,8 @@ pub struct Camera<V> {
     pub center: V,
     /// The observer frame (u, v, w).
     pub frame: Frame<V>,
+    /// The `up` vector lookAt was given (as written, not normalised; zero in 2D).
+    pub up: V,
     /// Orthographic or perspective.
     pub projection: Projection,
     /// Distance from the observer to the image plane, `p > 0`.

@@ -18,7 +18,7 @@ use whitted::scene::load::load_str;
 use whitted::scene::{AnyScene, Scene};
 
 /// Every kind.
-const DRAWN: [FigureKind; 14] = FigureKind::ALL;
+const DRAWN: [FigureKind; 19] = FigureKind::ALL;
 
 /// How a kind is traced in the tests: the sampling kinds adaptively (threshold 0.1, K = 2); the
 /// grid of the pitfall fixture with its 4 × 4 × 4 cells.
@@ -102,6 +102,8 @@ macro_rules! display_list_tests {
 }
 
 display_list_tests! {
+    display_list_backward: BackwardRays,
+    display_list_camera_frame: CameraFrame,
     display_list_uv_map: UvMap,
     display_list_projections: Projections,
     display_list_rays: Rays,
@@ -109,6 +111,9 @@ display_list_tests! {
     display_list_local_model: LocalModel,
     display_list_ray_tree: RayTree,
     display_list_shadows: Shadows,
+    display_list_jagged_edges: JaggedEdges,
+    display_list_complexity: Complexity,
+    display_list_discriminant: Discriminant,
     display_list_slab_test: SlabTest,
     display_list_kay_kajiya: KayKajiya,
     display_list_bvh: Bvh,
@@ -334,6 +339,11 @@ fn labels_come_in_both_languages() {
         (FigureKind::Bvh, Label::TitleBvh),
         (FigureKind::GridDda, Label::TitleGridDda),
         (FigureKind::Octree, Label::TitleOctree),
+        (FigureKind::BackwardRays, Label::TitleBackward),
+        (FigureKind::CameraFrame, Label::TitleCameraFrame),
+        (FigureKind::JaggedEdges, Label::TitleJagged),
+        (FigureKind::Complexity, Label::TitleComplexity),
+        (FigureKind::Discriminant, Label::TitleDiscriminant),
     ];
     for (kind, title) in titles {
         for lang in [Lang::En, Lang::Ro] {
@@ -352,7 +362,7 @@ fn labels_come_in_both_languages() {
 
 #[test]
 fn every_kind_is_listed_with_a_description_and_unknown_names_are_refused() {
-    assert_eq!(FigureKind::ALL.len(), 14);
+    assert_eq!(FigureKind::ALL.len(), 19);
     for kind in FigureKind::ALL {
         assert_eq!(FigureKind::from_name(kind.name()), Some(kind));
         assert!(!kind.description().is_empty());
@@ -381,7 +391,7 @@ fn a_figure_reads_the_trace_it_was_given() {
 fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
     let (code, out, _) = whitted(&["figure", "--list"]);
     assert_eq!(code, 0);
-    assert_eq!(out.lines().count(), 14);
+    assert_eq!(out.lines().count(), 19);
     assert!(out.lines().any(|l| l.starts_with("ray-tree")));
 
     let dir = Scratch::new();
@@ -530,6 +540,8 @@ fn every_kind_draws_or_says_why_on_every_scene() {
                     matches!(
                         kind,
                         FigureKind::Refraction
+                            | FigureKind::BackwardRays
+                            | FigureKind::Discriminant
                             | FigureKind::LocalModel
                             | FigureKind::Shadows
                             | FigureKind::SlabTest

@@ -2,10 +2,15 @@
 //! through [`Input`] and adds its items to a [`Drawing`]; none traces, intersects or refracts.
 
 pub mod adaptive;
+pub mod backward;
 pub mod bvh;
+pub mod camera_frame;
+pub mod complexity;
+pub mod discriminant;
 pub mod grid_dda;
 pub mod heat_map;
 pub mod hierarchy;
+pub mod jagged;
 pub mod kay_kajiya;
 pub mod local_model;
 pub mod octree;
@@ -85,6 +90,11 @@ pub fn draw<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: Drawing) -> Re
 /// Draws `kind` into `d` once.
 fn draw_once<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
     match kind {
+        FigureKind::BackwardRays => backward::draw(input, d),
+        FigureKind::CameraFrame => camera_frame::draw(input, d),
+        FigureKind::Discriminant => discriminant::draw(input, d),
+        FigureKind::JaggedEdges => jagged::draw(input, d),
+        FigureKind::Complexity => complexity::draw(input, d),
         FigureKind::UvMap => uv_map::draw(input, d),
         FigureKind::Projections => projections::draw(input, d),
         FigureKind::Rays => rays::draw(input, d),

@@ -12,7 +12,10 @@
 
 use crate::accel::{Accel, AccelKind, AccelOptions, Layout};
 use crate::bounds::{kdop, BoundingVolume, VolumeKind};
+use crate::complexity::{self, Cost};
+use crate::geom::quadratic::half_b_discriminant;
 use crate::geom::ray::Ray;
+use crate::image::Image;
 use crate::record::event::{Event, RayKind};
 use crate::record::{overflow_message, EventLog};
 use crate::render::{check_fits, render, RenderConfig};
@@ -21,6 +24,7 @@ use crate::scene::camera::Projection;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
 use crate::shape::Dim;
+use crate::shape::Shape;
 use crate::trace::Tracer;
 
 use super::{FigureError, FigureKind};
@@ -60,6 +64,8 @@ pub enum Pick {
     Rich,
     /// The pixel whose primary hit is lit with the clearest N, L, H, V.
     Lit,
+    /// A pixel whose primary hit the light reaches, nothing in between.
+    LitDirectly,
     /// The pixel whose primary hit is lit with the clearest N, L, H, V, although two of them lie
     /// closer than [`MIN_APART_DEG`]: no pixel tried keeps them apart.
     LitCrowded,
@@ -120,8 +126,71 @@ pub struct FigureInput<V: Dim> {
     pub counts: Option<Counts>,
     /// The structure the traces were recorded with (its volumes, nodes or cells are drawn).
     pub accel: Accel<V>,
-    /// The object a figure is about (`slab-test`, `kay-kajiya`: the bounded object tested).
+    /// The object a figure is about (`slab-test`, `kay-kajiya`: the bounded object tested;
+    /// `discriminant`: the sphere).
     pub focus: Option<usize>,
+    /// `discriminant`: the lecture's quadratic of each of its rays, in the order traced.
+    pub quadratics: Vec<Quadratic>,
+    /// `jagged-edges`: the two renders and the crop it shows.
+    pub jagged: Option<Jagged>,
+    /// `complexity`: what each structure cost on each crowd of n objects.
+    pub costs: Vec<Cost>,
+}
+
+/// The quadratic `t² + b·t + c = 0` of a ray and a sphere (`a = D·D = 1`, D unit), as the
+/// lecture writes it: `b = 2b'` and `Δ = b² − 4c = 4Δ'` from the tracer's own half-b form
+/// (`geom::quadratic::half_b_discriminant`, §11).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quadratic {
+    /// `b = 2·D·(O − C)`.
+    pub b: f64,
+    /// `Δ = b² − 4c`.
+    pub delta: f64,
+}
+
+/// One whole render of `jagged-edges`.
+#[derive(Clone, Debug)]
+pub struct Rendering {
+    /// How its pixels were sampled.
+    pub sampling: Sampling,
+    /// Its linear colours.
+    pub image: Image,
+    /// The primary rays it traced (shared samples once).
+    pub primary: u64,
+}
+
+/// `jagged-edges`: the scene rendered with one ray per pixel and supersampled, and the crop of
+/// pixels both panels show.
+#[derive(Clone, Debug)]
+pub struct Jagged {
+    /// The centre-sampled render, then the supersampled one.
+    pub renders: [Rendering; 2],
+    /// The crop's lower-left pixel `(i, j)`, rows from the bottom.
+    pub corner: (usize, usize),
+    /// The crop's size in pixels, across and up.
+    pub size: (usize, usize),
+}
+
+impl Jagged {
+    /// How many pixels of the crop the two renders colour differently (as the PNG would show
+    /// them: one byte per channel).
+    #[must_use]
+    pub fn changed(&self) -> usize {
+        let [a, b] = &self.renders;
+        let (i0, j0) = self.corner;
+        let mut n = 0;
+        for j in j0..j0 + self.size.1 {
+            for i in i0..i0 + self.size.0 {
+                n += usize::from(differs(a.image.get(i, j), b.image.get(i, j)));
+            }
+        }
+        n
+    }
+}
+
+/// Whether two linear colours differ in the file's bytes.
+fn differs(a: Rgb, b: Rgb) -> bool {
+    (0..3).any(|k| crate::image::to_byte(a.0[k]) != crate::image::to_byte(b.0[k]))
 }
 
 /// The primary rays that entered each pixel of a render.
@@ -190,14 +259,51 @@ pub fn record<V: Dim>(
         FigureKind::Bvh => structure(AccelKind::Bvh, VolumeKind::Aabb),
         FigureKind::GridDda => structure(AccelKind::Grid, VolumeKind::Aabb),
         FigureKind::Octree => structure(AccelKind::Octree, VolumeKind::Aabb),
+        // Every ray tests the sphere, even the one that misses its box.
+        FigureKind::Discriminant => structure(AccelKind::None, VolumeKind::Aabb),
         _ => tracing.accel.clone(),
     };
     let accel = Accel::build_with(scene, &options);
     let depth = tracing.depth.unwrap_or(scene.max_depth);
     let tracer = FigureTracer { scene, accel: &accel, depth };
     let (mut counts, mut focus) = (None, None);
+    let (mut quadratics, mut jagged, mut costs) = (Vec::new(), None, Vec::new());
     let traces = match kind {
         FigureKind::Projections => projections(&tracer, aim),
+        FigureKind::BackwardRays => {
+            let main = tracer.aimed(aim, Pick::LitDirectly, lit_directly_score);
+            if lit_directly_score(&main.log).is_none() {
+                return Err(FigureError(missing(aim, "hit that a light reaches with nothing in between")));
+            }
+            vec![main]
+        }
+        FigureKind::CameraFrame => match aim {
+            // Off the centre, so that S and the window's centre are two points.
+            Aim::Auto => {
+                let (i, j) = ((3 * cam.nx) / 4, (2 * cam.ny) / 3);
+                let pick = if V::DIM == 2 { Pick::OffCentreRow } else { Pick::OffCentre };
+                vec![tracer.pixel(i, j, pick)]
+            }
+            _ => vec![tracer.aimed(aim, Pick::Default, |_| None)],
+        },
+        FigureKind::Discriminant => {
+            let (traces, sphere, found) = discriminant_rays(&tracer, aim)?;
+            focus = Some(sphere);
+            quadratics = found;
+            traces
+        }
+        FigureKind::JaggedEdges => {
+            let sampling = match tracing.sampling {
+                Sampling::Center => TraceOptions::ADAPTIVE,
+                other => other,
+            };
+            jagged = Some(jagged_renders(scene, &accel, depth, sampling, aim)?);
+            Vec::new()
+        }
+        FigureKind::Complexity => {
+            costs = complexity::measure(scene, &complexity::SIZES, complexity::FIGURE_WIDTH);
+            Vec::new()
+        }
         FigureKind::UvMap => match aim {
             Aim::Auto => {
                 // Off the centre and in the upper half, so that the rows visibly count from the bottom.
@@ -275,7 +381,16 @@ pub fn record<V: Dim>(
         let why = overflow_message(full.log.limit(), depth, scene.worst_tree_rays(depth));
         return Err(FigureError(why));
     }
-    Ok(FigureInput { scene_name: scene_name.to_owned(), traces, counts, accel, focus })
+    Ok(FigureInput {
+        scene_name: scene_name.to_owned(),
+        traces,
+        counts,
+        accel,
+        focus,
+        quadratics,
+        jagged,
+        costs,
+    })
 }
 
 /// The message for a trace that lacks what a figure draws.
@@ -697,4 +812,138 @@ fn grid_score<V>(log: &EventLog<V>) -> Option<f64> {
     let steps = search_events(log, 0).filter(|e| matches!(e, Event::VoxelStep { .. })).count();
     let pitfall = grid_pitfall(log).is_some();
     (steps > 1).then(|| if pitfall { 100.0 } else { 0.0 } + steps.min(12) as f64)
+}
+
+/// `backward`: a primary hit that a light reaches with nothing in between (`s = 1`, `lum = 1`),
+/// the light path S → I → O of the lecture; the larger N·L the better.
+fn lit_directly_score<V: Dim>(log: &EventLog<V>) -> Option<f64> {
+    let node = log.nodes.first()?;
+    node.end.as_ref()?.hit?;
+    log.events
+        .iter()
+        .filter_map(|l| match &l.event {
+            Event::ShadowRay { light, occluders, .. } if l.ray == Some(0) && occluders.is_empty() => {
+                node.lights.iter().find(|t| t.light == *light).map(|t| t.n_dot_l)
+            }
+            _ => None,
+        })
+        .reduce(f64::max)
+}
+
+/// The distances from the sphere's centre of the three rays of `discriminant`, in radii: one
+/// that misses (Δ < 0), the tangent (Δ = 0) and one through the sphere (Δ > 0).
+pub const DISCRIMINANT_OFFSETS: [f64; 3] = [1.5, 1.0, 0.5];
+
+/// What `discriminant` traced: its trace, the sphere's index and each ray's quadratic.
+type DiscriminantRays<V> = (Vec<FigureTrace<V>>, usize, Vec<Quadratic>);
+
+/// How far before the sphere's centre, in radii, the rays of `discriminant` start.
+pub const DISCRIMINANT_START: f64 = 3.0;
+
+/// `discriminant`: a sphere of the scene (the one the given pixel's or ray's primary ray hits,
+/// else the first sphere listed) and three rays along the camera's viewing direction −w, in the
+/// plane of −w and u through its centre C, at distances [`DISCRIMINANT_OFFSETS`] from C along u
+/// (origin `C − 3r·D + k·r·u`): traced as primary rays (ray casting), each with its quadratic.
+/// With −w and u along the axes and simple numbers, the tangent's Δ is exactly 0.
+fn discriminant_rays<V: Dim>(
+    rec: &FigureTracer<'_, V>,
+    aim: &Aim<V>,
+) -> Result<DiscriminantRays<V>, FigureError> {
+    let sphere_of = |k: usize| match &rec.scene.objects[k].shape {
+        Shape::Sphere(s) => Some((s.center, s.radius)),
+        _ => None,
+    };
+    let aimed = match aim {
+        Aim::Auto => None,
+        _ => {
+            let t = rec.aimed(aim, Pick::Given, |_| None);
+            first_hit(&t.log).and_then(|k| t.log.nodes[k].end.as_ref()?.hit).map(|h| h.object.index)
+        }
+    };
+    let Some(object) = aimed
+        .filter(|k| sphere_of(*k).is_some())
+        .or_else(|| (0..rec.scene.objects.len()).find(|k| sphere_of(*k).is_some()))
+    else {
+        return Err(FigureError(format!("no sphere in the scene: {}", missing(aim, "sphere"))));
+    };
+    let (center, radius) = sphere_of(object).ok_or_else(|| FigureError("not a sphere".into()))?;
+    let frame = &rec.scene.camera.frame;
+    let (dir, across) = (-frame.w, frame.u);
+    let rays: Vec<(Ray<V>, Target)> = DISCRIMINANT_OFFSETS
+        .iter()
+        .map(|k| {
+            let origin = center - dir * (DISCRIMINANT_START * radius) + across * (k * radius);
+            (Ray::new(origin, dir), Target::Ray)
+        })
+        .collect();
+    let quadratics = rays
+        .iter()
+        .map(|(ray, _)| {
+            let (half_b, quarter) = half_b_discriminant(ray, center, radius);
+            Quadratic { b: 2.0 * half_b, delta: 4.0 * quarter }
+        })
+        .collect();
+    // The rays are the figure's own, not a pixel it picked: nothing to say on stderr.
+    Ok((vec![rec.trace(rec.scene, &rays, 0, Pick::Given)], object, quadratics))
+}
+
+/// The pixels across and up of the crop `jagged-edges` shows (16:9 on a slide's two panels).
+pub const JAGGED_CROP: (usize, usize) = (16, 12);
+
+/// `jagged-edges`: the whole image rendered with one ray per pixel and with `sampling`, and a
+/// crop of [`JAGGED_CROP`] pixels (fewer in a smaller image; one row in 2D): centred on the
+/// given pixel, else the one where the two renders differ in the most pixels (ties to the crop
+/// nearest the centre).
+fn jagged_renders<V: Dim>(
+    scene: &Scene<V>,
+    accel: &Accel<V>,
+    depth: u32,
+    sampling: Sampling,
+    aim: &Aim<V>,
+) -> Result<Jagged, FigureError> {
+    if matches!(aim, Aim::Ray(_)) {
+        return Err(FigureError("jagged-edges shows pixels: give --pixel, not --ray".into()));
+    }
+    let one = |sampling: Sampling| -> Result<Rendering, FigureError> {
+        let config = RenderConfig { sampling, strip_rows: Some(1), ..RenderConfig::centers(depth) };
+        check_fits(scene, &config, rayon::current_num_threads()).map_err(FigureError)?;
+        let r = render(scene, accel, &config);
+        Ok(Rendering { sampling, image: r.image, primary: r.stats.rays.primary })
+    };
+    let renders = [one(Sampling::Center)?, one(sampling)?];
+    let cam = &scene.camera;
+    let size = (JAGGED_CROP.0.min(cam.nx), if V::DIM == 2 { 1 } else { JAGGED_CROP.1.min(cam.ny) });
+    let corner = match aim {
+        Aim::Pixel(i, j) => (
+            i.saturating_sub(size.0 / 2).min(cam.nx - size.0),
+            j.saturating_sub(size.1 / 2).min(cam.ny - size.1),
+        ),
+        _ => {
+            // Changed pixels, summed over every crop through a table of prefix sums.
+            let (nx, ny) = (cam.nx, cam.ny);
+            let mut sums = vec![0usize; (nx + 1) * (ny + 1)];
+            for j in 0..ny {
+                for i in 0..nx {
+                    let c = usize::from(differs(renders[0].image.get(i, j), renders[1].image.get(i, j)));
+                    sums[(j + 1) * (nx + 1) + i + 1] =
+                        c + sums[j * (nx + 1) + i + 1] + sums[(j + 1) * (nx + 1) + i]
+                            - sums[j * (nx + 1) + i];
+                }
+            }
+            let at = |i: usize, j: usize| sums[j * (nx + 1) + i];
+            let centre = ((nx - size.0) as f64 / 2.0, (ny - size.1) as f64 / 2.0);
+            let mut best: Option<(usize, f64, (usize, usize))> = None;
+            for j in 0..=ny - size.1 {
+                for i in 0..=nx - size.0 {
+                    let n = at(i + size.0, j + size.1) + at(i, j) - at(i + size.0, j) - at(i, j + size.1);
+                    let d = (i as f64 - centre.0).hypot(j as f64 - centre.1);
+                    if best.is_none_or(|(bn, bd, _)| n > bn || (n == bn && d < bd)) {
+                        best = Some((n, d, (i, j)));
+                    }
+                }
+            }
+            best.map_or((0, 0), |(_, _, c)| c)
+        }
+    };
+    Ok(Jagged { renders, corner, size })
 }

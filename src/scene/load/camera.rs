@@ -60,7 +60,8 @@ pub(super) fn read<V: LoadDim>(r: &mut Reader, v: &Value) -> Option<Camera<V>> {
     Some(Camera {
         eye: eye?,
         center: center?,
-        frame: frame?,
+        frame: frame?.0,
+        up: frame?.1,
         projection: projection?,
         p,
         window: window?,

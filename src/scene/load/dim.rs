@@ -22,8 +22,8 @@ pub(super) trait LoadDim: Dim {
     const WINDOW: &'static [&'static str];
     /// The object types.
     const TYPES: &'static [&'static str];
-    /// The observer frame from eye, centre and (in 3D) `up`.
-    fn frame(r: &mut Reader, camera: &Map<'_>, eye: Self, center: Self) -> Option<Frame<Self>>;
+    /// The observer frame from eye, centre and (in 3D) `up`, and that `up` (zero in 2D).
+    fn frame(r: &mut Reader, camera: &Map<'_>, eye: Self, center: Self) -> Option<(Frame<Self>, Self)>;
     /// The flat primitive of an object of the given type.
     fn facet(r: &mut Reader, ty: &str, map: &Map<'_>, path: &str) -> Option<Self::Facet>;
     /// `Ny` from the resolution array.
@@ -36,12 +36,12 @@ impl LoadDim for DVec3 {
     const CAMERA: &'static [&'static str] = CAMERA_3D;
     const WINDOW: &'static [&'static str] = WINDOW_3D;
     const TYPES: &'static [&'static str] = TYPES_3D;
-    fn frame(r: &mut Reader, camera: &Map<'_>, eye: Self, center: Self) -> Option<Frame<Self>> {
+    fn frame(r: &mut Reader, camera: &Map<'_>, eye: Self, center: Self) -> Option<(Frame<Self>, Self)> {
         let up = match camera.get("up") {
             Some(v) => vector::<DVec3>(r, v, "camera.up")?,
             None => DEFAULT_UP,
         };
-        frame::look_at(eye, center, up).map_err(|e| camera::frame_error(r, e)).ok()
+        frame::look_at(eye, center, up).map_err(|e| camera::frame_error(r, e)).ok().map(|f| (f, up))
     }
     fn facet(r: &mut Reader, ty: &str, map: &Map<'_>, path: &str) -> Option<Triangle> {
         if ty != "triangle" {
@@ -106,8 +106,8 @@ impl LoadDim for DVec2 {
     const CAMERA: &'static [&'static str] = CAMERA_2D;
     const WINDOW: &'static [&'static str] = WINDOW_2D;
     const TYPES: &'static [&'static str] = TYPES_2D;
-    fn frame(r: &mut Reader, _camera: &Map<'_>, eye: Self, center: Self) -> Option<Frame<Self>> {
-        frame::look_at_2d(eye, center).map_err(|e| camera::frame_error(r, e)).ok()
+    fn frame(r: &mut Reader, _camera: &Map<'_>, eye: Self, center: Self) -> Option<(Frame<Self>, Self)> {
+        frame::look_at_2d(eye, center).map_err(|e| camera::frame_error(r, e)).ok().map(|f| (f, DVec2::ZERO))
     }
     fn facet(r: &mut Reader, ty: &str, map: &Map<'_>, path: &str) -> Option<Polygon> {
         let built = match ty {
