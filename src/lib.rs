@@ -15,13 +15,13 @@
 
 pub mod accel;
 pub mod bounds;
-pub mod canvas;
+pub use whitted_canvas as canvas;
 pub mod clock;
 pub mod complexity;
 pub mod doc;
 pub mod figure;
 pub mod format;
-pub mod geom;
+pub use whitted_geom as geom;
 pub mod grade;
 pub mod image;
 pub mod json;

@@ -4,11 +4,13 @@
 //! command that regenerates each; then the interactive course (`whitted::site`): a page per lesson
 //! and language (`out/en/NAME.html`, `out/ro/NAME.html`), the playgrounds (`play.html`), the
 //! scripts and style of `web/site/`, and the WebAssembly module as `out/whitted-wasm.js` when
-//! `web/build.sh` has built it (otherwise stderr says what is missing and how to get it).
+//! there is one (`--wasm`, the binary's own, or `web/build.sh`'s; otherwise stderr says how to get
+//! it). The lessons and scenes are read from disk or from the binary (`course`).
 
+use super::course::{self, tidy, Files};
 use super::figure::{scene_name, Format};
 use super::trace::LangArg;
-use super::{load_scene, output, print_out, read_text, write_file, Failure};
+use super::{output, print_out, write_file, Failure};
 use clap::Args;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -38,15 +40,17 @@ pub struct LessonsArgs {
     /// Only this language (default: both).
     #[arg(long, value_enum)]
     lang: Option<LangArg>,
-    /// The folder of lesson files.
-    #[arg(long, default_value = "lessons")]
-    lessons: PathBuf,
+    /// The folder of lesson files (default: lessons/ of the current folder if there is one, else
+    /// the lessons this whitted carries).
+    #[arg(long)]
+    lessons: Option<PathBuf>,
     /// Canvas size WxH in pixels (default 1920x1080).
     #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
-    /// The WebAssembly module that makes the pages live (built by web/build.sh).
-    #[arg(long, default_value = DEFAULT_WASM)]
-    wasm: PathBuf,
+    /// The WebAssembly module that makes the pages live (default: the one built into this whitted,
+    /// else target/wasm/whitted_web.wasm, built by web/build.sh).
+    #[arg(long)]
+    wasm: Option<PathBuf>,
 }
 
 /// The lock file a run holds in its output folder: a second run into the same folder is refused
@@ -58,6 +62,30 @@ const FIRST_EXAMPLE: &str = "whitted.json";
 
 /// Where `web/build.sh` writes the module.
 const DEFAULT_WASM: &str = "target/wasm/whitted_web.wasm";
+
+/// What a `whitted` without a module tells its user: how to get the live part.
+const HOW_TO_GET_THE_MODULE: &str = "the pages are written without their live part. In the \
+     repository, ./run.sh builds the module (installing its toolchain when missing) and writes the \
+     live course; or build it with `web/build.sh` (`web/build.sh --install` first installs its \
+     toolchain, as root) and pass `--wasm target/wasm/whitted_web.wasm`. An installed whitted \
+     carries the module when the toolchain was there at `cargo install --path .`.";
+
+/// The module the pages run: `--wasm FILE` when given; else the one built into this binary
+/// (`build.rs`); else `web/build.sh`'s in the current folder. The error says why there is none
+/// and how to get it.
+fn wasm_module(wasm: Option<&Path>) -> Result<std::borrow::Cow<'static, [u8]>, String> {
+    if let Some(path) = wasm {
+        return std::fs::read(path)
+            .map(Into::into)
+            .map_err(|e| format!("{}: {e}; {HOW_TO_GET_THE_MODULE}", path.display()));
+    }
+    if let Some(module) = course::module() {
+        return Ok(module.into());
+    }
+    std::fs::read(DEFAULT_WASM).map(Into::into).map_err(|e| {
+        format!("this whitted carries no WebAssembly module and {DEFAULT_WASM}: {e}; {HOW_TO_GET_THE_MODULE}")
+    })
+}
 
 /// The page script and style, written beside the pages (`out/whitted.js`, `out/whitted.css`).
 const SITE_FILES: [(&str, &str); 2] = [
@@ -77,21 +105,17 @@ struct Read {
 }
 
 /// The lesson files of `dir`, in file-name order.
-fn read_lessons(dir: &Path) -> Result<Vec<Read>, Failure> {
-    let entries = std::fs::read_dir(dir)
+fn read_lessons(from: Files, dir: &Path) -> Result<Vec<Read>, Failure> {
+    let files = from
+        .json_files(dir)
         .map_err(|e| Failure::input(format!("{}: cannot read the lessons folder: {e}", dir.display())))?;
-    let mut files: Vec<PathBuf> = entries
-        .filter_map(Result::ok)
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|e| e == "json"))
-        .collect();
-    files.sort();
     let mut problems = Vec::new();
     let mut lessons = Vec::new();
     // The file that first used each lesson name: a second one would overwrite its figures.
     let mut named: Vec<(String, PathBuf)> = Vec::new();
     for file in files {
-        let text = read_text(&file, MAX_SCENE_BYTES)
+        let text = from
+            .read(&file, MAX_SCENE_BYTES)
             .map_err(|e| Failure::input(format!("{}: cannot read: {e}", file.display())))?;
         match lesson::parse(&text) {
             Ok(lesson) => {
@@ -167,7 +191,8 @@ fn shell_quote(word: &str) -> String {
 
 /// Runs `whitted lessons`.
 pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
-    let read = read_lessons(&args.lessons)?;
+    let (from, dir) = Files::choose(args.lessons.as_deref());
+    let read = read_lessons(from, &dir)?;
     // `--only` draws one lesson; the pages still list every lesson (the others' files are those
     // an earlier run wrote).
     let drawn: Vec<bool> =
@@ -192,7 +217,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
     for r in read.iter().zip(&drawn).filter(|(_, d)| **d).map(|(r, _)| r) {
         for spec in &r.lesson.figures {
             let path = r.dir.join(&spec.scene);
-            scenes.entry(path.clone()).or_insert_with(|| load_scene(&path).map_err(|f| f.message));
+            scenes.entry(path.clone()).or_insert_with(|| from.load_scene(&path).map_err(|f| f.message));
         }
     }
     let (width, height) = canvas(args.size)?;
@@ -300,7 +325,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
         };
         write_file(&page, site::index_html(&lessons, &shown, *lang, other).as_bytes())?;
     }
-    write_site(args, &read, &langs, &results)?;
+    write_site(args, from, &read, &langs, &results)?;
     let figures: usize =
         read.iter().zip(&drawn).filter(|(_, d)| **d).map(|(r, _)| r.lesson.figures.len()).sum();
     print_out(&format!(
@@ -319,19 +344,20 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
 /// The interactive course: a page per lesson and language, the playgrounds, the scripts, and the
 /// module if it was built. `results` says which static figures were drawn (the pages show them
 /// until the module replaces them with live ones).
-fn write_site(args: &LessonsArgs, read: &[Read], langs: &[Lang], results: &[Drawn]) -> Result<(), Failure> {
-    let module = match std::fs::read(&args.wasm) {
+fn write_site(
+    args: &LessonsArgs,
+    from: Files,
+    read: &[Read],
+    langs: &[Lang],
+    results: &[Drawn],
+) -> Result<(), Failure> {
+    let module = match wasm_module(args.wasm.as_deref()) {
         Ok(wasm) => {
             write_file(&args.out.join(site::MODULE_SCRIPT), site::module_script(&wasm).as_bytes())?;
             true
         }
-        Err(e) => {
-            eprintln!(
-                "whitted lessons: {}: {e}; the pages are written without their live part. \
-                 Build the module with `web/build.sh` (`web/build.sh --install` first installs its \
-                 toolchain), then run `whitted lessons` again, or run ./run.sh, which does both.",
-                args.wasm.display()
-            );
+        Err(why) => {
+            eprintln!("whitted lessons: {why}");
             false
         }
     };
@@ -345,7 +371,8 @@ fn write_site(args: &LessonsArgs, read: &[Read], langs: &[Lang], results: &[Draw
         for spec in &r.lesson.figures {
             let path = r.dir.join(&spec.scene);
             if !texts.iter().any(|(p, _)| *p == path) {
-                let text = read_text(&path, MAX_SCENE_BYTES)
+                let text = from
+                    .read(&path, MAX_SCENE_BYTES)
                     .map_err(|e| Failure::input(format!("{}: cannot read: {e}", path.display())))?;
                 texts.push((path, text));
             }
@@ -415,27 +442,9 @@ fn write_site(args: &LessonsArgs, read: &[Read], langs: &[Lang], results: &[Draw
     Ok(())
 }
 
-/// A path with `.` and `name/..` taken out, written with `/` (`lessons/../scenes/whitted.json` →
-/// `scenes/whitted.json`): how a reader would type it. Lexical, as a shown command needs no more.
-fn tidy(path: &Path) -> String {
-    use std::path::Component;
-    let mut parts: Vec<String> = Vec::new();
-    for part in path.components() {
-        match part {
-            Component::CurDir => {}
-            Component::ParentDir if parts.last().is_some_and(|p| p != "..") => {
-                parts.pop();
-            }
-            other => parts.push(other.as_os_str().to_string_lossy().into_owned()),
-        }
-    }
-    parts.join("/")
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{shell_quote, tidy};
-    use std::path::Path;
+    use super::shell_quote;
 
     #[test]
     fn quotes_only_what_a_shell_would_read_otherwise() {
@@ -444,12 +453,5 @@ mod tests {
         assert_eq!(shell_quote("a$(rm -rf x);b"), "'a$(rm -rf x);b'");
         assert_eq!(shell_quote("it's"), "'it'\\''s'");
         assert_eq!(shell_quote(""), "''");
-    }
-
-    #[test]
-    fn tidy_takes_out_dots() {
-        assert_eq!(tidy(Path::new("lessons/../scenes/whitted.json")), "scenes/whitted.json");
-        assert_eq!(tidy(Path::new("./lessons/scenes/a.json")), "lessons/scenes/a.json");
-        assert_eq!(tidy(Path::new("../../x.json")), "../../x.json");
     }
 }

@@ -8,6 +8,7 @@
 
 mod accel;
 mod check;
+mod course;
 mod figure;
 mod grade;
 mod lessons;
@@ -63,10 +64,19 @@ pub use whitted::request::Failure;
 /// Reads and validates a scene file; every problem becomes one line of the failure. A mesh's
 /// OBJ file is read relative to the scene file's folder.
 pub fn load_scene(path: &Path) -> Result<AnyScene, Failure> {
-    let text = read_text(path, MAX_SCENE_BYTES)
+    load_scene_from(path, &read_text)
+}
+
+/// [`load_scene`] with the files read by `read` (path, byte limit): the disk, or the course the
+/// binary carries (`course`).
+pub fn load_scene_from(
+    path: &Path,
+    read: &dyn Fn(&Path, u64) -> Result<String, String>,
+) -> Result<AnyScene, Failure> {
+    let text = read(path, MAX_SCENE_BYTES)
         .map_err(|e| Failure::input(format!("{}: cannot read the scene: {e}", path.display())))?;
     let folder = path.parent().unwrap_or_else(|| Path::new("."));
-    let read_obj = |name: &str| read_text(&folder.join(name), MAX_OBJ_BYTES);
+    let read_obj = |name: &str| read(&folder.join(name), MAX_OBJ_BYTES);
     load_str_with(&text, &read_obj).map_err(|errors| {
         let lines: Vec<String> = errors.iter().map(|e| format!("{}: {e}", path.display())).collect();
         Failure::input(lines.join("\n"))

@@ -12,6 +12,7 @@ mod numerics;
 mod outputs;
 mod properties;
 mod sampling;
+mod scripts;
 mod states;
 mod support;
 mod tidy;

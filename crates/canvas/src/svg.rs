@@ -376,9 +376,9 @@ fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &Le
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
-    use crate::canvas::{TextOpts, View};
+    use crate::{TextOpts, View};
 
-    use crate::canvas::style::test_strokes::{BLUE_LINE, DASHED, FILL, GREEN_LINE, OUTLINE};
+    use crate::style::test_strokes::{BLUE_LINE, DASHED, FILL, GREEN_LINE, OUTLINE};
 
     fn demo() -> Drawing {
         let mut d = Drawing::new(960, 540).unwrap();

@@ -264,10 +264,10 @@ impl Drawing {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
-    use crate::canvas::label::LEADER_FROM;
-    use crate::canvas::{Align, Corner, HAlign, PxRect, VAlign};
+    use crate::label::LEADER_FROM;
+    use crate::{Align, Corner, HAlign, PxRect, VAlign};
 
-    use crate::canvas::style::test_strokes::{BLUE_LINE, FILL, OUTLINE, RED_LINE};
+    use crate::style::test_strokes::{BLUE_LINE, FILL, OUTLINE, RED_LINE};
 
     pub(super) fn v(x: f64, y: f64) -> DVec2 {
         DVec2::new(x, y)
@@ -371,7 +371,7 @@ mod tests {
         }
     }
 
-    pub(super) fn text_items(d: &Drawing) -> Vec<&crate::canvas::items::Text> {
+    pub(super) fn text_items(d: &Drawing) -> Vec<&crate::items::Text> {
         d.items
             .iter()
             .filter_map(|item| if let Mark::Text(t) = &item.mark { Some(t) } else { None })

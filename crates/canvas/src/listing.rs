@@ -123,8 +123,8 @@ impl Drawing {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::canvas::style::{self, Dash, Pen};
-    use crate::canvas::{TextOpts, View};
+    use crate::style::{self, Dash, Pen};
+    use crate::{TextOpts, View};
 
     #[test]
     fn every_shape_has_its_line() {
@@ -138,7 +138,7 @@ mod tests {
             .polygon("p", [DVec2::ZERO, DVec2::X, DVec2::Y], line, None)
             .rect("cell", DVec2::ONE, DVec2::ZERO, Pen::NONE, Some(style::YELLOW))
             .text("label", DVec2::ZERO, "θ_i \"q\"", TextOpts::LABEL.offset(2.0, -3.0));
-        d.legend_entry("primary", line, crate::canvas::LegendIcon::Line);
+        d.legend_entry("primary", line, crate::LegendIcon::Line);
         let expected = "title: T\n\
             view: x -1.000 … 2.000, y 0.000 … 1.000\n\
             legend: primary\n\

@@ -132,7 +132,7 @@ pub const ARROW_HEAD_PER_WIDTH: f64 = 4.5;
 pub fn arrow_head(width: f64) -> f64 {
     ARROW_HEAD.max(ARROW_HEAD_PER_WIDTH * width)
 }
-/// Radius of a dot ([`crate::canvas::Drawing::dot`]: a hit point's marker), in reference pixels.
+/// Radius of a dot ([`crate::Drawing::dot`]: a hit point's marker), in reference pixels.
 pub const DOT_RADIUS: f64 = 10.0;
 /// Width of the white halo around labels, in reference pixels (the full stroke width).
 pub const HALO_WIDTH: f64 = 9.0;

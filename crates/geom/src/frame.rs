@@ -28,8 +28,8 @@ pub struct Frame<V> {
 /// # Errors
 /// [`FrameError`] when `O == C` or `up` is parallel to `O − C` (a scene error, never a NaN).
 pub fn look_at(eye: DVec3, center: DVec3, up: DVec3) -> Result<Frame<DVec3>, FrameError> {
-    let w = crate::geom::Vector::try_unit(eye - center).ok_or(FrameError::EyeIsCenter)?;
-    let up = crate::geom::Vector::try_unit(up).ok_or(FrameError::UpParallel)?;
+    let w = crate::Vector::try_unit(eye - center).ok_or(FrameError::EyeIsCenter)?;
+    let up = crate::Vector::try_unit(up).ok_or(FrameError::UpParallel)?;
     let cross = up.cross(w);
     if cross.length() < 1e-12 {
         return Err(FrameError::UpParallel);
@@ -44,7 +44,7 @@ pub fn look_at(eye: DVec3, center: DVec3, up: DVec3) -> Result<Frame<DVec3>, Fra
 /// # Errors
 /// [`FrameError::EyeIsCenter`] when `O == C`.
 pub fn look_at_2d(eye: DVec2, center: DVec2) -> Result<Frame<DVec2>, FrameError> {
-    let w = crate::geom::Vector::try_unit(eye - center).ok_or(FrameError::EyeIsCenter)?;
+    let w = crate::Vector::try_unit(eye - center).ok_or(FrameError::EyeIsCenter)?;
     Ok(Frame { u: DVec2::new(w.y, -w.x), v: DVec2::ZERO, w })
 }
 

@@ -540,8 +540,8 @@ impl Drawing {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::canvas::style::test_strokes::BLUE_LINE;
-    use crate::canvas::View;
+    use crate::style::test_strokes::BLUE_LINE;
+    use crate::View;
 
     fn v(x: f64, y: f64) -> DVec2 {
         DVec2::new(x, y)

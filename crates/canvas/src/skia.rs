@@ -357,9 +357,9 @@ impl Canvas<'_> {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
-    use crate::canvas::{TextOpts, View};
+    use crate::{TextOpts, View};
 
-    use crate::canvas::style::test_strokes::{BLUE_LINE, FILL, OUTLINE, RED_LINE};
+    use crate::style::test_strokes::{BLUE_LINE, FILL, OUTLINE, RED_LINE};
 
     fn demo() -> Drawing {
         let mut d = Drawing::new(640, 360).unwrap();

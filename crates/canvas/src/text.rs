@@ -30,11 +30,11 @@ use glam::DVec2;
 pub const FAMILY: &str = "Noto Sans";
 
 /// The regular face (a subset of Noto Sans Regular 2.004).
-static REGULAR_TTF: &[u8] = include_bytes!("../../assets/fonts/NotoSans-Regular-subset.ttf");
+static REGULAR_TTF: &[u8] = include_bytes!("../../../assets/fonts/NotoSans-Regular-subset.ttf");
 /// The bold face (a subset of Noto Sans Bold 2.004).
-static BOLD_TTF: &[u8] = include_bytes!("../../assets/fonts/NotoSans-Bold-subset.ttf");
+static BOLD_TTF: &[u8] = include_bytes!("../../../assets/fonts/NotoSans-Bold-subset.ttf");
 /// Arrows and mathematical operators (a subset of Noto Sans Math).
-static MATH_TTF: &[u8] = include_bytes!("../../assets/fonts/NotoSansMath-Regular-subset.ttf");
+static MATH_TTF: &[u8] = include_bytes!("../../../assets/fonts/NotoSansMath-Regular-subset.ttf");
 
 /// The weight of a piece of text.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
