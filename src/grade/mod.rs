@@ -108,6 +108,8 @@ pub struct Divergence {
     pub path: Vec<&'static str>,
     /// Its name: `P`, `R₂`, `T₁`.
     pub ray: String,
+    /// The names from P down to it: `P`, `T₁`, `R₂`.
+    pub chain: Vec<String>,
     /// Its level (P = 1).
     pub level: u32,
     /// What differs.
@@ -118,8 +120,8 @@ pub struct Divergence {
     pub expected: Shown,
     /// The student's.
     pub found: Shown,
-    /// The formula, as the narration writes it.
-    pub formula: &'static str,
+    /// The formula, as the narration writes it, in English and Romanian.
+    pub formula: [&'static str; 2],
     /// The formula's inputs, from the student's own earlier values where there are some.
     pub inputs: Vec<(String, Shown)>,
     /// The classic mistake that explains it, if one does.

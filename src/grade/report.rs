@@ -81,6 +81,25 @@ fn quantity_text(q: Quantity, light: Option<usize>, lang: Lang) -> String {
     }
 }
 
+fn formula(d: &Divergence, lang: Lang) -> &'static str {
+    match lang {
+        Lang::En => d.formula[0],
+        Lang::Ro => d.formula[1],
+    }
+}
+
+/// `N mărimi`, `20 de mărimi`: Romanian puts `de` after numbers whose last two digits are 00 or
+/// 20 … 99 (not after 0 … 19).
+fn quantities(n: usize, lang: Lang) -> String {
+    match lang {
+        Lang::En if n == 1 => "1 quantity".to_owned(),
+        Lang::En => format!("{n} quantities"),
+        Lang::Ro if n == 1 => "1 mărime".to_owned(),
+        Lang::Ro if n % 100 >= 20 || (n >= 100 && n.is_multiple_of(100)) => format!("{n} de mărimi"),
+        Lang::Ro => format!("{n} mărimi"),
+    }
+}
+
 /// The grade as text, in the narration's language.
 #[must_use]
 pub fn text(g: &Grade, lang: Lang) -> String {
@@ -98,19 +117,18 @@ pub fn text(g: &Grade, lang: Lang) -> String {
         None => {
             let _ = writeln!(
                 out,
-                "{} {} {}",
+                "{} {} {}.",
                 t(lang, "Everything agrees:", "Totul coincide:"),
-                g.checked,
-                t(lang, "quantities checked.", "mărimi verificate.")
+                quantities(g.checked, lang),
+                t(lang, "checked", "verificate")
             );
         }
         Some(d) => {
             let _ = writeln!(
                 out,
-                "{} {} {}",
+                "{} {}.",
                 t(lang, "Agreed before the divergence:", "Au coincis înainte de divergență:"),
-                g.checked,
-                t(lang, "quantities.", "mărimi.")
+                quantities(g.checked, lang)
             );
             divergence(&mut out, d, lang);
         }
@@ -133,7 +151,7 @@ fn divergence(out: &mut String, d: &Divergence, lang: Lang) {
         out,
         "{}{step} ({}, {level} {}): {} — {}",
         t(lang, "First divergence", "Prima divergență"),
-        if d.path.is_empty() { "P".to_owned() } else { format!("{} {}", d.path.join(" → "), d.ray) },
+        d.chain.join(" → "),
         d.level,
         d.ray,
         quantity_text(d.quantity, d.light, lang)
@@ -141,7 +159,7 @@ fn divergence(out: &mut String, d: &Divergence, lang: Lang) {
     let width = 12;
     let _ = writeln!(out, "  {:width$} {}", t(lang, "expected", "așteptat"), shown_text(&d.expected, lang));
     let _ = writeln!(out, "  {:width$} {}", t(lang, "found", "găsit"), shown_text(&d.found, lang));
-    let _ = writeln!(out, "  {:width$} {}", t(lang, "formula", "formula"), d.formula);
+    let _ = writeln!(out, "  {:width$} {}", t(lang, "formula", "formula"), formula(d, lang));
     if !d.inputs.is_empty() {
         let inputs: Vec<String> =
             d.inputs.iter().map(|(name, v)| format!("{name} = {}", shown_text(v, lang))).collect();
@@ -173,9 +191,9 @@ fn divergence(out: &mut String, d: &Divergence, lang: Lang) {
     );
 }
 
-/// The grade as the JSON of docs/grading.md.
+/// The grade as the JSON of docs/grading.md (the formula in `lang`).
 #[must_use]
-pub fn json(g: &Grade) -> Value {
+pub fn json(g: &Grade, lang: Lang) -> Value {
     let first = g.first.as_ref().map_or(Value::Null, |d| {
         let mut m = Map::new();
         m.insert("path".into(), json!(d.path));
@@ -188,7 +206,7 @@ pub fn json(g: &Grade) -> Value {
         m.insert("found".into(), shown_json(&d.found));
         m.insert("step".into(), d.step.map_or(Value::Null, |k| json!(k)));
         m.insert("level".into(), json!(d.level));
-        m.insert("formula".into(), json!(d.formula));
+        m.insert("formula".into(), json!(formula(d, lang)));
         let inputs: Vec<Value> =
             d.inputs.iter().map(|(name, v)| json!({"name": name, "value": shown_json(v)})).collect();
         m.insert("inputs".into(), Value::Array(inputs));

@@ -26,20 +26,35 @@ use crate::trace::Tracer;
 
 /// The formulas, as the narration writes them.
 mod formula {
-    pub const WINDOW_POINT: &str = "u = l + (r − l)·(i + 0.5)/Nx, v = b + (t − b)·(j + 0.5)/Ny";
-    pub const PERSPECTIVE: &str = "O = eye, D = (S − O)/|S − O|, S = O + u·u + v·v − p·w";
-    pub const ORTHOGRAPHIC: &str = "S = O + u·u + v·v − p·w, D = −w";
-    pub const SPAWN_ORIGIN: &str = "I ± δ·N_f (δ a small offset)";
-    pub const REFLECT: &str = "R = D − 2(D·N_f)·N_f";
-    pub const REFRACT: &str = "T = η·D + (η·c − √k)·N_f, η = n1/n2, c = −D·N_f, k = 1 − η²(1 − c²)";
-    pub const NEAREST: &str = "the nearest t > 0 of O + t·D over the objects";
-    pub const POINT: &str = "I = O + t·D";
-    pub const NORMAL: &str = "N = the outward unit normal at I (sphere: (I − C)/r)";
-    pub const N_DOT_L: &str = "N_f·L, L = (S_light − I)/|S_light − I|";
-    pub const SHADOW: &str = "s = Π kt over the objects with 0 < t < d_L on the segment I → light";
-    pub const LOCAL: &str = "I_local = Ia·Ka + Σ Isrc·fat·s·lum·[kd·(N·L) + ks·(N·H)^n]";
-    pub const COLOUR: &str = "I = I_local + ks·R + kt·T";
-    pub const SPAWNS: &str = "children iff n ≤ max_depth; R iff ks > 0; T iff kt > 0 and k ≥ 0";
+    /// A formula in English and Romanian (the same where it is only mathematics).
+    pub type Formula = [&'static str; 2];
+    const fn same(f: &'static str) -> Formula {
+        [f, f]
+    }
+    pub const WINDOW_POINT: Formula = same("u = l + (r − l)·(i + 0.5)/Nx, v = b + (t − b)·(j + 0.5)/Ny");
+    pub const PERSPECTIVE: Formula = same("O = eye, D = (S − O)/|S − O|, S = O + u·u + v·v − p·w");
+    pub const ORTHOGRAPHIC: Formula = same("S = O + u·u + v·v − p·w, D = −w");
+    pub const SPAWN_ORIGIN: Formula = ["I ± δ·N_f (δ a small offset)", "I ± δ·N_f (δ o deplasare mică)"];
+    pub const REFLECT: Formula = same("R = D − 2(D·N_f)·N_f");
+    pub const REFRACT: Formula = same("T = η·D + (η·c − √k)·N_f, η = n1/n2, c = −D·N_f, k = 1 − η²(1 − c²)");
+    pub const NEAREST: Formula =
+        ["the nearest t > 0 of O + t·D over the objects", "cel mai mic t > 0 al lui O + t·D peste obiecte"];
+    pub const POINT: Formula = same("I = O + t·D");
+    pub const NORMAL: Formula = [
+        "N = the outward unit normal at I (sphere: (I − C)/r)",
+        "N = normala exterioară unitară în I (sferă: (I − C)/r)",
+    ];
+    pub const N_DOT_L: Formula = same("N_f·L, L = (S_light − I)/|S_light − I|");
+    pub const SHADOW: Formula = [
+        "s = Π kt over the objects with 0 < t < d_L on the segment I → light",
+        "s = Π kt peste obiectele cu 0 < t < d_L de pe segmentul I → sursă",
+    ];
+    pub const LOCAL: Formula = same("I_local = Ia·Ka + Σ Isrc·fat·s·lum·[kd·(N·L) + ks·(N·H)^n]");
+    pub const COLOUR: Formula = same("I = I_local + ks·R + kt·T");
+    pub const SPAWNS: Formula = [
+        "children iff n ≤ max_depth; R iff ks > 0; T iff kt > 0 and k ≥ 0",
+        "copii dacă n ≤ max_depth; R dacă ks > 0; T dacă kt > 0 și k ≥ 0",
+    ];
 }
 
 /// Stops the walk at the first divergence (recorded in the walker).
@@ -51,6 +66,8 @@ type Flow<T = ()> = Result<T, Stop>;
 #[derive(Clone)]
 struct Place {
     path: Vec<&'static str>,
+    /// The names from P down to this ray.
+    chain: Vec<String>,
     name: String,
     level: u32,
 }
@@ -120,12 +137,13 @@ impl<V: Dim> Walker<'_, V> {
         light: Option<usize>,
         expected: Shown,
         found: Shown,
-        formula: &'static str,
+        formula: formula::Formula,
         inputs: Vec<(String, Shown)>,
         diagnosis: Option<Mistake>,
     ) -> Stop {
         self.first = Some(Divergence {
             path: place.path.clone(),
+            chain: place.chain.clone(),
             ray: place.name.clone(),
             level: place.level,
             quantity,
@@ -149,7 +167,7 @@ impl<V: Dim> Walker<'_, V> {
         // What the two pixel mistakes would give: the corner (no +0.5), the row from the top.
         let corner = (cam.u_at(i as f64), cam.v_at(j as f64));
         let from_top = cam.pixel_center(i, cam.ny - 1 - j);
-        let place = Place { path: Vec::new(), name: "P".to_owned(), level: 1 };
+        let place = Place { path: Vec::new(), chain: vec!["P".to_owned()], name: "P".to_owned(), level: 1 };
         let pixel_inputs = || {
             let win = &cam.window;
             let mut inputs = vec![
@@ -587,7 +605,10 @@ impl<V: Dim> Walker<'_, V> {
                 let student = if kind == RayKind::Reflected { &s.reflected } else { &s.transmitted };
                 let mut path = place.path.clone();
                 path.push(key);
-                let child = Place { path, name: subscript(letter, &[k]), level: place.level + 1 };
+                let name = subscript(letter, &[k]);
+                let mut chain = place.chain.clone();
+                chain.push(name.clone());
+                let child = Place { path, chain, name, level: place.level + 1 };
                 match (whitted, student) {
                     (Some(c), Some(sc)) => {
                         let node = &log.nodes[c];
@@ -687,8 +708,8 @@ impl<V: Dim> Walker<'_, V> {
         ))
     }
 
-    /// Why a shadow factor differs: the object hit counted as its own occluder (found = s·kt of
-    /// itself), or the segment taken as a half-line past the light.
+    /// Why a shadow factor differs: the segment taken as a half-line past the light (found = the s
+    /// of the half-line), or else the object hit counted as its own occluder (found = s·kt of itself).
     fn shadow_mistake(
         &self,
         log: &EventLog<V>,
@@ -698,11 +719,6 @@ impl<V: Dim> Walker<'_, V> {
         kt_self: f64,
     ) -> Option<Mistake> {
         let tol = self.tol;
-        if !close(&[expected * kt_self], &[expected], tol, 0.0)
-            && close(&[found], &[expected * kt_self], tol, 0.0)
-        {
-            return Some(Mistake::NoShadowOffset);
-        }
         let (origin, direction) = log.events.iter().find_map(|e| match &e.event {
             Event::ShadowRay { light: l, origin, direction, .. } if e.ray == Some(0) && *l == light => {
                 Some((*origin, *direction))
@@ -723,7 +739,13 @@ impl<V: Dim> Walker<'_, V> {
                 kt > 0.0
             },
         );
-        close(&[found], &[s], tol, 0.0).then_some(Mistake::OccludersBeyondLight)
+        // Past the light first: where something lies beyond it, the half-line explains the found s.
+        if close(&[found], &[s], tol, 0.0) {
+            return Some(Mistake::OccludersBeyondLight);
+        }
+        (!close(&[expected * kt_self], &[expected], tol, 0.0)
+            && close(&[found], &[expected * kt_self], tol, 0.0))
+        .then_some(Mistake::NoShadowOffset)
     }
 }
 
@@ -761,17 +783,22 @@ fn step_of<V: Dim>(scene: &Scene<V>, pixel: &[usize], d: &Divergence) -> Option<
             with.get(usize::from(node == 0)).or(with.first()).copied()
         }
         Quantity::Object | Quantity::T | Quantity::Point | Quantity::Normal => first_with(hit?),
+        // The local model's step lists every shadow ray of the hit, and each light's step its own.
         Quantity::NDotL | Quantity::Shadow => {
             let light = d.light.unwrap_or(0);
-            log.shadow_events(node, light).first().and_then(|&e| first_with(e)).or_else(|| first_with(hit?))
+            log.shadow_events(node, light).first().and_then(|&e| last_with(e)).or_else(|| first_with(hit?))
         }
-        Quantity::Local => log
-            .shadow_events(node, 0)
-            .first()
-            .and_then(|&e| first_with(e))
-            .map(|k| k.saturating_sub(1).max(1))
-            .or_else(|| first_with(hit?)),
-        Quantity::Colour => last_with(hit?),
+        Quantity::Local => {
+            log.shadow_events(node, 0).first().and_then(|&e| first_with(e)).or_else(|| first_with(hit?))
+        }
+        // The hit is told by its step, the node's colour and, for P, the pixel's colour last.
+        Quantity::Colour => {
+            let hit = hit?;
+            let with: Vec<usize> =
+                (1..=told.events.len()).filter(|k| told.events[k - 1].contains(&hit)).collect();
+            let back = if node == 0 && with.len() > 2 { 2 } else { 1 };
+            with.get(with.len().saturating_sub(back)).copied()
+        }
         Quantity::Missing | Quantity::Extra => {
             let spawns = log.indices_of(node, |e| {
                 matches!(

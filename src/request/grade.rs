@@ -40,7 +40,7 @@ pub fn grade(scene: &AnyScene, name: &str, text: &str, tolerance: f64) -> Result
 #[must_use]
 pub fn answer(g: &Grade, lang: Lang, json: bool) -> String {
     if json {
-        serde_json::to_string_pretty(&report::json(g)).map_or_else(|e| e.to_string(), |t| t + "\n")
+        serde_json::to_string_pretty(&report::json(g, lang)).map_or_else(|e| e.to_string(), |t| t + "\n")
     } else {
         report::text(g, lang)
     }

@@ -5,6 +5,7 @@ mod accel;
 mod claims;
 mod cli;
 mod figures;
+mod grade;
 mod hardening;
 mod layout;
 mod narration;
