@@ -1,5 +1,5 @@
 //! numerics.md cases that concern the scene and the shading (F4, G1, G4, K1, K2, M1, M2), each a
-//! named test; the geometric cases sit beside their code in src/geom and src/shape.
+//! named test; the geometric cases sit beside their code in crates/geom and src/shape.
 
 use crate::support::{assert_finite, events, f, trace_ray, SceneText};
 use glam::DVec3;

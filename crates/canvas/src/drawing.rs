@@ -5,9 +5,7 @@
 
 use glam::DVec2;
 
-use super::items::{Item, Mark};
-use super::label::{Placement, TextOpts, FAR_STEPS, NEAR_STEPS};
-use super::legend::{LegendEntry, LegendIcon, LegendPlace};
+use super::items::{Item, LegendEntry, LegendPlace, Mark};
 use super::style::{self, Pen, Rgba};
 use super::view::View;
 
@@ -37,7 +35,7 @@ pub struct Drawing {
     pub caption: Option<String>,
     /// The title above the plot (markup), in bold.
     pub title: Option<String>,
-    /// Where labels placed clear ([`TextOpts::avoid_overlap`]) may go: a world rectangle, or the
+    /// Where labels placed clear ([`TextOpts::avoid_overlap`](crate::TextOpts::avoid_overlap)) may go: a world rectangle, or the
     /// whole plot area when `None` ([`Drawing::keep_labels_within`]).
     pub label_area: Option<(DVec2, DVec2)>,
     /// The tag prefix of the lines a label placed clear keeps off unless it names them
@@ -108,7 +106,7 @@ impl Drawing {
         self
     }
 
-    /// Keeps the labels placed from now on with [`TextOpts::avoid_overlap`] inside the world
+    /// Keeps the labels placed from now on with [`TextOpts::avoid_overlap`](crate::TextOpts::avoid_overlap) inside the world
     /// rectangle spanned by `a` and `b` where they can be (a plot's data area, so that no name
     /// lands among the tick names).
     pub fn keep_labels_within(&mut self, a: DVec2, b: DVec2) -> &mut Self {
@@ -226,33 +224,6 @@ impl Drawing {
         self.push(tag, style, Mark::Rect { min: a.min(b), max: a.max(b), fill })
     }
 
-    /// Adds a label at `anchor`. With [`TextOpts::avoid_overlap`], the label keeps the requested
-    /// placement if its box is clear of earlier labels and lines and inside the plot area;
-    /// otherwise it takes the first clear spot among candidates around the anchor (eight
-    /// directions, at growing distances), or the least bad one if none is clear. With
-    /// [`TextOpts::stack_down`] it moves down by its own height until no earlier label overlaps
-    /// it (at most [`STACK_LINES`] lines, never below its floor; if none is clear, to the least
-    /// covered).
-    pub fn text(&mut self, tag: &str, anchor: DVec2, markup: &str, opts: TextOpts) -> &mut Self {
-        let mut label = opts.label(markup, anchor);
-        match opts.placement {
-            Placement::AsGiven => {}
-            Placement::Clear => {
-                let steps: &[f64] = if opts.far { &FAR_STEPS } else { &NEAR_STEPS };
-                self.place_clear(&mut label, opts.leader, steps);
-            }
-            Placement::StackDown { floor } => self.place_stacked(&mut label, floor),
-        }
-        let style = Pen { color: opts.color, width: 0.0, dash: None };
-        self.push(tag, style, Mark::Text(label))
-    }
-
-    /// Adds a legend row.
-    pub fn legend_entry(&mut self, label: &str, style: Pen, sample: LegendIcon) -> &mut Self {
-        self.legend.push(LegendEntry { label: label.to_owned(), style, sample });
-        self
-    }
-
     /// The items whose tag is `tag`.
     pub fn tagged<'a>(&'a self, tag: &'a str) -> impl Iterator<Item = &'a Item> + 'a {
         self.items.iter().filter(move |item| item.tag == tag)
@@ -265,7 +236,7 @@ impl Drawing {
 mod tests {
     use super::*;
     use crate::label::LEADER_FROM;
-    use crate::{Align, Corner, HAlign, PxRect, VAlign};
+    use crate::{Align, Corner, HAlign, LegendIcon, LegendPlace, PxRect, TextOpts, VAlign};
 
     use crate::style::test_strokes::{BLUE_LINE, FILL, OUTLINE, RED_LINE};
 

@@ -1,17 +1,19 @@
 //! The display list's entries: an [`Item`] (tag, stroke, the trace events it draws) holds a
 //! [`Mark`] in world coordinates; a label is a [`Text`]; an arrow laid out in pixels for the
-//! back ends is an [`ArrowPx`].
+//! back ends is an [`ArrowPx`]. Beside them, what a [`Drawing`](crate::Drawing) stores or is
+//! asked for and its parts read: a label's options ([`TextOpts`], [`Align`], [`Placement`]) and the
+//! legend's rows and place ([`LegendEntry`], [`LegendIcon`], [`LegendPlace`], [`Corner`]). So this
+//! file imports no part of `Drawing`, and every part can import it.
 
 use glam::DVec2;
 
-use super::label::Align;
-use super::style::{Pen, Rgba, TextSize};
+use super::style::{self, Pen, Rgba, TextSize};
 use super::text::Weight;
 
-/// A text item: markup (see [`text`]) placed at a world anchor.
+/// A text item: markup (see [`text`](crate::text)) placed at a world anchor.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Text {
-    /// The label, in the markup of [`text`] (`θ_i`, `t_{ex}`).
+    /// The label, in the markup of [`text`](crate::text) (`θ_i`, `t_{ex}`).
     pub text: String,
     /// The world point the label belongs to.
     pub anchor: DVec2,
@@ -24,7 +26,7 @@ pub struct Text {
     /// The weight.
     pub weight: Weight,
     /// Whether a thin line joins the anchor to the box: set when a label placed with
-    /// [`TextOpts::avoid_overlap_with_leader`] lands farther than [`LEADER_FROM`] from its
+    /// [`TextOpts::avoid_overlap_with_leader`] lands farther than [`LEADER_FROM`](crate::label::LEADER_FROM) from its
     /// anchor, so that it still points at what it names.
     pub leader: bool,
     /// Whether a white halo outlines the glyphs so the text reads over lines.
@@ -143,4 +145,236 @@ impl ArrowPx {
             head: [to, base + side, to - dir * head * HEAD_NOTCH, base - side],
         })
     }
+}
+
+/// Horizontal alignment of text to its anchor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum HAlign {
+    /// The text starts at the anchor.
+    Left,
+    /// The text is centred on the anchor.
+    Center,
+    /// The text ends at the anchor.
+    Right,
+}
+
+/// Vertical alignment of text to its anchor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum VAlign {
+    /// The anchor is at the top of the text box.
+    Top,
+    /// The anchor is halfway up the capitals.
+    Middle,
+    /// The anchor is on the baseline.
+    Baseline,
+    /// The anchor is at the bottom of the text box.
+    Bottom,
+}
+
+/// Where text sits relative to its anchor point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Align {
+    /// Horizontally.
+    pub h: HAlign,
+    /// Vertically.
+    pub v: VAlign,
+}
+
+impl Align {
+    /// Centred on the anchor.
+    pub const CENTER: Self = Self { h: HAlign::Center, v: VAlign::Middle };
+    /// To the right of the anchor, centred vertically.
+    pub const RIGHT_OF: Self = Self { h: HAlign::Left, v: VAlign::Middle };
+    /// To the left of the anchor, centred vertically.
+    pub const LEFT_OF: Self = Self { h: HAlign::Right, v: VAlign::Middle };
+    /// Above the anchor, centred horizontally.
+    pub const ABOVE: Self = Self { h: HAlign::Center, v: VAlign::Bottom };
+    /// Below the anchor, centred horizontally.
+    pub const BELOW: Self = Self { h: HAlign::Center, v: VAlign::Top };
+}
+
+/// How a label is drawn: built from a named baseline such as [`TextOpts::LABEL`], then adjusted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextOpts {
+    /// Offset from the anchor in reference pixels, x right and y up.
+    pub offset: DVec2,
+    /// Alignment to the (offset) anchor.
+    pub align: Align,
+    /// Size class.
+    pub size: TextSize,
+    /// Text colour.
+    pub color: Rgba,
+    /// Weight.
+    pub weight: Weight,
+    /// White halo behind the glyphs.
+    pub halo: bool,
+    /// Where the label may move when it would overlap an earlier one (see [`Drawing::text`](crate::Drawing::text)).
+    pub placement: Placement,
+    /// A leader from the anchor when [`Placement::Clear`] moved the label far ([`Text::leader`]).
+    pub leader: bool,
+    /// How far [`Placement::Clear`] may move the label: [`NEAR_STEPS`](crate::label::NEAR_STEPS) or, for a plot with room
+    /// to spare, [`FAR_STEPS`](crate::label::FAR_STEPS) ([`TextOpts::far`]).
+    pub far: bool,
+}
+
+/// How [`Drawing::text`](crate::Drawing::text) places a label against the labels already drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Placement {
+    /// Exactly as requested.
+    AsGiven,
+    /// Nudged to a free spot near its anchor when it would overlap an earlier label or cross a
+    /// line ([`TextOpts::avoid_overlap`]).
+    Clear,
+    /// Moved down a line at a time, keeping its alignment, until it overlaps no earlier label,
+    /// its bottom never below the world height `floor` ([`TextOpts::stack_down`]): the names of
+    /// nested boxes that share a corner, each kept inside its box.
+    StackDown {
+        /// The lowest world y the label may reach.
+        floor: f64,
+    },
+}
+
+impl TextOpts {
+    /// The label `markup` at `anchor` as these options lay it out, before any placement moves it.
+    #[must_use]
+    pub fn label(&self, markup: &str, anchor: DVec2) -> Text {
+        Text {
+            text: markup.to_owned(),
+            anchor,
+            offset: self.offset,
+            align: self.align,
+            size: self.size,
+            weight: self.weight,
+            leader: false,
+            halo: self.halo,
+        }
+    }
+
+    /// A diagram label: label size, centred on its anchor, dark, with a halo.
+    pub const LABEL: Self = Self {
+        offset: DVec2::ZERO,
+        align: Align::CENTER,
+        size: TextSize::Label,
+        color: style::TEXT,
+        weight: Weight::Regular,
+        halo: true,
+        placement: Placement::AsGiven,
+        leader: false,
+        far: false,
+    };
+    /// A secondary note: small, centred, with a halo.
+    pub const NOTE: Self = Self { size: TextSize::Small, ..Self::LABEL };
+
+    /// With an offset of (`dx`, `dy`) reference pixels, y up.
+    #[must_use]
+    pub const fn offset(self, dx: f64, dy: f64) -> Self {
+        Self { offset: DVec2::new(dx, dy), ..self }
+    }
+    /// With another alignment.
+    #[must_use]
+    pub const fn align(self, align: Align) -> Self {
+        Self { align, ..self }
+    }
+    /// With another size class.
+    #[must_use]
+    pub const fn size(self, size: TextSize) -> Self {
+        Self { size, ..self }
+    }
+    /// In another colour.
+    #[must_use]
+    pub const fn color(self, color: Rgba) -> Self {
+        Self { color, ..self }
+    }
+    /// In bold.
+    #[must_use]
+    pub const fn bold(self) -> Self {
+        Self { weight: Weight::Bold, ..self }
+    }
+    /// Without the halo.
+    #[must_use]
+    pub const fn no_halo(self) -> Self {
+        Self { halo: false, ..self }
+    }
+    /// Placed clear of earlier labels and lines where a free spot exists.
+    #[must_use]
+    pub const fn avoid_overlap(self) -> Self {
+        Self { placement: Placement::Clear, ..self }
+    }
+    /// Placed clear as [`TextOpts::avoid_overlap`], and joined to its anchor by a leader when it
+    /// lands farther than [`LEADER_FROM`](crate::label::LEADER_FROM) from it: for names of points in a plot and of objects,
+    /// not for the symbols of a construction, where one more line would read as geometry.
+    #[must_use]
+    pub const fn avoid_overlap_with_leader(self) -> Self {
+        Self { placement: Placement::Clear, leader: true, ..self }
+    }
+    /// Free to go as far as [`FAR_STEPS`](crate::label::FAR_STEPS) from its anchor when placed clear.
+    #[must_use]
+    pub const fn far(self) -> Self {
+        Self { far: true, ..self }
+    }
+    /// Stacked below the earlier labels it would overlap, no lower than world height `floor`
+    /// ([`Placement::StackDown`]).
+    #[must_use]
+    pub const fn stack_down(self, floor: f64) -> Self {
+        Self { placement: Placement::StackDown { floor }, ..self }
+    }
+}
+
+/// What a legend entry's sample looks like.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LegendIcon {
+    /// A short line in the entry's style.
+    Line,
+    /// A short arrow in the entry's style.
+    Arrow,
+    /// A dot of this fill, outlined in the entry's style.
+    Dot(Rgba),
+    /// A filled square of this colour, outlined in the entry's style.
+    Swatch(Rgba),
+}
+
+/// One row of the legend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegendEntry {
+    /// The text (markup).
+    pub label: String,
+    /// The sample's stroke.
+    pub style: Pen,
+    /// The sample's kind.
+    pub sample: LegendIcon,
+}
+
+/// A corner of the plot area, for the legend.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Corner {
+    /// Top right.
+    TopRight,
+    /// Top left.
+    TopLeft,
+    /// Bottom right.
+    BottomRight,
+    /// Bottom left.
+    BottomLeft,
+}
+
+impl Corner {
+    /// The corners in the order the automatic placement prefers them.
+    pub const ALL: [Self; 4] = [Self::TopRight, Self::TopLeft, Self::BottomRight, Self::BottomLeft];
+}
+
+/// Where the legend box goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LegendPlace {
+    /// The first corner of the plot area (in [`Corner::ALL`] order) that no line crosses and no
+    /// label overlaps; if none is clear, [`LegendPlace::Outside`]. The view is fitted to the whole
+    /// plot area first, so going outside only shrinks the picture, uniformly.
+    Auto,
+    /// In this corner of the plot area, whatever it covers.
+    Inside(Corner),
+    /// In a column to the right of the plot area, which is narrowed to make room.
+    Outside,
+    /// In a band under the plot area (above the caption), at its right end; the plot area is
+    /// shortened to make room. A wide picture (two panels side by side) keeps more of its size
+    /// this way than beside a column.
+    Below,
 }

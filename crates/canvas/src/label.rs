@@ -1,91 +1,25 @@
-//! Text options and label placement: how a label sits on its anchor ([`Align`]), how it is drawn
-//! ([`TextOpts`]), and where [`Drawing::text`] puts it ([`Placement`]): as given, clear of
-//! earlier labels, lines, leaders and other points' markers (with a leader when set far from its
-//! anchor), or stacked down inside a box. [`Drawing::place_text`] says where a label lands in
-//! pixels, for placement and for both back ends.
+//! Label placement, `Drawing`'s label methods: [`Drawing::text`] puts a label where its
+//! [`TextOpts`] ask ([`Placement`], both beside the items): as given, clear of earlier labels,
+//! lines, leaders and other points' markers (with a leader when set far from its anchor), or
+//! stacked down inside a box. [`Drawing::place_text`] says where a label lands in pixels, for
+//! placement and for both back ends; the layout checks (`overlapping_labels`, `labels_on_lines`)
+//! read the labels placed.
 
 use glam::DVec2;
 
 use super::drawing::Drawing;
-use super::items::{Item, Mark, Text};
+/// The text options, beside the items since the display list stores them; here too for the paths
+/// that name them through `label`.
+pub use super::items::{Align, HAlign, VAlign};
+use super::items::{Item, Mark, Placement, Text, TextOpts};
 use super::legend::PlacedLegend;
-use super::style::{self, Rgba, TextSize};
-use super::text::{self, Weight};
+use super::style::Pen;
+use super::text;
 use super::view::{PxRect, Transform};
-
-/// Horizontal alignment of text to its anchor.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum HAlign {
-    /// The text starts at the anchor.
-    Left,
-    /// The text is centred on the anchor.
-    Center,
-    /// The text ends at the anchor.
-    Right,
-}
-
-/// Vertical alignment of text to its anchor.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum VAlign {
-    /// The anchor is at the top of the text box.
-    Top,
-    /// The anchor is halfway up the capitals.
-    Middle,
-    /// The anchor is on the baseline.
-    Baseline,
-    /// The anchor is at the bottom of the text box.
-    Bottom,
-}
-
-/// Where text sits relative to its anchor point.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Align {
-    /// Horizontally.
-    pub h: HAlign,
-    /// Vertically.
-    pub v: VAlign,
-}
-
-impl Align {
-    /// Centred on the anchor.
-    pub const CENTER: Self = Self { h: HAlign::Center, v: VAlign::Middle };
-    /// To the right of the anchor, centred vertically.
-    pub const RIGHT_OF: Self = Self { h: HAlign::Left, v: VAlign::Middle };
-    /// To the left of the anchor, centred vertically.
-    pub const LEFT_OF: Self = Self { h: HAlign::Right, v: VAlign::Middle };
-    /// Above the anchor, centred horizontally.
-    pub const ABOVE: Self = Self { h: HAlign::Center, v: VAlign::Bottom };
-    /// Below the anchor, centred horizontally.
-    pub const BELOW: Self = Self { h: HAlign::Center, v: VAlign::Top };
-}
 
 /// A label placed farther than this many reference pixels from its anchor gets a leader
 /// ([`TextOpts::avoid_overlap_with_leader`]).
 pub const LEADER_FROM: f64 = 30.0;
-
-/// How a label is drawn: built from a named baseline such as [`TextOpts::LABEL`], then adjusted.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TextOpts {
-    /// Offset from the anchor in reference pixels, x right and y up.
-    pub offset: DVec2,
-    /// Alignment to the (offset) anchor.
-    pub align: Align,
-    /// Size class.
-    pub size: TextSize,
-    /// Text colour.
-    pub color: Rgba,
-    /// Weight.
-    pub weight: Weight,
-    /// White halo behind the glyphs.
-    pub halo: bool,
-    /// Where the label may move when it would overlap an earlier one (see [`Drawing::text`]).
-    pub placement: Placement,
-    /// A leader from the anchor when [`Placement::Clear`] moved the label far ([`Text::leader`]).
-    pub leader: bool,
-    /// How far [`Placement::Clear`] may move the label: [`NEAR_STEPS`] or, for a plot with room
-    /// to spare, [`FAR_STEPS`] ([`TextOpts::far`]).
-    pub far: bool,
-}
 
 /// The gap between two rings of candidate spots around a label's anchor, in reference pixels.
 pub const RING_GAP: f64 = 14.0;
@@ -120,109 +54,6 @@ pub const NEAR_STEPS: [f64; 4] = [1.0, 2.5, 4.5, 7.0];
 /// area: a name may go to the empty part, with its leader.
 pub const FAR_STEPS: [f64; 6] = [1.0, 2.5, 4.5, 7.0, 10.0, 14.0];
 
-/// How [`Drawing::text`] places a label against the labels already drawn.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Placement {
-    /// Exactly as requested.
-    AsGiven,
-    /// Nudged to a free spot near its anchor when it would overlap an earlier label or cross a
-    /// line ([`TextOpts::avoid_overlap`]).
-    Clear,
-    /// Moved down a line at a time, keeping its alignment, until it overlaps no earlier label,
-    /// its bottom never below the world height `floor` ([`TextOpts::stack_down`]): the names of
-    /// nested boxes that share a corner, each kept inside its box.
-    StackDown {
-        /// The lowest world y the label may reach.
-        floor: f64,
-    },
-}
-
-impl TextOpts {
-    /// The label `markup` at `anchor` as these options lay it out, before any placement moves it.
-    #[must_use]
-    pub fn label(&self, markup: &str, anchor: DVec2) -> Text {
-        Text {
-            text: markup.to_owned(),
-            anchor,
-            offset: self.offset,
-            align: self.align,
-            size: self.size,
-            weight: self.weight,
-            leader: false,
-            halo: self.halo,
-        }
-    }
-
-    /// A diagram label: label size, centred on its anchor, dark, with a halo.
-    pub const LABEL: Self = Self {
-        offset: DVec2::ZERO,
-        align: Align::CENTER,
-        size: TextSize::Label,
-        color: style::TEXT,
-        weight: Weight::Regular,
-        halo: true,
-        placement: Placement::AsGiven,
-        leader: false,
-        far: false,
-    };
-    /// A secondary note: small, centred, with a halo.
-    pub const NOTE: Self = Self { size: TextSize::Small, ..Self::LABEL };
-
-    /// With an offset of (`dx`, `dy`) reference pixels, y up.
-    #[must_use]
-    pub const fn offset(self, dx: f64, dy: f64) -> Self {
-        Self { offset: DVec2::new(dx, dy), ..self }
-    }
-    /// With another alignment.
-    #[must_use]
-    pub const fn align(self, align: Align) -> Self {
-        Self { align, ..self }
-    }
-    /// With another size class.
-    #[must_use]
-    pub const fn size(self, size: TextSize) -> Self {
-        Self { size, ..self }
-    }
-    /// In another colour.
-    #[must_use]
-    pub const fn color(self, color: Rgba) -> Self {
-        Self { color, ..self }
-    }
-    /// In bold.
-    #[must_use]
-    pub const fn bold(self) -> Self {
-        Self { weight: Weight::Bold, ..self }
-    }
-    /// Without the halo.
-    #[must_use]
-    pub const fn no_halo(self) -> Self {
-        Self { halo: false, ..self }
-    }
-    /// Placed clear of earlier labels and lines where a free spot exists.
-    #[must_use]
-    pub const fn avoid_overlap(self) -> Self {
-        Self { placement: Placement::Clear, ..self }
-    }
-    /// Placed clear as [`TextOpts::avoid_overlap`], and joined to its anchor by a leader when it
-    /// lands farther than [`LEADER_FROM`] from it: for names of points in a plot and of objects,
-    /// not for the symbols of a construction, where one more line would read as geometry.
-    #[must_use]
-    pub const fn avoid_overlap_with_leader(self) -> Self {
-        Self { placement: Placement::Clear, leader: true, ..self }
-    }
-    /// Free to go as far as [`FAR_STEPS`] from its anchor when placed clear.
-    #[must_use]
-    pub const fn far(self) -> Self {
-        Self { far: true, ..self }
-    }
-    /// Stacked below the earlier labels it would overlap, no lower than world height `floor`
-    /// ([`Placement::StackDown`]).
-    #[must_use]
-    pub const fn stack_down(self, floor: f64) -> Self {
-        Self { placement: Placement::StackDown { floor }, ..self }
-    }
-}
-
 /// A text item placed in canvas pixels.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlacedText {
@@ -242,6 +73,27 @@ pub struct PlacedText {
 pub const STACK_LINES: usize = 6;
 
 impl Drawing {
+    /// Adds a label at `anchor`. With [`TextOpts::avoid_overlap`], the label keeps the requested
+    /// placement if its box is clear of earlier labels and lines and inside the plot area;
+    /// otherwise it takes the first clear spot among candidates around the anchor (eight
+    /// directions, at growing distances), or the least bad one if none is clear. With
+    /// [`TextOpts::stack_down`] it moves down by its own height until no earlier label overlaps
+    /// it (at most [`STACK_LINES`] lines, never below its floor; if none is clear, to the least
+    /// covered).
+    pub fn text(&mut self, tag: &str, anchor: DVec2, markup: &str, opts: TextOpts) -> &mut Self {
+        let mut label = opts.label(markup, anchor);
+        match opts.placement {
+            Placement::AsGiven => {}
+            Placement::Clear => {
+                let steps: &[f64] = if opts.far { &FAR_STEPS } else { &NEAR_STEPS };
+                self.place_clear(&mut label, opts.leader, steps);
+            }
+            Placement::StackDown { floor } => self.place_stacked(&mut label, floor),
+        }
+        let style = Pen { color: opts.color, width: 0.0, dash: None };
+        self.push(tag, style, Mark::Text(label))
+    }
+
     /// Where a text item lands in pixels under `tf`: its baseline origin, box and size.
     #[must_use]
     pub fn place_text(label: &Text, tf: &Transform) -> PlacedText {

@@ -1,73 +1,18 @@
-//! The legend: its rows ([`LegendEntry`], each with a [`LegendIcon`] of the line, arrow, dot or
-//! swatch it explains), where its box goes ([`LegendPlace`]: a clear corner of the plot area, a
-//! column beside it or a band under it), and its box and rows laid out in pixels ([`LegendBox`]).
+//! The legend laid out, `Drawing`'s legend methods: [`Drawing::legend_entry`] adds a row
+//! ([`LegendEntry`], with a [`LegendIcon`] of the line, arrow, dot or swatch it explains; both
+//! beside the items), [`LegendPlace`] says where its box goes (a clear corner of the plot area, a
+//! column beside it or a band under it), and here its box and rows are laid out in pixels
+//! ([`LegendBox`]).
 
 use glam::DVec2;
 
 use super::drawing::Drawing;
-use super::page::{PlacedLine, LINE_SPACING};
-use super::style::{self, Pen, Rgba, TextSize};
-use super::text::{self, Weight};
+/// The legend's rows and places, beside the items since [`Drawing`] stores them; here too for the
+/// paths that name them through `legend`.
+pub use super::items::{Corner, LegendEntry, LegendIcon, LegendPlace};
+use super::style::{self, Pen, TextSize};
+use super::text::{self, PlacedLine, Weight, LINE_SPACING};
 use super::view::{PxRect, Transform};
-
-/// What a legend entry's sample looks like.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LegendIcon {
-    /// A short line in the entry's style.
-    Line,
-    /// A short arrow in the entry's style.
-    Arrow,
-    /// A dot of this fill, outlined in the entry's style.
-    Dot(Rgba),
-    /// A filled square of this colour, outlined in the entry's style.
-    Swatch(Rgba),
-}
-
-/// One row of the legend.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LegendEntry {
-    /// The text (markup).
-    pub label: String,
-    /// The sample's stroke.
-    pub style: Pen,
-    /// The sample's kind.
-    pub sample: LegendIcon,
-}
-
-/// A corner of the plot area, for the legend.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Corner {
-    /// Top right.
-    TopRight,
-    /// Top left.
-    TopLeft,
-    /// Bottom right.
-    BottomRight,
-    /// Bottom left.
-    BottomLeft,
-}
-
-impl Corner {
-    /// The corners in the order the automatic placement prefers them.
-    pub const ALL: [Self; 4] = [Self::TopRight, Self::TopLeft, Self::BottomRight, Self::BottomLeft];
-}
-
-/// Where the legend box goes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum LegendPlace {
-    /// The first corner of the plot area (in [`Corner::ALL`] order) that no line crosses and no
-    /// label overlaps; if none is clear, [`LegendPlace::Outside`]. The view is fitted to the whole
-    /// plot area first, so going outside only shrinks the picture, uniformly.
-    Auto,
-    /// In this corner of the plot area, whatever it covers.
-    Inside(Corner),
-    /// In a column to the right of the plot area, which is narrowed to make room.
-    Outside,
-    /// In a band under the plot area (above the caption), at its right end; the plot area is
-    /// shortened to make room. A wide picture (two panels side by side) keeps more of its size
-    /// this way than beside a column.
-    Below,
-}
 
 /// One legend row laid out in pixels.
 #[derive(Clone, Debug, PartialEq)]
@@ -121,6 +66,12 @@ pub(super) struct PlacedLegend {
 }
 
 impl Drawing {
+    /// Adds a legend row.
+    pub fn legend_entry(&mut self, label: &str, style: Pen, sample: LegendIcon) -> &mut Self {
+        self.legend.push(LegendEntry { label: label.to_owned(), style, sample });
+        self
+    }
+
     /// The legend's padding, sample length, gap before the text, and row height, in pixels.
     pub(super) fn legend_metrics(&self) -> LegendMetrics {
         let k = self.px_scale();

@@ -5,21 +5,11 @@
 use glam::DVec2;
 
 use super::drawing::Drawing;
-use super::legend::{LegendBox, LegendPlace, PlacedLegend};
+use super::items::LegendPlace;
+use super::legend::{LegendBox, PlacedLegend};
 use super::style::{self, TextSize};
-use super::text::{self, Weight};
+use super::text::{self, PlacedLine, Weight, LINE_SPACING};
 use super::view::{PxRect, Transform};
-
-/// A text line placed in canvas pixels.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PlacedLine {
-    /// The markup.
-    pub text: String,
-    /// The start of the baseline, in pixels.
-    pub origin: DVec2,
-    /// Font size in pixels.
-    pub size: f64,
-}
 
 /// The canvas layout shared by the back ends (see the module doc).
 #[derive(Clone, Debug, PartialEq)]
@@ -35,9 +25,6 @@ pub struct PageLayout {
     /// The legend box, if there are legend entries.
     pub legend: Option<LegendBox>,
 }
-
-/// Line spacing of stacked text lines, in em.
-pub(super) const LINE_SPACING: f64 = 1.3;
 
 impl Drawing {
     /// The plot area before the legend is placed: the canvas less its margin, the title and

@@ -29,6 +29,20 @@ use glam::DVec2;
 /// The family name of the embedded font, as SVG's `font-family` names it.
 pub const FAMILY: &str = "Noto Sans";
 
+/// A text line placed in canvas pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlacedLine {
+    /// The markup.
+    pub text: String,
+    /// The start of the baseline, in pixels.
+    pub origin: DVec2,
+    /// Font size in pixels.
+    pub size: f64,
+}
+
+/// Line spacing of stacked text lines, in em.
+pub const LINE_SPACING: f64 = 1.3;
+
 /// The regular face (a subset of Noto Sans Regular 2.004).
 static REGULAR_TTF: &[u8] = include_bytes!("../../../assets/fonts/NotoSans-Regular-subset.ttf");
 /// The bold face (a subset of Noto Sans Bold 2.004).

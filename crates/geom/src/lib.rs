@@ -1,6 +1,8 @@
 //! Dimension-generic mathematics (algorithm.md §3, §9, §11): the [`Vector`] trait over glam's
 //! `DVec2` and `DVec3`, rays, the stable sphere roots, the slab test, optics and the spawn offset.
-//! Nothing here knows of scenes, recorders or serde.
+//! Nothing here knows of scenes, recorders or serde: it is a crate of its own (`whitted-geom`,
+//! re-exported as `whitted::geom`), which cannot import them.
+#![forbid(unsafe_code)]
 
 pub mod frame;
 pub mod offset;
