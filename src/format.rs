@@ -15,6 +15,8 @@
 //! | `xml_escape` | SVG text | XML 1.0 forbids some control characters |
 //! | [`html_escape`] | the course pages | HTML, attributes in double quotes |
 //! | [`markup_escape`] | figure labels | the label markup's `_ ^ { } \` |
+//! | [`terminal_text`] | stdout and stderr text | a terminal executes ESC, BEL, CR; bidi reorders |
+//! | [`json_text`] | stdout JSON | serde_json leaves DEL, C1 and bidi controls raw |
 
 /// The true minus sign (U+2212) that slides and narrations print instead of ASCII `-`.
 const MINUS: &str = "−";
@@ -115,9 +117,69 @@ pub fn markup_escape(name: &str) -> String {
     out
 }
 
+/// True for a character a terminal or a text renderer acts on instead of showing: the C0 and C1
+/// controls and DEL (`char::is_control`: ESC starts a sequence that can clear the screen or set
+/// the title, BEL rings, CR overwrites the line) and the bidirectional embeddings, overrides and
+/// isolates U+202A–U+202E and U+2066–U+2069, which reorder the text after them.
+#[must_use]
+pub fn is_hidden_control(c: char) -> bool {
+    c.is_control() || matches!(c, '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}')
+}
+
+/// Text for a terminal (stdout and stderr): every [`is_hidden_control`] character but the line
+/// feed and the tab becomes its Rust escape `\u{1b}`, so a name or a path is shown, never
+/// executed. Scene names cannot hold them (the loader refuses them); this keeps the rest — an
+/// unknown key, a file name, an `--object` argument — from acting on the terminal too.
+#[must_use]
+pub fn terminal_text(s: &str) -> String {
+    if !s.chars().any(|c| is_hidden_control(c) && c != '\n' && c != '\t') {
+        return s.to_owned();
+    }
+    s.chars()
+        .map(|c| {
+            if is_hidden_control(c) && c != '\n' && c != '\t' {
+                c.escape_unicode().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+/// JSON text for a terminal: serde_json escapes C0 controls but writes DEL, the C1 controls and the
+/// bidirectional characters raw; each becomes `\uXXXX`. Outside strings JSON holds none of them, so
+/// the text stays valid JSON and reads back the same.
+#[must_use]
+pub fn json_text(json: &str) -> String {
+    if !json.chars().any(is_hidden_control) {
+        return json.to_owned();
+    }
+    json.chars()
+        .map(|c| {
+            // A raw C0 control (a line feed of pretty printing) is whitespace outside strings.
+            if is_hidden_control(c) && u32::from(c) > 0x1F {
+                format!("\\u{:04x}", u32::from(c))
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn control_and_bidirectional_characters_are_shown_not_executed() {
+        assert_eq!(terminal_text("a\u{1b}]0;t\u{7}b\rc\n\td"), "a\\u{1b}]0;t\\u{7}b\\u{d}c\n\td");
+        assert_eq!(terminal_text("x\u{202e}y\u{2066}\u{9b}"), "x\\u{202e}y\\u{2066}\\u{9b}");
+        assert_eq!(terminal_text("oglindă ── P → T₁"), "oglindă ── P → T₁");
+        let json = serde_json::json!({ "name": "a\u{202e}b\u{1b}\u{9b}\u{7f}" });
+        let text = json_text(&serde_json::to_string_pretty(&json).unwrap());
+        assert_eq!(text, "{\n  \"name\": \"a\\u202eb\\u001b\\u009b\\u007f\"\n}");
+        assert_eq!(serde_json::from_str::<serde_json::Value>(&text).unwrap(), json);
+    }
 
     #[test]
     fn numbers_for_slides() {

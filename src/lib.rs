@@ -8,7 +8,7 @@
 //! the lecture, with the interactive pages of the course (`site`); `tradeoff` measures what
 //! accuracy costs. `request` is what a command does between
 //! its arguments and its answer, shared by the command line and the WebAssembly binding; `clock`
-//! times where the platform has a clock. The mathematics is written once for 2D
+//! times where the platform has a clock; `memory` is the budget every estimate is checked against. The mathematics is written once for 2D
 //! and 3D (`geom`, `shape`).
 //! See `ARCHITECTURE.md` for the codemap and the invariants.
 #![forbid(unsafe_code)]
@@ -27,6 +27,7 @@ pub mod image;
 pub mod json;
 pub mod lang;
 pub mod lesson;
+pub mod memory;
 pub mod record;
 pub mod render;
 pub mod request;

@@ -86,8 +86,9 @@ impl RenderConfig<'_> {
 pub const MAX_THREADS: u32 = 1024;
 /// The most pixels an image may have (16 384² = 2^28), whatever each axis allows.
 pub const MAX_PIXELS: u64 = 1 << 28;
-/// The most memory a render may need ([`memory_needed`]), 8 GiB: refused above, before any work.
-pub const MAX_MEMORY: u64 = 8 << 30;
+/// The most memory a render may need ([`memory_needed`]), 8 GiB: refused above, before any work
+/// (and less where the machine gives less: `memory::budget`).
+pub use crate::memory::MAX_MEMORY;
 /// Bytes a written pixel costs beside its linear colour: the 8-bit RGB copy and, at worst, as
 /// many bytes again of PNG stream.
 const PNG_BYTES_PER_PIXEL: u64 = 6;
@@ -119,7 +120,8 @@ pub fn memory_needed<V: Dim>(scene: &Scene<V>, config: &RenderConfig<'_>, thread
 }
 
 /// Refuses, before any work, a render that cannot fit: more than [`MAX_PIXELS`] pixels, or more
-/// than [`MAX_MEMORY`] bytes by [`memory_needed`].
+/// bytes by [`memory_needed`] than the process's budget (`memory::budget`: [`MAX_MEMORY`], or
+/// less where the machine gives less).
 ///
 /// # Errors
 /// The size asked, what it needs and the limit, worded for a person who will change `--size`.
@@ -134,18 +136,8 @@ pub fn check_fits<V: Dim>(scene: &Scene<V>, config: &RenderConfig<'_>, threads: 
         ));
     }
     let needed = memory_needed(scene, config, threads);
-    if needed > MAX_MEMORY {
-        let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
-        return Err(format!(
-            "{}x{height} with {} sampling needs about {:.1} GiB, more than the limit of {:.0} GiB: choose a \
-             smaller --size (or --max-level)",
-            cam.nx,
-            config.sampling.name(),
-            gib(needed),
-            gib(MAX_MEMORY)
-        ));
-    }
-    Ok(())
+    let what = format!("{}x{height} with {} sampling", cam.nx, config.sampling.name());
+    crate::memory::budget().check(needed, &what, "choose a smaller --size (or --max-level)")
 }
 
 /// The rows of the image a render writes: the camera's Ny, or a 2D scene's strip.

@@ -17,6 +17,5 @@ pub struct CheckArgs {
 /// Runs `whitted check`.
 pub fn run(args: &CheckArgs) -> Result<(), Failure> {
     let scene = load_scene(&args.scene)?;
-    print_out(&report(&scene, &args.scene.display().to_string()));
-    Ok(())
+    print_out(&report(&scene, &args.scene.display().to_string()))
 }

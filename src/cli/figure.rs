@@ -79,8 +79,7 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
     if args.list {
         let lines: Vec<String> =
             FigureKind::ALL.iter().map(|k| format!("{:<12} {}\n", k.name(), k.description())).collect();
-        print_out(&lines.concat());
-        return Ok(());
+        return print_out(&lines.concat());
     }
     let (Some(kind), Some(scene_path)) = (args.kind, args.scene.as_ref()) else {
         return Err(Failure::input("give KIND and SCENE, or --list"));

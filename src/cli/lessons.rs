@@ -133,6 +133,12 @@ fn read_lessons(from: Files, dir: &Path) -> Result<Vec<Read>, Failure> {
             Err(errors) => problems.extend(errors.into_iter().map(|e| format!("{}: {e}", file.display()))),
         }
     }
+    if problems.is_empty() && lessons.is_empty() {
+        return Err(Failure::input(format!(
+            "{}: no lesson files (NAME.json) in the lessons folder; give the folder with --lessons",
+            dir.display()
+        )));
+    }
     if problems.is_empty() {
         Ok(lessons)
     } else {
@@ -333,7 +339,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
         drawn.iter().filter(|d| **d).count(),
         langs.len(),
         args.out.display()
-    ));
+    ))?;
     if failed.is_empty() {
         Ok(())
     } else {

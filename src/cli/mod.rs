@@ -21,6 +21,8 @@ mod tradeoff;
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
+use whitted::format::{json_text, terminal_text};
+use whitted::memory;
 use whitted::scene::load::{load_str_with, MAX_OBJ_BYTES, MAX_SCENE_BYTES};
 use whitted::scene::AnyScene;
 
@@ -124,19 +126,63 @@ pub fn thread_pool(threads: Option<u32>) -> Result<rayon::ThreadPool, Failure> {
 /// Says on stderr the options a command ignores (`whitted: --threshold applies to …`).
 pub fn print_notes(notes: &[String]) {
     for note in notes {
-        eprintln!("whitted: {note}");
+        eprintln!("whitted: {}", terminal_text(note));
     }
 }
 
-/// Prints to stdout; a closed pipe (`| head`) is not an error.
-pub fn print_out(text: &str) {
+/// Prints to stdout, whole: a closed pipe (`| head`, the reader has all it wanted) is not an
+/// error; any other failure to write (`> /dev/full`, a full disk) is, so that a truncated answer
+/// never exits 0.
+///
+/// # Errors
+/// [`stdout_failure`] of the write's error.
+///
+/// Control and bidirectional characters are shown escaped ([`terminal_text`]): a scene's names
+/// cannot hold them, but a path or an argument may.
+pub fn print_out(text: &str) -> Result<(), Failure> {
+    write_stdout(&terminal_text(text))
+}
+
+/// Prints JSON text to stdout as [`print_out`] prints text, with the characters a terminal would
+/// act on as `\uXXXX` escapes ([`json_text`]), so the document still reads back the same.
+///
+/// # Errors
+/// As [`print_out`].
+pub fn print_json(json: &str) -> Result<(), Failure> {
+    write_stdout(&json_text(json))
+}
+
+fn write_stdout(text: &str) -> Result<(), Failure> {
     use std::io::Write;
     let mut out = std::io::stdout().lock();
-    let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+    out.write_all(text.as_bytes()).and_then(|()| out.flush()).or_else(stdout_failure)
+}
+
+/// What a failed write to stdout means: nothing for a closed pipe (`EPIPE`: the reader stopped
+/// reading, as `head` does), else a failure (exit code 1) on one line naming standard output.
+///
+/// # Errors
+/// Every error but [`std::io::ErrorKind::BrokenPipe`].
+pub fn stdout_failure(e: std::io::Error) -> Result<(), Failure> {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        Ok(())
+    } else {
+        Err(Failure::other(format!("standard output: cannot write: {e}")))
+    }
+}
+
+/// The process's memory budget (`whitted::memory`), from the kernel's own files where they exist:
+/// the address-space limit, what the process maps already, the memory available.
+fn set_memory_budget() {
+    let read = |path: &str| std::fs::read_to_string(path).ok();
+    let (limits, status, meminfo) =
+        (read("/proc/self/limits"), read("/proc/self/status"), read("/proc/meminfo"));
+    memory::set_budget(memory::Budget::from_proc(limits.as_deref(), status.as_deref(), meminfo.as_deref()));
 }
 
 /// Runs the command line and returns the exit code.
 pub fn main() -> u8 {
+    set_memory_budget();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {
@@ -160,7 +206,7 @@ pub fn main() -> u8 {
         Err(f) => {
             // An empty message: the answer was printed and only the exit code remains to say.
             if !f.message.is_empty() {
-                eprintln!("{}", prefix_lines(&f.message));
+                eprintln!("{}", prefix_lines(&terminal_text(&f.message)));
             }
             f.code()
         }

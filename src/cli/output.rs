@@ -1,7 +1,8 @@
 //! Every file the tool writes goes through [`write_file`], and is whole or untouched: the bytes go
 //! to a temporary file in the destination's folder, which is synced and then renamed over the
 //! destination (a rename within one folder is atomic), so a full disk, a failed write or a killed
-//! process leaves the previous file as it was. [`check`] and [`create_folder`] refuse, before the
+//! process leaves the previous file as it was; the temporary file a killed run leaves is removed
+//! by the next write of the same file once its process is gone. [`check`] and [`create_folder`] refuse, before the
 //! work, an output that could not be written or that is an input; [`lock_folder`] keeps two runs
 //! out of one folder.
 
@@ -31,6 +32,7 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
             .and_then(|mut f| f.write_all(bytes))
             .map_err(|e| fail(e.to_string()));
     }
+    sweep_stale(&dest);
     let temp = temp_beside(&dest);
     // A file replaced keeps its permissions, as a file written in place would.
     let keep = fs::metadata(&dest).ok().map(|m| m.permissions());
@@ -57,6 +59,32 @@ fn temp_beside(dest: &Path) -> PathBuf {
     let name = dest.file_name().map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
     let n = NEXT_TEMP.fetch_add(1, Ordering::Relaxed);
     dest.with_file_name(format!(".{name}.tmp-{}-{n}", std::process::id()))
+}
+
+/// Where the processes' folders are (`/proc/PID`): a temporary file's process is gone when its
+/// folder is. Without it (not Linux) nothing is swept, since nothing can tell a live run.
+const PROCESSES: &str = "/proc";
+
+/// Removes the temporary files `.NAME.tmp-PID-N` of `dest` left by a run that was killed: those
+/// whose process `PID` is gone. A live run's (another `lessons` writing the same file) is kept.
+/// Best effort: a file that cannot be listed or removed stays, as it would have without it.
+fn sweep_stale(dest: &Path) {
+    let processes = Path::new(PROCESSES);
+    if !processes.join("self").exists() {
+        return;
+    }
+    let (Some(name), Ok(entries)) = (dest.file_name(), fs::read_dir(folder_of(dest))) else { return };
+    let prefix = format!(".{}.tmp-", name.to_string_lossy());
+    for entry in entries.filter_map(Result::ok) {
+        let file = entry.file_name();
+        let Some(rest) = file.to_str().and_then(|f| f.strip_prefix(&prefix)) else { continue };
+        let Some((pid, n)) = rest.split_once('-') else { continue };
+        let ours = pid.parse::<u32>().is_ok_and(|p| p == std::process::id());
+        let numbered = !pid.is_empty() && pid.bytes().chain(n.bytes()).all(|b| b.is_ascii_digit());
+        if numbered && !n.is_empty() && !ours && !processes.join(pid).exists() {
+            let _ = fs::remove_file(entry.path());
+        }
+    }
 }
 
 /// `path` after its symbolic links (also a dangling one: its target is the file to create).
@@ -181,5 +209,31 @@ pub fn lock_folder(dir: &Path, name: &str) -> Result<FolderLock, Failure> {
             dir.display()
         ))),
         Err(TryLockError::Error(e)) => Err(cannot(e.to_string())),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_killed_runs_temporary_file_is_swept_by_the_next_write() {
+        if !Path::new(PROCESSES).join("1").exists() {
+            eprintln!("no {PROCESSES}: nothing is swept, nothing to check");
+            return;
+        }
+        let scratch = tempfile::tempdir().unwrap();
+        let dir = scratch.path();
+        // No process has this number (Linux's pid_max is at most 2^22); process 1 always runs.
+        let stale = dir.join(".x.png.tmp-4000000000-7");
+        let live = dir.join(".x.png.tmp-1-0");
+        let other = dir.join(".y.png.tmp-4000000000-0");
+        for path in [&stale, &live, &other] {
+            fs::write(path, b"partial").unwrap();
+        }
+        write_file(&dir.join("x.png"), b"whole").unwrap();
+        assert_eq!(fs::read(dir.join("x.png")).unwrap(), b"whole");
+        assert!(!stale.exists(), "the killed run's file is swept");
+        assert!(live.exists() && other.exists(), "a live run's file and another file's stay");
     }
 }

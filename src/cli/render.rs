@@ -4,7 +4,7 @@
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::{default_output, load_scene, output, print_out, thread_pool, write_file, Failure};
+use super::{default_output, load_scene, output, print_json, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -100,7 +100,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     );
     if args.json {
         let doc = outcome.json(load_seconds, threads, Some(&output.display().to_string()));
-        print_out(&format!("{doc}\n"));
+        print_json(&format!("{doc}\n"))?;
     }
     Ok(())
 }

@@ -7,10 +7,11 @@
 //! transcript shows what was typed (a terminal echoes it itself).
 
 use super::trace::{narration, TraceWhat};
-use super::Failure;
+use super::{stdout_failure, Failure};
 use clap::Args;
 use std::io::{BufRead, IsTerminal, Write};
 use whitted::doc::narrate::{Lang, Step};
+use whitted::format::terminal_text;
 
 /// Options of `whitted step`: those of `whitted trace` without `--json`.
 #[derive(Args, Debug)]
@@ -25,9 +26,28 @@ pub fn run(args: &StepArgs) -> Result<(), Failure> {
     let stdin = std::io::stdin();
     let echo = !stdin.is_terminal();
     let mut out = std::io::stdout().lock();
-    // A closed stdout (`| head`) ends the session quietly, as for the other commands.
-    let _ = session(&steps, args.what.lang(), echo, stdin.lock(), &mut out);
-    Ok(())
+    match session(&steps, args.what.lang(), echo, stdin.lock(), &mut out) {
+        Ok(()) => Ok(()),
+        // A closed stdout (`| head`) ends the session quietly, as for the other commands; any
+        // other write error is one.
+        Err(Ended::Write(e)) => stdout_failure(e),
+        Err(Ended::Read(e)) => Err(Failure::other(format!("standard input: cannot read: {e}"))),
+    }
+}
+
+/// Why a session stopped before its end: stdout or stdin failed.
+#[derive(Debug)]
+enum Ended {
+    /// Writing a step or a prompt failed.
+    Write(std::io::Error),
+    /// Reading an answer failed.
+    Read(std::io::Error),
+}
+
+impl From<std::io::Error> for Ended {
+    fn from(e: std::io::Error) -> Self {
+        Self::Write(e)
+    }
 }
 
 /// What an answer asks for.
@@ -39,6 +59,8 @@ enum Move {
     All,
     Quit,
     Unknown,
+    /// A line that is not UTF-8 text.
+    Invalid,
 }
 
 fn parse(answer: &str) -> Move {
@@ -57,6 +79,7 @@ struct Words {
     help: &'static str,
     last: &'static str,
     numbered: &'static str,
+    invalid: &'static str,
 }
 
 impl Words {
@@ -67,53 +90,68 @@ impl Words {
                 help: "Enter: next · b: back · NUMBER: that step · a: all the rest · q: quit",
                 last: "the last step",
                 numbered: "steps are numbered 1 to",
+                invalid: "not a valid answer",
             },
             Lang::Ro => Self {
                 steps: "pași",
                 help: "Enter: următorul · b: înapoi · NUMĂR: acel pas · a: tot restul · q: ieșire",
                 last: "ultimul pas",
                 numbered: "pașii sunt numerotați de la 1 la",
+                invalid: "nu este un răspuns valid",
             },
         }
     }
 }
 
-/// One step as shown: its place in the ray tree, then its text.
+/// One step as shown: its place in the ray tree, then its text, with any control character shown
+/// escaped ([`terminal_text`]).
 fn show(out: &mut impl Write, step: &Step) -> std::io::Result<()> {
     if !step.place.is_empty() {
-        writeln!(out, "── {}", step.place)?;
+        writeln!(out, "── {}", terminal_text(&step.place))?;
     }
-    writeln!(out, "{}", step.text)
+    writeln!(out, "{}", terminal_text(&step.text))
+}
+
+/// The next line of `input` without its line end: `None` at the end of input, `Err(bytes)` (shown
+/// lossily) when the line is not UTF-8, which is answered and not fatal.
+fn next_line(input: &mut impl BufRead) -> std::io::Result<Option<Result<String, String>>> {
+    let mut bytes = Vec::new();
+    if input.read_until(b'\n', &mut bytes)? == 0 {
+        return Ok(None);
+    }
+    if bytes.last() == Some(&b'\n') {
+        bytes.pop();
+    }
+    Ok(Some(String::from_utf8(bytes).map_err(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())))
 }
 
 /// Shows `steps` one at a time on `out`, moving as `input` says, until the last step is passed,
 /// `q`, or the end of input; with `echo` (input not a terminal), each answer is written after its
-/// prompt.
+/// prompt. A line that is not UTF-8 is answered "not a valid answer" and the session goes on.
 fn session(
     steps: &[Step],
     lang: Lang,
     echo: bool,
-    input: impl BufRead,
+    mut input: impl BufRead,
     out: &mut impl Write,
-) -> std::io::Result<()> {
+) -> Result<(), Ended> {
     let words = Words::of(lang);
     let n = steps.len();
     writeln!(out, "{n} {}. {}\n", words.steps, words.help)?;
     let Some(first) = steps.first() else { return Ok(()) };
     show(out, first)?;
     let mut at = 0;
-    let mut lines = input.lines();
     loop {
         write!(out, "[{}/{n}] > ", at + 1)?;
         out.flush()?;
-        let answer = lines.next().transpose()?;
+        let answer = next_line(&mut input).map_err(Ended::Read)?;
         // A terminal has echoed the answer and its Enter already; a pipe has not.
         match (&answer, echo) {
-            (Some(typed), true) => writeln!(out, "{}", typed.trim_end())?,
+            (Some(Ok(typed) | Err(typed)), true) => writeln!(out, "{}", terminal_text(typed.trim_end()))?,
             _ => writeln!(out)?,
         }
         let Some(answer) = answer else { return Ok(()) };
-        match parse(&answer) {
+        match answer.as_deref().map_or(Move::Invalid, parse) {
             Move::Next if at + 1 < n => at += 1,
             Move::Next => {
                 writeln!(out, "({})", words.last)?;
@@ -134,6 +172,10 @@ fn session(
             Move::Quit => return Ok(()),
             Move::Unknown => {
                 writeln!(out, "({})", words.help)?;
+                continue;
+            }
+            Move::Invalid => {
+                writeln!(out, "({}; {})", words.invalid, words.help)?;
                 continue;
             }
         }
@@ -200,5 +242,32 @@ mod tests {
         );
         // Without echo (a terminal), the prompt's line is only ended.
         assert!(run_with("3\n").contains("[1/3] > \n"));
+    }
+
+    #[test]
+    fn a_line_that_is_not_text_is_answered_and_the_session_goes_on() {
+        let mut out = Vec::new();
+        session(&three(), Lang::Ro, true, &b"\xff\xfe\n2\nq\n"[..], &mut out).unwrap();
+        let shown = String::from_utf8(out).unwrap();
+        assert!(shown.contains("[1/3] > \u{fffd}\u{fffd}\n(nu este un răspuns valid; "), "{shown}");
+        assert!(shown.contains("[1/3] > 2\n── P @ glass, level 1\n2. two"), "{shown}");
+    }
+
+    /// A writer whose every write fails as a full disk does.
+    struct Full;
+
+    impl Write for Full {
+        fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+            Err(std::io::ErrorKind::StorageFull.into())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_failed_write_ends_the_session_with_its_error() {
+        let ended = session(&three(), Lang::En, false, &b"a\n"[..], &mut Full);
+        assert!(matches!(ended, Err(Ended::Write(e)) if e.kind() == std::io::ErrorKind::StorageFull));
     }
 }

@@ -6,7 +6,7 @@
 
 use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
-use super::{load_scene, print_notes, print_out, Failure};
+use super::{load_scene, print_json, print_notes, print_out, Failure};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 use whitted::doc::narrate::{Lang, Narration};
@@ -88,8 +88,12 @@ pub struct TraceArgs {
 
 /// Runs `whitted trace`.
 pub fn run(args: &TraceArgs) -> Result<(), Failure> {
-    print_out(&traced(&args.what, args.json)?);
-    Ok(())
+    let text = traced(&args.what, args.json)?;
+    if args.json {
+        print_json(&text)
+    } else {
+        print_out(&text)
+    }
 }
 
 /// The numbered narration of what `what` asks for, with each step's events and place (`whitted

@@ -6,7 +6,7 @@
 
 use super::figure::{scene_name, Format};
 use super::trace::LangArg;
-use super::{load_scene, output, print_out, thread_pool, write_file, Failure};
+use super::{load_scene, output, print_json, print_out, thread_pool, write_file, Failure};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
@@ -137,9 +137,9 @@ fn report<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, threads: usize) -> R
             "pareto_on": "rays traced",
             "sweeps": measured.sweeps.iter().map(sweep_json).collect::<Vec<_>>(),
         });
-        print_out(&format!("{doc:#}\n"));
+        print_json(&format!("{doc:#}\n"))?;
     } else {
-        print_out(&tables(scene, args, threads, &measured));
+        print_out(&tables(scene, args, threads, &measured))?;
     }
     plots(scene, args, &measured)
 }

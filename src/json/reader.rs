@@ -12,11 +12,29 @@
 //! [`unit_interval`] and [`non_negative`] return the problem text for [`Reader::optional`].
 
 use super::{Map, SyntaxError, Value};
-use crate::format::as_written;
+use crate::format::{as_written, is_hidden_control};
 use std::fmt;
 
 /// The largest magnitude an input number may have (§11): squares and triple sums stay finite.
 pub const MAX_MAGNITUDE: f64 = 1e100;
+
+/// What is wrong with a ray given by hand (`--ray`, a lesson's `ray`), worded to follow "with"
+/// (`with a non-zero direction`), or `None`: 2 or 3 numbers on each side, each finite and at most
+/// [`MAX_MAGNITUDE`] in magnitude, and a direction that is not zero (it is normalised). One check
+/// for both, so a lesson names no ray that the command shown beside its figure would refuse.
+#[must_use]
+pub fn ray_problem(origin: &[f64], direction: &[f64]) -> Option<&'static str> {
+    if origin.len() != direction.len() || !(2..=3).contains(&origin.len()) {
+        return Some("2 or 3 numbers on each side");
+    }
+    if origin.iter().chain(direction).any(|x| !(x.abs() <= MAX_MAGNITUDE)) {
+        return Some("finite numbers of magnitude at most 1e100");
+    }
+    if direction.iter().all(|x| *x == 0.0) {
+        return Some("a non-zero direction");
+    }
+    None
+}
 
 /// One problem in an input file, with the JSON path of the field it concerns.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -246,6 +264,34 @@ impl Reader {
             self.err(path, format!("must be a string, got {}", type_name(v)));
         }
         s
+    }
+
+    /// A name a reader will see (an object's, a material's, a light's): a string holding no
+    /// control or bidirectional character ([`is_hidden_control`]), which a terminal would execute
+    /// instead of showing; the first one found is named by its code point.
+    pub fn name<'a>(&mut self, v: &'a Value, path: &str) -> Option<&'a str> {
+        let s = self.string(v, path)?;
+        self.name_text(s, path).then_some(s)
+    }
+
+    /// Checks a name's text, as [`Reader::name`] does (also for a key: a material's name);
+    /// false after reporting it.
+    pub fn name_text(&mut self, s: &str, path: &str) -> bool {
+        let Some(c) = s.chars().find(|c| is_hidden_control(*c)) else { return true };
+        self.err(
+            path,
+            format!(
+                "a name must not hold a control or bidirectional character, found U+{:04X}",
+                u32::from(c)
+            ),
+        );
+        false
+    }
+
+    /// A required name ([`Reader::name`]).
+    pub fn required_name<'a>(&mut self, map: &'a Map<'_>, path: &str, key: &str) -> Option<&'a str> {
+        let s = self.required_string(map, path, key)?;
+        self.name_text(s, &join(path, key)).then_some(s)
     }
 
     /// A required string.

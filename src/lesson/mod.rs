@@ -10,10 +10,11 @@ pub mod claim;
 
 use crate::accel::grid::MAX_CELLS_PER_AXIS;
 use crate::figure::FigureKind;
-use crate::json::reader::{ReadError, Reader};
+use crate::format::as_written;
+use crate::json::reader::{ray_problem, type_name, ReadError, Reader};
 use crate::json::{self, Map, Value};
 use crate::lang::{Lang, CODES};
-use crate::sample::Sampling;
+use crate::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD, MAX_LEVEL};
 use crate::scene::load::MAX_DEPTH;
 
 pub use crate::lang::Both;
@@ -193,18 +194,23 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
                 None
             }
         };
-    let numbers = |v: Option<&Value>| -> Option<Vec<f64>> {
-        v?.as_array()?.iter().map(|x| x.as_f64().filter(|f| f.is_finite())).collect()
-    };
+    let numbers =
+        |v: Option<&Value>| -> Option<Vec<f64>> { v?.as_array()?.iter().map(Value::as_f64).collect() };
+    // The ray as `--ray` would take it (`ray_problem`): the command shown beside the figure runs.
     let ray = match map.get("ray") {
         None => None,
         Some(r) => {
-            let origin = numbers(r.get("origin"));
-            let direction = numbers(r.get("direction"));
-            match (origin, direction) {
-                (Some(o), Some(d)) if o.len() == d.len() && (2..=3).contains(&o.len()) => Some((o, d)),
+            let form = "must be { \"origin\": [..], \"direction\": [..] }";
+            match (numbers(r.get("origin")), numbers(r.get("direction"))) {
+                (Some(o), Some(d)) => match ray_problem(&o, &d) {
+                    None => Some((o, d)),
+                    Some(problem) => {
+                        errors.push(format!("{path}.ray: {form} with {problem}"));
+                        None
+                    }
+                },
                 _ => {
-                    errors.push(format!("{path}.ray: must be {{ \"origin\": [..], \"direction\": [..] }}, 2 or 3 numbers each"));
+                    errors.push(format!("{path}.ray: {form}, 2 or 3 numbers each"));
                     None
                 }
             }
@@ -245,18 +251,35 @@ fn figure(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<FigureS
 /// `aa` (`center`, `corners`, `adaptive`) with `threshold` (default 0.1) and `max_level` (default 2).
 fn sampling(map: &Map<'_>, path: &str, errors: &mut Vec<String>) -> Option<Sampling> {
     let aa = map.get("aa")?;
+    // Each value is checked as written, and its error names its own field and quotes it.
     let threshold = match map.get("threshold") {
-        None => 0.1,
-        Some(t) => t.as_f64().unwrap_or(-1.0),
+        None => Some(DEFAULT_THRESHOLD),
+        Some(t) => match t.as_f64() {
+            Some(x) if x >= 0.0 => Some(x),
+            Some(x) => {
+                errors.push(format!("{path}.threshold: must be a number ≥ 0, got {}", as_written(x)));
+                None
+            }
+            None => {
+                errors.push(format!("{path}.threshold: must be a number ≥ 0, got {}", type_name(t)));
+                None
+            }
+        },
     };
     let max_level = match map.get("max_level") {
-        None => 2,
-        Some(k) => k.as_u64().and_then(|k| u32::try_from(k).ok()).unwrap_or(u32::MAX),
+        None => Some(DEFAULT_MAX_LEVEL),
+        Some(k) => {
+            with_reader(errors, |r| r.integer(k, &format!("{path}.max_level"), 0, u64::from(MAX_LEVEL)))
+                .and_then(|k| u32::try_from(k).ok())
+        }
     };
     let made = match aa.as_str() {
         Some("center") => Ok(Sampling::Center),
         Some("corners") => Ok(Sampling::Corners),
-        Some("adaptive") => Sampling::adaptive(threshold, max_level).map_err(|e| e.to_string()),
+        Some("adaptive") => {
+            let (threshold, max_level) = (threshold?, max_level?);
+            Sampling::adaptive(threshold, max_level).map_err(|e| e.to_string())
+        }
         _ => Err("must be center, corners or adaptive".to_owned()),
     };
     made.map_err(|e| errors.push(format!("{path}.aa: {e}"))).ok()
@@ -319,5 +342,49 @@ mod tests {
         );
         let e = parse("{ \"name\": ").unwrap_err();
         assert!(e[0].starts_with("invalid JSON at line 1, column"), "{e:?}");
+    }
+
+    /// A lesson of one figure with `fields` added to it.
+    fn one_figure(fields: &str) -> Result<Lesson, Vec<String>> {
+        parse(&format!(
+            r#"{{ "name": "a", "title": {{ "en": "x", "ro": "y" }}, "figures": [ {{ "kind": "rays",
+                "scene": "s.json", "caption": {{ "en": "a", "ro": "b" }}, {fields} }} ] }}"#
+        ))
+    }
+
+    #[test]
+    fn sampling_values_are_quoted_as_written_in_their_own_fields() {
+        let e = one_figure(r#""aa": "adaptive", "threshold": -1e-7, "max_level": "2""#).unwrap_err();
+        assert_eq!(
+            e,
+            [
+                "figures[0].threshold: must be a number ≥ 0, got -1e-7",
+                "figures[0].max_level: must be an integer in [0, 8], got a string",
+            ]
+        );
+        let e = one_figure(r#""aa": "adaptive", "threshold": "0.1", "max_level": 9"#).unwrap_err();
+        assert_eq!(
+            e,
+            [
+                "figures[0].threshold: must be a number ≥ 0, got a string",
+                "figures[0].max_level: must be an integer in [0, 8], got 9",
+            ]
+        );
+    }
+
+    #[test]
+    fn a_ray_the_command_line_would_refuse_is_refused_at_load() {
+        let ray = |o: &str, d: &str| one_figure(&format!(r#""ray": {{ "origin": {o}, "direction": {d} }}"#));
+        let form = r#"figures[0].ray: must be { "origin": [..], "direction": [..] }"#;
+        assert_eq!(ray("[0, 0]", "[0, 0]").unwrap_err(), [format!("{form} with a non-zero direction")]);
+        assert_eq!(
+            ray("[0, 1e300]", "[1, 0]").unwrap_err(),
+            [format!("{form} with finite numbers of magnitude at most 1e100")]
+        );
+        assert_eq!(
+            ray("[0, 0]", "[1, 0, 0]").unwrap_err(),
+            [format!("{form} with 2 or 3 numbers on each side")]
+        );
+        assert!(ray("[0, 1e100]", "[1e-300, -2]").is_ok());
     }
 }

@@ -155,8 +155,8 @@ pub struct EventLog<V> {
     overflowed: bool,
 }
 
-/// Why a trace that outgrew its [`EventLog`] is refused: the limit, and the worst-case size of the
-/// tree (`Scene::worst_tree_rays`) with the option that shrinks it.
+/// Why a trace that outgrew its [`EventLog`] is refused when its ray tree outgrew it: the limit,
+/// and the worst-case size of the tree (`Scene::worst_tree_rays`) with the option that shrinks it.
 #[must_use]
 pub fn overflow_message(limit: usize, max_depth: u32, worst_rays: f64) -> String {
     format!(
@@ -164,6 +164,11 @@ pub fn overflow_message(limit: usize, max_depth: u32, worst_rays: f64) -> String
          tree may hold up to {worst_rays:.3e} rays; lower --depth"
     )
 }
+
+/// About how many bytes one recorded event or ray node costs by the time it is shown: the event
+/// itself (about 200 bytes), its object in the trace document and its line of JSON or narration.
+/// `--max-events N` is refused before the work when `N` of them exceed the memory budget.
+pub const BYTES_PER_RECORD: u64 = 2048;
 
 impl<V> Default for EventLog<V> {
     fn default() -> Self {
@@ -202,6 +207,39 @@ impl<V> EventLog<V> {
     }
     fn at_limit(&self) -> bool {
         self.events.len() + self.nodes.len() >= self.limit
+    }
+    /// Why this log outgrew its limit, named by what filled it: when most of what it kept are
+    /// object tests, bounding-volume tests and node visits, or voxel steps, one ray's search did
+    /// (the change is the structure or its cells); otherwise the ray tree did
+    /// ([`overflow_message`], lower `--depth`).
+    #[must_use]
+    pub fn overflow_cause(&self, max_depth: u32, worst_rays: f64) -> String {
+        let count = |test: fn(&Event<V>) -> bool| self.events.iter().filter(|l| test(&l.event)).count();
+        let searches = [
+            (
+                count(|e| matches!(e, Event::ObjectTest { .. })),
+                "object tests: a ray tests the objects its structure gives it; trace with a structure \
+                 that tests fewer (--accel bvh)",
+            ),
+            (
+                count(|e| {
+                    matches!(e, Event::BoundTest { .. } | Event::NodeVisit { .. } | Event::NodeSkip { .. })
+                }),
+                "bounding-volume tests and node visits: trace with another structure (--accel)",
+            ),
+            (
+                count(|e| matches!(e, Event::VoxelStep { .. })),
+                "voxel steps of the grid: give the grid fewer cells (--grid)",
+            ),
+        ];
+        let kept = self.events.len() + self.nodes.len();
+        match searches.iter().max_by_key(|(n, _)| *n) {
+            Some((n, cause)) if 2 * n > kept => format!(
+                "the trace outgrew its limit of {} recorded events and ray nodes: {n} of them are {cause}",
+                self.limit
+            ),
+            _ => overflow_message(self.limit, max_depth, worst_rays),
+        }
     }
     /// The roots: one per primary ray traced.
     pub fn roots(&self) -> impl Iterator<Item = usize> + '_ {

@@ -1,8 +1,10 @@
 //! `whitted check`'s answer for a valid scene: what it models — dimension, objects by type,
-//! lights, which ray kinds can occur and why, the depth. (Its errors are `scene::load`'s, one line
+//! lights, which ray kinds can occur and why, the depth, and whether `render` takes its
+//! resolution (`render::check_fits`). (Its errors are `scene::load`'s, one line
 //! per problem with its JSON path.)
 
 use crate::lang::Lang;
+use crate::render::{check_fits, RenderConfig};
 use crate::scene::camera::Projection;
 use crate::scene::{AnyScene, Scene};
 use crate::shape::Dim;
@@ -32,6 +34,10 @@ pub fn describe<V: Dim>(scene: &Scene<V>) -> String {
     let image =
         if V::DIM == 2 { format!("{} pixels", cam.nx) } else { format!("{}x{} pixels", cam.nx, cam.ny) };
     let _ = writeln!(out, "  dimension: {} ({projection} camera, {image}, p = {})", V::NAME, cam.p);
+    // A resolution the scene format accepts may still be more than `render` draws.
+    if let Err(why) = check_fits(scene, &RenderConfig::centers(scene.max_depth), 1) {
+        let _ = writeln!(out, "  render: refused at this resolution: {why}");
+    }
     let mut by_type: BTreeMap<&str, usize> = BTreeMap::new();
     for o in &scene.objects {
         *by_type.entry(o.shape.kind()).or_default() += 1;

@@ -9,8 +9,9 @@ use crate::accel::Accel;
 use crate::doc::narrate::{narration, Lang, Narration};
 use crate::doc::samples::{sample_narration, sampled_document};
 use crate::doc::{trace_document, TraceTarget};
+use crate::memory::budget;
 use crate::record::stats::Stats;
-use crate::record::{overflow_message, EventLog};
+use crate::record::{EventLog, BYTES_PER_RECORD, DEFAULT_LIMIT};
 use crate::sample::{trace_pixel, PixelTrace, Sampling};
 use crate::scene::material::Rgb;
 use crate::scene::{AnyScene, Scene};
@@ -58,11 +59,31 @@ enum Outcome {
 }
 
 impl Trace {
+    /// The events and nodes the log may keep: `--max-events`, checked against the memory budget
+    /// before the work (`BYTES_PER_RECORD` each). A limit raised above the default that the budget
+    /// cannot hold is refused with the number; the default is lowered to what the budget holds,
+    /// so a small trace still runs on a small machine.
+    fn record_limit(&self) -> Result<usize, Failure> {
+        let budget = budget();
+        let records = self.max_events as u64;
+        if self.max_events > DEFAULT_LIMIT {
+            let what = format!(
+                "a trace of up to {records} events (--max-events, about {BYTES_PER_RECORD} bytes each)"
+            );
+            budget
+                .check(records.saturating_mul(BYTES_PER_RECORD), &what, "choose a smaller --max-events")
+                .map_err(|why| Failure::input(format!("trace: {why}")))?;
+        }
+        let held = usize::try_from(budget.bytes / BYTES_PER_RECORD).unwrap_or(usize::MAX);
+        Ok(self.max_events.min(held.max(1)))
+    }
+
     fn run<V: Dim>(&self, scene: &Scene<V>) -> Result<Done<V>, Failure> {
         let (ray, target) = self.target.primary(scene)?;
+        let limit = self.record_limit()?;
         let options = self.accel.options(V::DIM)?;
         let accel = Accel::build_with(scene, &options);
-        let mut tracer = Tracer::new(scene, &accel, EventLog::with_limit(self.max_events));
+        let mut tracer = Tracer::new(scene, &accel, EventLog::with_limit(limit));
         if let Some(d) = self.depth {
             tracer.max_depth = d;
         }
@@ -82,7 +103,7 @@ impl Trace {
         };
         let max_depth = tracer.max_depth;
         if tracer.recorder.overflowed() {
-            let why = overflow_message(tracer.recorder.limit(), max_depth, scene.worst_tree_rays(max_depth));
+            let why = tracer.recorder.overflow_cause(max_depth, scene.worst_tree_rays(max_depth));
             return Err(Failure::input(format!("trace: {why} or raise --max-events")));
         }
         Ok(Done { stats: tracer.stats, log: tracer.recorder, target, max_depth, outcome })

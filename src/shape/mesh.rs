@@ -87,6 +87,50 @@ impl Mesh {
     }
 }
 
+/// What an OBJ text declares, counted before it is parsed: its `v` statements and the triangles
+/// its `f` statements fan into (a face of k vertices makes k − 2). Counting reads the text once and
+/// allocates nothing, so a mesh too large for the memory is refused before it is built.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ObjCounts {
+    /// The vertices.
+    pub vertices: u64,
+    /// The triangles.
+    pub triangles: u64,
+}
+
+/// Bytes a vertex costs while a mesh is read and kept: tobj's position and its index map entry,
+/// the mesh's own copy. Measured with `check` on generated grids (see `ObjCounts::bytes_needed`).
+const BYTES_PER_VERTEX: u64 = 160;
+/// Bytes a triangle costs while a mesh is read and kept, and in the BVH built over it: tobj's
+/// index triple, the mesh's face and id, the structure's primitive record and node share.
+const BYTES_PER_TRIANGLE: u64 = 160;
+
+impl ObjCounts {
+    /// Counts the statements of `text` (see [`ObjCounts`]).
+    #[must_use]
+    pub fn of(text: &str) -> Self {
+        let mut counts = Self::default();
+        for line in text.lines() {
+            let mut words = line.split_whitespace();
+            match words.next() {
+                Some("v") => counts.vertices += 1,
+                Some("f") => counts.triangles += (words.count() as u64).saturating_sub(2),
+                _ => {}
+            }
+        }
+        counts
+    }
+
+    /// About how many bytes reading the mesh and building its structure take:
+    /// `vertices · BYTES_PER_VERTEX + triangles · BYTES_PER_TRIANGLE`.
+    #[must_use]
+    pub fn bytes_needed(&self) -> u64 {
+        self.vertices
+            .saturating_mul(BYTES_PER_VERTEX)
+            .saturating_add(self.triangles.saturating_mul(BYTES_PER_TRIANGLE))
+    }
+}
+
 /// A problem in an OBJ file, with the line it is on when one line is to blame.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ObjError {

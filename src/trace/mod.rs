@@ -149,3 +149,139 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
         sum
     }
 }
+
+/// The invariants ARCHITECTURE.md states of the recursion, each on the smallest scene that shows
+/// it: `kt = 0` spawns no T, a full recorder stops the secondary rays, the depth limit, and total
+/// internal reflection spawns R only.
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::AccelKind;
+    use crate::record::EventLog;
+    use crate::scene::load::load_str;
+    use crate::scene::AnyScene;
+    use glam::DVec3;
+
+    /// A 3D scene of `objects` (JSON), one light, `max_depth` as given.
+    fn scene(objects: &str, max_depth: u32) -> Scene<DVec3> {
+        let text = format!(
+            r#"{{ "camera": {{ "eye": [0, 0, 5], "center": [0, 0, 0], "window": {{ "l": -1, "r": 1, "b": -1, "t": 1 }},
+                "resolution": [4, 4] }}, "max_depth": {max_depth}, "lights": [ {{ "position": [0, 5, 5] }} ],
+                "objects": [ {objects} ] }}"#
+        );
+        match load_str(&text) {
+            Ok(AnyScene::Space(s)) => s,
+            other => panic!("not a 3D scene: {other:?}"),
+        }
+    }
+
+    /// The log and the counts of one ray traced through `scene` into `recorder`.
+    fn traced<R: Recorder<DVec3>>(scene: &Scene<DVec3>, ray: Ray<DVec3>, recorder: R) -> (R, Stats) {
+        let accel = Accel::build(scene, AccelKind::None);
+        let mut tracer = Tracer::new(scene, &accel, recorder);
+        tracer.trace_primary(&ray, &[]);
+        (tracer.recorder, tracer.stats)
+    }
+
+    fn kinds(log: &EventLog<DVec3>) -> Vec<RayKind> {
+        log.nodes.iter().map(|n| n.start.kind).collect()
+    }
+
+    fn count(log: &EventLog<DVec3>, test: impl Fn(&Event<DVec3>) -> bool) -> usize {
+        log.events.iter().filter(|l| test(&l.event)).count()
+    }
+
+    /// Two parallel mirrors, x = ±1, and a ray between them at 45°: every hit reflects.
+    const MIRRORS: &str = r#"{ "type": "plane", "point": [-1, 0, 0], "normal": [1, 0, 0], "material": { "ks": 0.9 } },
+        { "type": "plane", "point": [1, 0, 0], "normal": [-1, 0, 0], "material": { "ks": 0.9 } }"#;
+
+    fn diagonal() -> Ray<DVec3> {
+        Ray::new(DVec3::ZERO, DVec3::new(1.0, 0.0, -1.0).normalize())
+    }
+
+    #[test]
+    fn a_material_with_kt_0_spawns_no_transmitted_ray() {
+        let mirror =
+            r#"{ "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": { "ks": 0.5, "kt": 0 } }"#;
+        let s = scene(mirror, 5);
+        let (log, stats) = traced(&s, Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::NEG_Z), EventLog::new());
+        assert_eq!(kinds(&log), [RayKind::Primary, RayKind::Reflected]);
+        assert_eq!(stats.rays.transmitted, 0);
+        assert_eq!(
+            count(&log, |e| matches!(e, Event::Refract { .. } | Event::TotalInternalReflection { .. })),
+            0
+        );
+        // The same sphere with kt > 0 does spawn T: the test above can fail.
+        let glass = mirror.replace("\"kt\": 0", "\"kt\": 0.5, \"ior\": 1.5");
+        let (log, stats) =
+            traced(&scene(&glass, 5), Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::NEG_Z), EventLog::new());
+        assert!(stats.rays.transmitted > 0 && kinds(&log).contains(&RayKind::Transmitted));
+    }
+
+    #[test]
+    fn the_depth_limit_stops_the_recursion_at_max_depth_plus_one() {
+        for max_depth in [0, 1, 4] {
+            let (log, stats) = traced(&scene(MIRRORS, max_depth), diagonal(), EventLog::new());
+            // Levels 1 … max_depth + 1 are traced; the deepest node records the limit instead of a child.
+            let deepest = log.nodes.iter().map(|n| n.start.level).max();
+            assert_eq!(deepest, Some(max_depth + 1));
+            assert_eq!(stats.rays.reflected, u64::from(max_depth));
+            let limits: Vec<u32> = log
+                .events
+                .iter()
+                .filter_map(|l| match l.event {
+                    Event::DepthLimit { level } => Some(level),
+                    _ => None,
+                })
+                .collect();
+            assert_eq!(limits, [max_depth + 1]);
+        }
+    }
+
+    /// A recorder that says it is full from the start, and counts the rays it is shown.
+    #[derive(Default)]
+    struct Full {
+        opened: usize,
+    }
+
+    impl Recorder<DVec3> for Full {
+        const ENABLED: bool = true;
+        fn event(&mut self, _make: impl FnOnce() -> Event<DVec3>) {}
+        fn open_ray(&mut self, _make: impl FnOnce() -> RayStart<DVec3>) {
+            self.opened += 1;
+        }
+        fn light(&mut self, _make: impl FnOnce() -> crate::record::event::LightTerm<DVec3>) {}
+        fn close_ray(&mut self, _make: impl FnOnce() -> RayEnd<DVec3>) {}
+        fn full(&self) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn a_full_recorder_stops_the_secondary_rays() {
+        let s = scene(MIRRORS, 8);
+        let (full, stats) = traced(&s, diagonal(), Full::default());
+        assert_eq!((full.opened, stats.rays.reflected), (1, 0), "the primary ray only");
+        // A log that fills up part way: it stops spawning there and says it overflowed.
+        let (log, stats) = traced(&s, diagonal(), EventLog::with_limit(10));
+        assert!(log.overflowed() && stats.rays.reflected < 8, "{} reflected", stats.rays.reflected);
+        assert!(log.events.len() + log.nodes.len() <= 10 + 1);
+        // Not full: all eight generations.
+        assert_eq!(traced(&s, diagonal(), EventLog::new()).1.rays.reflected, 8);
+    }
+
+    #[test]
+    fn total_internal_reflection_spawns_the_reflected_ray_only() {
+        // From inside a glass sphere (n = 1.5) at 64° to the normal, beyond the critical 41.8°.
+        let glass = r#"{ "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": { "ks": 0.1, "kt": 0.9, "ior": 1.5 } }"#;
+        let ray = Ray::new(DVec3::new(0.0, 0.9, 0.0), DVec3::X);
+        let (log, stats) = traced(&scene(glass, 1), ray, EventLog::new());
+        let root = &log.nodes[0];
+        let children: Vec<RayKind> = root.children.iter().map(|c| log.nodes[*c].start.kind).collect();
+        assert_eq!(children, [RayKind::Reflected]);
+        let tir = log.events.iter().find(|l| matches!(l.event, Event::TotalInternalReflection { .. }));
+        assert_eq!(tir.map(|l| l.ray), Some(Some(0)), "recorded on the root");
+        assert_eq!(count(&log, |e| matches!(e, Event::Refract { .. })), 0);
+        assert_eq!(stats.rays.transmitted, 0);
+    }
+}

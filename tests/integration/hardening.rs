@@ -418,3 +418,244 @@ fn a_scene_takes_a_small_multiple_of_its_size() {
     assert!(out.status.success(), "{size} bytes of scene in {limit_kib} KiB: {} {err}", out.status);
     assert!(String::from_utf8_lossy(&out.stdout).contains("objects: 400000 (400000 sphere)"));
 }
+
+/// Runs the binary with its stdout sent to `stdout`: (exit code, stderr).
+fn whitted_into(args: &[&str], stdout: std::process::Stdio) -> (i32, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_whitted"))
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .stdout(stdout)
+        .output()
+        .expect("run whitted");
+    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+/// Every command that prints, with what it needs (issue 33, item 1).
+fn printing_commands(dir: &Scratch) -> Vec<Vec<String>> {
+    let png = dir.arg("out.png");
+    let course = dir.arg("course");
+    let none = dir.arg("no.wasm");
+    let glass = crate::support::fixture_path("glass.json");
+    let lines: [&[&str]; 10] = [
+        &["check", "scenes/flat.json"],
+        &["trace", &glass, "--pixel", "4,3"],
+        &["trace", &glass, "--pixel", "4,3", "--json"],
+        &["step", &glass, "--pixel", "4,3"],
+        &["render", "scenes/flat.json", "--size", "16", "--json", "-o", &png],
+        &["figure", "--list"],
+        &["tradeoff", "scenes/flat.json", "--runs", "1", "--size", "8"],
+        &["tradeoff", "scenes/flat.json", "--runs", "1", "--size", "8", "--json"],
+        &[
+            "lessons", "--only", "pixel-uv", "--lang", "en", "--size", "320x180", "--out", &course, "--wasm",
+            &none,
+        ],
+        &["trace", "scenes/flat.json", "--pixel", "30", "--aa", "corners"],
+    ];
+    lines.iter().map(|l| l.iter().map(|a| (*a).to_owned()).collect()).collect()
+}
+
+#[test]
+fn a_failed_write_to_stdout_is_an_error_and_a_closed_pipe_is_not() {
+    let dir = Scratch::new();
+    let full = Path::new("/dev/full");
+    for args in printing_commands(&dir) {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        if full.exists() {
+            let device = std::fs::OpenOptions::new().write(true).open(full).expect("open /dev/full");
+            let (code, err) = whitted_into(&args, device.into());
+            assert_eq!(code, 1, "{args:?} > /dev/full: {err}");
+            let last = err.lines().last().unwrap_or_default();
+            assert!(last.starts_with("error: standard output: cannot write: "), "{args:?}: {err}");
+            assert!(!err.contains("panicked"), "{args:?}: {err}");
+        }
+        // A reader that stops reading (`| head -0`): the answer was not wanted, which is no error.
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_whitted"))
+            .args(&args)
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("run whitted");
+        drop(child.stdout.take());
+        let out = child.wait_with_output().expect("run whitted");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{args:?} | head -0: {err}");
+        assert!(!err.contains("error: "), "{args:?}: {err}");
+    }
+    if !full.exists() {
+        eprintln!("/dev/full unavailable: only the closed pipe was checked");
+    }
+}
+
+#[test]
+fn names_that_a_terminal_would_execute_are_refused_and_shown_escaped() {
+    let dir = Scratch::new();
+    let sphere = |name: serde_json::Value| json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "name": name, "material": "m\u{7}"});
+    let scene = SceneText::space3(4, 4)
+        .material("m\u{7}", json!({"kd": 0.5}))
+        .object(sphere(json!("\u{1b}]0;owned\u{7}\u{1b}[2J")))
+        .object(sphere(json!({"en": "ok", "ro": "a\u{202e}b"})))
+        .light(json!({"position": [0, 5, 5], "name": "key\r"}));
+    let path = dir.write("names.json", scene.text());
+    for args in
+        [vec!["check", &path], vec!["trace", &path, "--pixel", "1,1"], vec!["step", &path, "--pixel", "1,1"]]
+    {
+        let (code, out, err) = whitted(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(out.is_empty(), "{out}");
+        let raw = err.chars().find(|c| whitted::format::is_hidden_control(*c) && *c != '\n');
+        assert_eq!(raw, None, "a raw control character on stderr: {err:?}");
+        for said in [
+            "materials.m\\u{7}: a name must not hold a control or bidirectional character, found U+0007",
+            "objects[0].name: a name must not hold a control or bidirectional character, found U+001B",
+            "objects[1].name.ro: a name must not hold a control or bidirectional character, found U+202E",
+            "lights[0].name: a name must not hold a control or bidirectional character, found U+000D",
+        ] {
+            assert!(err.contains(said), "{args:?}: expected `{said}` in {err}");
+        }
+    }
+    // What is not a scene name (here a file name) is escaped where it is printed: `--json` as
+    // `\u202e`, which reads back as the character.
+    let flat = dir.write("flat.json", SceneText::flat2(4).text());
+    let png = dir.arg("a\u{202e}gnp.png");
+    let (code, out, err) = whitted(&["render", &flat, "--json", "-o", &png]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("a\\u202egnp.png") && !out.contains('\u{202e}'), "{out}");
+    let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(doc["output"], png.as_str());
+}
+
+/// A lessons folder in `dir` holding the one lesson `text`, for `--lessons`.
+fn lesson_folder(dir: &Scratch, text: &str) -> String {
+    std::fs::create_dir_all(dir.join("lessons")).unwrap();
+    dir.write("lessons/01-a.json", text)
+}
+
+#[test]
+fn small_holes_in_lessons_check_and_step_are_closed() {
+    let dir = Scratch::new();
+    // No lesson files: said, exit 2.
+    std::fs::create_dir_all(dir.join("empty")).unwrap();
+    let out = dir.arg("out");
+    refused(
+        &["lessons", "--lessons", &dir.arg("empty"), "--out", &out],
+        "no lesson files (NAME.json) in the lessons folder",
+    );
+    // A ray the command shown beside the figure would refuse is refused when the lesson loads.
+    let flat = std::fs::canonicalize("scenes/flat.json").unwrap();
+    lesson_folder(
+        &dir,
+        &json!({ "name": "a", "title": { "en": "x", "ro": "y" }, "figures": [ { "kind": "rays",
+            "scene": flat, "ray": { "origin": [0, 0], "direction": [0, 0] },
+            "caption": { "en": "a", "ro": "b" } } ] })
+        .to_string(),
+    );
+    refused(
+        &["lessons", "--lessons", &dir.arg("lessons"), "--out", &out],
+        "01-a.json: figures[0].ray: must be { \"origin\": [..], \"direction\": [..] } with a non-zero direction",
+    );
+    // `check` says when `render` would refuse the scene's own resolution; the scene stays valid.
+    let huge = dir.write("huge.json", SceneText::space3(65536, 65536).text());
+    let (code, said, err) = whitted(&["check", &huge]);
+    assert_eq!(code, 0, "{err}");
+    assert!(said.contains("render: refused at this resolution: 65536x65536 is 4294967296 pixels"), "{said}");
+    let (_, said, _) = whitted(&["check", "scenes/flat.json"]);
+    assert!(!said.contains("refused"), "{said}");
+}
+
+#[test]
+fn lessons_write_through_a_symbolic_link_inside_their_folder() {
+    let dir = Scratch::new();
+    std::fs::create_dir_all(dir.join("out/en")).unwrap();
+    std::fs::create_dir_all(dir.join("kept")).unwrap();
+    std::fs::write(dir.join("kept/uv.png"), b"old").unwrap();
+    let link = dir.join("out/en/pixel-uv-1-uv-map.png");
+    std::os::unix::fs::symlink("../../kept/uv.png", &link).unwrap();
+    let none = dir.arg("no.wasm");
+    let (code, _, err) = whitted(&[
+        "lessons",
+        "--only",
+        "pixel-uv",
+        "--lang",
+        "en",
+        "--size",
+        "320x180",
+        "--out",
+        &dir.arg("out"),
+        "--wasm",
+        &none,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "the link was replaced");
+    assert!(std::fs::read(dir.join("kept/uv.png")).unwrap().starts_with(b"\x89PNG"), "not written through");
+}
+
+/// Runs the binary under an address-space limit of `kib` KiB (`ulimit -v`): (exit code, stderr).
+fn whitted_limited(kib: u64, args: &[&str]) -> (i32, String) {
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {kib} && exec \"$0\" \"$@\""))
+        .arg(env!("CARGO_BIN_EXE_whitted"))
+        .args(args)
+        .output()
+        .expect("run sh");
+    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+/// The address-space limit these tests run under: room for the binary (it runs `check` in well
+/// under 150 MiB), not for what they ask.
+const LIMITED_KIB: u64 = 400 << 10;
+
+#[test]
+fn meshes_figures_and_traces_are_estimated_against_the_memory_the_process_has() {
+    let dir = Scratch::new();
+    // 3 000 001 triangles in 6 MB: a face fanned over two vertices named again and again. The counts
+    // alone (480 MB) are more than the address space left, so nothing is parsed.
+    let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3");
+    obj.push_str(&" 2 3".repeat(1_500_000));
+    obj.push('\n');
+    dir.write("big.obj", &obj);
+    let scene = dir
+        .write("mesh.json", SceneText::space3(8, 8).object(json!({"type": "mesh", "obj": "big.obj"})).text());
+    let (code, err) = whitted_limited(LIMITED_KIB, &["check", &scene]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("objects[0].obj: big.obj: 3 vertices and 3000001 triangles needs about 458 MiB")
+            && err.contains("of address space left under the process's limit (ulimit -v): use a mesh with fewer triangles"),
+        "{err}"
+    );
+    // A figure of 200 000 spheres (600 MB by the count): refused before its structure is built.
+    let spheres: Vec<serde_json::Value> = (0..200_000)
+        .map(|k| json!({"type": "sphere", "center": [f64::from(k % 500) * 0.01, f64::from(k / 500) * 0.01, -1], "radius": 0.004}))
+        .collect();
+    let many = dir.write("many.json", SceneText::space3(8, 8).objects(spheres).text());
+    let svg = dir.arg("bvh.svg");
+    let (code, err) = whitted_limited(LIMITED_KIB, &["figure", "bvh", &many, "-o", &svg]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("a bvh figure of 200000 objects and triangles needs about"), "{err}");
+    assert!(err.contains("draw a scene with fewer objects"), "{err}");
+    assert!(!Path::new(&svg).exists());
+    // `--max-events` at its maximum: its memory is said before the trace.
+    refused(
+        &["trace", "scenes/flat.json", "--pixel", "30", "--max-events", "100000000"],
+        "a trace of up to 100000000 events (--max-events, about 2048 bytes each) needs about 190.7 GiB",
+    );
+}
+
+#[test]
+fn a_trace_that_outgrows_its_limit_is_told_what_filled_it() {
+    // 2 000 spheres tested one by one (`--accel none`): the object tests fill the log, not the tree.
+    let spheres: Vec<serde_json::Value> = (0..2000)
+        .map(|k| json!({"type": "sphere", "center": [f64::from(k) * 0.001, 50, -5], "radius": 0.0001}))
+        .collect();
+    let dir = Scratch::new();
+    let scene = dir.write("tests.json", SceneText::space3(4, 4).objects(spheres).text());
+    refused(
+        &["trace", &scene, "--pixel", "1,1", "--accel", "none", "--max-events", "1000"],
+        "of them are object tests: a ray tests the objects its structure gives it; trace with a structure \
+         that tests fewer (--accel bvh) or raise --max-events",
+    );
+    let (_, _, err) =
+        whitted(&["trace", &scene, "--pixel", "1,1", "--accel", "none", "--max-events", "1000"]);
+    assert!(!err.contains("--depth"), "{err}");
+}

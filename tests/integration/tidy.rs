@@ -2,8 +2,9 @@
 //! the code and the top-level docs make to `docs/` resolves (a file, an `algorithm.md` section,
 //! a `numerics.md` case, a `product.md` section); algorithm.md's Conventions cannot change
 //! without this project noticing (a stored hash); only `cli/output.rs` writes files; the top-level
-//! modules import one way, without a cycle. (That `canvas` and `geom` import nothing from the crate
-//! the compiler checks: they are crates of the workspace, `crates/`.)
+//! modules import one way, without a cycle (that `canvas` and `geom` import nothing from the crate
+//! the compiler checks: they are crates of the workspace, `crates/`); no snapshot is too long to
+//! review.
 
 use std::path::{Path, PathBuf};
 
@@ -16,6 +17,26 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
             out.push(path);
         }
     }
+}
+
+/// The longest a snapshot may be, in bytes: a reviewer reads a changed snapshot whole, so one
+/// language's narration in full (the other is checked step by step against it) and a trace
+/// document of one pixel. The longest today, a 2D slab's trace with its total internal
+/// reflections, is 44 kB.
+const MAX_SNAPSHOT_BYTES: u64 = 48 << 10;
+
+#[test]
+fn no_snapshot_is_too_long_to_review() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/integration/snapshots");
+    let mut long = Vec::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let bytes = std::fs::metadata(&path).unwrap().len();
+        if bytes > MAX_SNAPSHOT_BYTES {
+            long.push(format!("{}: {bytes} bytes", path.file_name().unwrap().to_string_lossy()));
+        }
+    }
+    assert!(long.is_empty(), "snapshots over {MAX_SNAPSHOT_BYTES} bytes: {long:?}");
 }
 
 #[test]

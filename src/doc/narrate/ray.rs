@@ -3,7 +3,7 @@
 //! its nearest hit I_k with the normal's side, or the background; then the local model, the
 //! secondary rays and the colour (`light`, `optics`).
 
-use super::{rgb, vec_str, Indexed, Writer};
+use super::{rgb, vec_str, Indexed, Lang, Writer};
 use crate::format::narration_number;
 use crate::geom::slab::widen_exit;
 use crate::record::event::{Event, RayKind};
@@ -23,16 +23,80 @@ fn cells_first<V>(events: &mut [Indexed<'_, V>]) {
     }
 }
 
+/// What an object test's t values are, by the shape's kind: the roots of a quadratic (sphere,
+/// circle), where the ray enters and leaves a box's slabs (box, rectangle), the one crossing of a
+/// flat shape (plane, line, a 3D triangle, a mesh's triangle, a segment), or where it crosses a 2D
+/// outline's edges (a 2D triangle, a polygon).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Crossings {
+    Roots,
+    EntryExit,
+    Single,
+    Edges,
+}
+
+/// The text of `lang` of a pair.
+fn pick(lang: Lang, en: &'static str, ro: &'static str) -> &'static str {
+    match lang {
+        Lang::En => en,
+        Lang::Ro => ro,
+    }
+}
+
+impl Crossings {
+    /// The t values of a shape of this kind (`Shape::kind`) in dimension `dim`.
+    fn of(kind: &str, dim: usize) -> Self {
+        match (kind, dim) {
+            ("sphere" | "circle", _) => Self::Roots,
+            ("box" | "rectangle", _) => Self::EntryExit,
+            ("polygon", _) | ("triangle", 2) => Self::Edges,
+            _ => Self::Single,
+        }
+    }
+
+    /// The name of `n` of them.
+    fn name(self, n: usize, lang: Lang) -> &'static str {
+        let (en, ro) = match (self, n) {
+            (Self::Roots, 1) => ("root (tangent)", "rădăcina (tangentă)"),
+            (Self::Roots, _) => ("roots", "rădăcini"),
+            (Self::EntryExit, 1) => ("entry = exit (touching)", "intrare = ieșire (atingere)"),
+            (Self::EntryExit, _) => ("entry and exit", "intrare și ieșire"),
+            (Self::Single | Self::Edges, 1) => ("crossing", "intersecția"),
+            (Self::Single | Self::Edges, _) => ("edge crossings", "intersecții cu laturile"),
+        };
+        pick(lang, en, ro)
+    }
+
+    /// None at all: the ray misses.
+    fn none(self, lang: Lang) -> &'static str {
+        match self {
+            Self::Roots => pick(lang, "no real root: the ray misses", "nicio rădăcină reală: raza ratează"),
+            _ => pick(lang, "no crossing: the ray misses", "nicio intersecție: raza ratează"),
+        }
+    }
+
+    /// None ahead of the ray's origin.
+    fn none_ahead(self, lang: Lang) -> &'static str {
+        match self {
+            Self::Roots => pick(lang, "no root with t > 0", "nicio rădăcină cu t > 0"),
+            _ => pick(lang, "none with t > 0", "niciuna cu t > 0"),
+        }
+    }
+}
+
 impl<'a, V: Dim> Writer<'a, V> {
-    /// One intersection test as a line: its roots and what was taken.
+    /// One intersection test as a line: the t values the shape gives, named as the shape has them
+    /// ([`Crossings`]: a sphere's roots, a box's entry and exit, a plane's one crossing), and what
+    /// was taken.
     pub(super) fn test_line(&self, e: &Event<V>) -> String {
         match e {
-            Event::ObjectTest { roots, accepted, .. } => {
-                let roots_s = if roots.is_empty() {
-                    self.t("no real root: the ray misses", "nicio rădăcină reală: raza ratează").to_string()
+            Event::ObjectTest { object, roots, accepted } => {
+                let kind = Crossings::of(self.scene.objects[object.index].shape.kind(), V::DIM);
+                let ts: Vec<String> = roots.iter().map(|x| narration_number(*x)).collect();
+                let found = if ts.is_empty() {
+                    kind.none(self.lang).to_owned()
                 } else {
-                    let r: Vec<String> = roots.iter().map(|x| narration_number(*x)).collect();
-                    format!("{} t = {}", self.t("roots", "rădăcini"), r.join(", "))
+                    format!("{} t = {}", kind.name(ts.len(), self.lang), ts.join(", "))
                 };
                 let acc = match accepted {
                     Some(t) => format!(
@@ -40,9 +104,9 @@ impl<'a, V: Dim> Writer<'a, V> {
                         self.t("accepted (least t > 0)", "acceptat (cel mai mic t > 0)"),
                         narration_number(*t)
                     ),
-                    None => self.t("→ no root with t > 0", "→ nicio rădăcină cu t > 0").to_string(),
+                    None => format!("→ {}", kind.none_ahead(self.lang)),
                 };
-                format!("{roots_s} {acc}")
+                format!("{found} {acc}")
             }
             Event::BoundTest { volume, t_in, t_out, hit, .. } => {
                 format!("{volume}: {}", self.interval(*t_in, *t_out, *hit))

@@ -9,7 +9,8 @@ use super::{camera, objects, required_vector, vector, ReadFile};
 use crate::geom::frame::{self, Frame};
 use crate::json::reader::{join, Reader};
 use crate::json::{Map, Value};
-use crate::shape::mesh::{parse_obj, Mesh, MeshError};
+use crate::memory::budget;
+use crate::shape::mesh::{parse_obj, Mesh, MeshError, ObjCounts};
 use crate::shape::polygon::{Polygon, PolygonError};
 use crate::shape::triangle::Triangle;
 use crate::shape::Dim;
@@ -76,6 +77,13 @@ impl LoadDim for DVec3 {
                 return None;
             }
         };
+        // What the mesh will take, from its counts, before tobj allocates it.
+        let counts = ObjCounts::of(&text);
+        let what = format!("{name}: {} vertices and {} triangles", counts.vertices, counts.triangles);
+        if let Err(why) = budget().check(counts.bytes_needed(), &what, "use a mesh with fewer triangles") {
+            r.err(p, why);
+            return None;
+        }
         let (vertices, faces) = match parse_obj(&text, MAX_MAGNITUDE) {
             Ok(x) => x,
             Err(e) => {

@@ -22,7 +22,7 @@ pub(super) fn read<V: LoadDim>(r: &mut Reader, v: Option<&Value>) -> Vec<Light<V
             continue;
         };
         if let Some(n) = map.get("name") {
-            r.string(n, &join(&path, "name"));
+            r.name(n, &join(&path, "name"));
         }
         let position = required_vector::<V>(r, map, &path, "position");
         let intensity = optional_rgb(r, map, &path, "intensity", DEFAULT_INTENSITY);

@@ -93,6 +93,7 @@ pub(super) fn read_named(r: &mut Reader, v: Option<&Value>) -> (Vec<Material>, V
     let mut mats = Vec::new();
     let mut names = Vec::new();
     for (name, m) in map {
+        r.name_text(name, &format!("materials.{name}"));
         let m = read(r, m, &format!("materials.{name}")).unwrap_or(Material::DEFAULT);
         mats.push(m);
         names.push(name.to_owned());

@@ -103,14 +103,15 @@ pub(super) fn read<V: LoadDim>(
     out
 }
 
-/// An object's `name`: one string for every language, or `{"en": …, "ro": …}` with both.
+/// An object's `name`: one string for every language, or `{"en": …, "ro": …}` with both; no
+/// control or bidirectional character in either ([`Reader::name`]).
 fn read_name(r: &mut Reader, v: &Value, path: &str) -> Option<Both> {
     match v {
-        Value::String(s) => Some(Both::same(s)),
+        Value::String(_) => r.name(v, path).map(Both::same),
         Value::Object(_) => {
             let map = r.fields(v, path, NAME)?;
-            let en = r.required_string(map, path, Lang::En.code());
-            let ro = r.required_string(map, path, Lang::Ro.code());
+            let en = r.required_name(map, path, Lang::En.code());
+            let ro = r.required_name(map, path, Lang::Ro.code());
             Some(Both { en: en?.to_owned(), ro: ro?.to_owned() })
         }
         _ => {
