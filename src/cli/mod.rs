@@ -9,6 +9,7 @@
 mod accel;
 mod check;
 mod course;
+mod exercises;
 mod figure;
 mod grade;
 mod lessons;
@@ -58,6 +59,9 @@ enum Command {
     /// divergence with its formula and, where a classic mistake explains it, that mistake; exit 0
     /// when everything agrees, 1 at a divergence, 2 for a bad document.
     Grade(grade::GradeArgs),
+    /// Write an exercise sheet and its worked answers for one pixel (exercises.html, answers.html):
+    /// 6–10 questions drawn from the pixel's trace, answered as the narration works them.
+    Exercises(exercises::ExercisesArgs),
 }
 
 /// An error with its exit code: 2 for bad input (scene, arguments), 1 for anything else.
@@ -200,6 +204,7 @@ pub fn main() -> u8 {
         Command::Lessons(args) => lessons::run(&args),
         Command::Tradeoff(args) => tradeoff::run(&args),
         Command::Grade(args) => grade::run(&args),
+        Command::Exercises(args) => exercises::run(&args),
     };
     match result {
         Ok(()) => 0,

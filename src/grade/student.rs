@@ -303,8 +303,8 @@ mod tests {
         assert_eq!(
             errors(text),
             [
-                "pixel[0]: 9 is outside the image: must be below 4",
                 "color: unknown field `color`; did you mean `colour`?",
+                "pixel[0]: 9 is outside the image: must be below 4",
                 "ray.hit.object: must be an integer in [0, 1], got 5",
                 "ray.hit.t: must be a number, got a string",
                 "ray.lights: must have one entry per light of the scene (1), got 2",

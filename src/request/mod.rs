@@ -12,9 +12,11 @@
 //! - [`trace`]: one pixel's or ray's trace document and narration (`whitted trace`);
 //! - [`render`]: an image and its statistics (`whitted render --json`);
 //! - [`figure`]: one diagram (`whitted figure`), with the pixel it picked;
-//! - [`grade`]: a student's trace document checked (`whitted grade`).
+//! - [`grade`]: a student's trace document checked (`whitted grade`);
+//! - [`exercises`]: one pixel's exercise sheet and answers (`whitted exercises`).
 
 pub mod check;
+pub mod exercises;
 pub mod figure;
 pub mod grade;
 pub mod options;

@@ -182,3 +182,34 @@ fn a_bad_document_is_refused_with_every_error_and_its_path() {
     assert_eq!(code, 2);
     assert!(err.contains("--tolerance must be in (0, 1), got 0"), "{err}");
 }
+
+#[test]
+fn exercise_sheets_ask_six_to_ten_questions_and_answer_them_with_the_narrations_steps() {
+    let scratch = Scratch::new();
+    for (scene, pixel, lang, step) in
+        [(WHITTED, "93,66", "en", "Step 1 —"), (SHADOWS, "10", "ro", "Pasul 1 —")]
+    {
+        let out = scratch.arg(lang);
+        let (code, said, err) =
+            whitted(&["exercises", &scene_path(scene), "--pixel", pixel, "--lang", lang, "--out", &out]);
+        assert_eq!(code, 0, "{err}");
+        let exercises = std::fs::read_to_string(scratch.join(lang).join("exercises.html")).unwrap();
+        let answers = std::fs::read_to_string(scratch.join(lang).join("answers.html")).unwrap();
+        let count = exercises.matches("<li>").count();
+        assert!((6..=10).contains(&count), "{count} questions");
+        assert_eq!(answers.matches("<li>").count(), count);
+        assert!(said.starts_with(&format!("{count} questions")), "{said}");
+        assert!(exercises.contains("<svg") && answers.contains("<svg"), "figures inline");
+        assert!(answers.contains(step), "each answer is a step of the narration");
+        assert!(!exercises.contains(step), "the sheet holds no answer");
+        // The same seed gives the same sheets.
+        let again = scratch.arg(&format!("{lang}-again"));
+        whitted(&["exercises", &scene_path(scene), "--pixel", pixel, "--lang", lang, "--out", &again]);
+        assert_eq!(
+            std::fs::read_to_string(scratch.join(format!("{lang}-again")).join("answers.html")).unwrap(),
+            answers
+        );
+    }
+    let ro = std::fs::read_to_string(scratch.join("ro").join("exercises.html")).unwrap();
+    assert!(ro.contains("calculați") && ro.contains("lang=\"ro\""));
+}
