@@ -22,32 +22,19 @@ use whitted::scene::{AnyScene, Scene};
 
 const SIZES: [usize; 5] = [10, 100, 1_000, 10_000, 100_000];
 
-/// n spheres at pseudo-random places in [−1, 1]³, radius 0.5/∛n (about 6.5 % of the cube
-/// filled whatever n), seen from (0, 0.5, 4); the same scene for a given n on every run.
+/// n spheres at pseudo-random places around the point looked at, seen from (0, 0.5, 4):
+/// `whitted::complexity::crowd`, the scenes of the `complexity` figure (a cube of half-side 0.8
+/// of the visible half-width, radius 0.5·h/∛n, about 6.5 % of the cube filled whatever n); the
+/// same scene for a given n on every run.
 fn scene(n: usize, width: usize) -> Scene<glam::DVec3> {
-    let mut state = 0x9E37_79B9_7F4A_7C15_u64 ^ n as u64;
-    let mut next = || {
-        // xorshift64*: a fixed, portable sequence.
-        state ^= state >> 12;
-        state ^= state << 25;
-        state ^= state >> 27;
-        (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
-    let r = 0.5 / (n as f64).cbrt();
-    let mut objects = Vec::with_capacity(n);
-    for _ in 0..n {
-        let (x, y, z) = (next(), next(), next());
-        objects.push(format!(r#"{{"type": "sphere", "center": [{x}, {y}, {z}], "radius": {r}}}"#));
-    }
     let text = format!(
         r#"{{"camera": {{"eye": [0, 0.5, 4], "center": [0, 0, 0], "window": {{"l": -0.5, "r": 0.5, "b": -0.375, "t": 0.375}}, "resolution": [{width}, {}]}},
-            "max_depth": 0, "lights": [{{"position": [3, 4, 5]}}], "objects": [{}]}}"#,
-        width * 3 / 4,
-        objects.join(",")
+            "max_depth": 0, "lights": [{{"position": [3, 4, 5]}}]}}"#,
+        width * 3 / 4
     );
     match load_str(&text) {
-        Ok(AnyScene::Space(s)) => s,
-        _ => unreachable!("the generated scene is valid"),
+        Ok(AnyScene::Space(s)) => whitted::complexity::crowd(&s, n, width),
+        _ => unreachable!("the template scene is valid"),
     }
 }
 

@@ -302,8 +302,6 @@ pub enum Label {
     UpGiven,
     /// `camera-frame`'s legend: from O towards C.
     ViewLine,
-    /// `camera-frame`'s legend: the window.
-    WindowAtP,
     /// `camera-frame`'s caption: how 3D is drawn.
     ObliqueView,
     /// `discriminant`: the ray that misses.
@@ -652,10 +650,6 @@ impl Label {
                 "from O towards C: along −w",
                 "de la O spre C: de-a lungul lui −w",
             ),
-            Self::WindowAtP => (
-                "view window, at distance p along −w",
-                "fereastra vizuală, la distanța p pe −w",
-            ),
             Self::ObliqueView => (
                 "drawn in an oblique view; the scene's objects are left out",
                 "desenat în vedere oblică; obiectele scenei nu sunt desenate",
@@ -919,7 +913,6 @@ mod tests {
         Label::FrameAxes,
         Label::UpGiven,
         Label::ViewLine,
-        Label::WindowAtP,
         Label::ObliqueView,
         Label::DeltaMiss,
         Label::DeltaTangent,

@@ -76,6 +76,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         LegendIcon::Arrow,
     );
     legend_points(d, lang, true, true, true);
+    if window.is_some() {
+        d.legend_entry(input.t(Label::ViewWindow), style::view_window(), LegendIcon::Line);
+    }
 
     // One box for a panel: the three points, the window and the objects.
     let mut points = vec![start, at, source, plane.point(cam.eye)];

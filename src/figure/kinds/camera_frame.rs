@@ -105,7 +105,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     caption.push_str(&format!(" · p = {}", slide_number(cam.p)));
     if let Some(s) = s_point {
-        caption.push_str(&format!(" · S = O + u·u + v·v − p·w = {}", vector_text(s)));
+        let sum = if three { "O + u·u + v·v − p·w" } else { "O + u·u − p·w" };
+        caption.push_str(&format!(" · S = {sum} = {}", vector_text(s)));
     }
     if three {
         caption.push_str(&format!(" · {}", input.t(Label::ObliqueView)));
@@ -116,7 +117,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         d.legend_entry(input.t(Label::UpGiven), up_pen(), LegendIcon::Arrow);
     }
     d.legend_entry(input.t(Label::ViewLine), style::normal(), LegendIcon::Line);
-    d.legend_entry(input.t(Label::WindowAtP), style::view_window(), LegendIcon::Line);
+    d.legend_entry(input.t(Label::ViewWindow), style::view_window(), LegendIcon::Line);
     legend_role(d, RayRole::Primary, lang);
     legend_points(d, lang, false, false, true);
 
