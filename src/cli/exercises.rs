@@ -40,6 +40,6 @@ pub fn run(args: &ExercisesArgs) -> Result<(), Failure> {
         made.count,
         args.out.join("exercises.html").display(),
         args.out.join("answers.html").display()
-    ));
+    ))?;
     Ok(())
 }

@@ -3,7 +3,7 @@
 //! first divergence (the report on stdout), 2 for a bad document or scene.
 
 use super::trace::LangArg;
-use super::{load_scene, print_out, read_text, Failure};
+use super::{load_scene, print_json, print_out, read_text, Failure};
 use clap::Args;
 use std::path::PathBuf;
 use whitted::request::grade::{answer, grade, tolerance, MAX_DOCUMENT_BYTES};
@@ -33,7 +33,12 @@ pub fn run(args: &GradeArgs) -> Result<(), Failure> {
     let text = read_text(&args.student, MAX_DOCUMENT_BYTES)
         .map_err(|e| Failure::input(format!("{name}: cannot read the document: {e}")))?;
     let graded = grade(&scene, &name, &text, args.tolerance)?;
-    print_out(&answer(&graded, args.lang.lang(), args.json));
+    let text = answer(&graded, args.lang.lang(), args.json);
+    if args.json {
+        print_json(&text)?;
+    } else {
+        print_out(&text)?;
+    }
     if graded.ok() {
         Ok(())
     } else {
