@@ -640,7 +640,7 @@ fn meshes_figures_and_traces_are_estimated_against_the_memory_the_process_has() 
     // `--max-events` at its maximum: its memory is said before the trace.
     refused(
         &["trace", "scenes/flat.json", "--pixel", "30", "--max-events", "100000000"],
-        "a trace of up to 100000000 events (--max-events, about 2048 bytes each) needs about 190.7 GiB",
+        "a trace of up to 100000000 events (--max-events, about 4096 bytes each) needs about 381.5 GiB",
     );
 }
 
