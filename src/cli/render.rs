@@ -11,6 +11,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 use whitted::accel::AccelOptions;
+use whitted::format::terminal_text;
 use whitted::image::Image;
 use whitted::request::options::resize;
 use whitted::request::parse;
@@ -81,7 +82,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         "whitted: {}x{} → {} | {} pixels, {} samples ({}) | rays: {} primary, {} reflected, {} transmitted, {} shadow | tests: {} object, {} bound, {} node, {} voxel | {} | {:.3} s trace, {:.2} Mrays/s, {} threads",
         outcome.rendered.image.width,
         outcome.rendered.image.height,
-        output.display(),
+        terminal_text(&output.display().to_string()),
         outcome.rendered.pixels,
         rays.primary,
         describe(sampling),

@@ -167,8 +167,9 @@ pub fn overflow_message(limit: usize, max_depth: u32, worst_rays: f64) -> String
 
 /// About how many bytes one recorded event or ray node costs by the time it is shown: the event
 /// itself (about 200 bytes), its object in the trace document and its line of JSON or narration.
-/// `--max-events N` is refused before the work when `N` of them exceed the memory budget.
-pub const BYTES_PER_RECORD: u64 = 2048;
+/// Measured: `trace --json` of 39 439 events (the 2D mirrors at depth 15) peaked at 157 MB, 4.0 kB
+/// an event. `--max-events N` is refused before the work when `N` of them exceed the memory budget.
+pub const BYTES_PER_RECORD: u64 = 4 << 10;
 
 impl<V> Default for EventLog<V> {
     fn default() -> Self {
