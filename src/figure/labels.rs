@@ -703,8 +703,8 @@ impl Label {
                 "teste rază–obiect pe rază",
             ),
             Self::AllTestsPerRay => (
-                "all tests per ray:\nobjects, volumes, nodes, voxels",
-                "toate testele pe rază:\nobiecte, volume, noduri, voxeli",
+                "all tests per ray",
+                "toate testele pe rază",
             ),
             Self::ObjectsN => (
                 "n: objects in the scene",
@@ -731,8 +731,8 @@ impl Label {
                 "în câmpul ei vizual: n sfere aleatoare",
             ),
             Self::RayCastingCount => (
-                "ray casting, one ray per pixel, shadow rays counted; one render per point",
-                "ray casting, o rază pe pixel, razele de umbră numărate; o randare pe punct",
+                "ray casting, one ray per pixel, shadow rays counted; one render per point; all tests: objects, bounding volumes, tree nodes, grid voxels",
+                "ray casting, o rază pe pixel, razele de umbră numărate; o randare pe punct; toate testele: obiecte, volume încadratoare, noduri, voxeli",
             ),
             Self::CornersPanel => (
                 "4 rays per pixel (its corners, shared)",
