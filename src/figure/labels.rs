@@ -350,6 +350,14 @@ pub enum Label {
     AdaptivePanel,
     /// `complexity`: the BVH.
     BvhName,
+    /// The depth limit's name in a formula: the scene field `max_depth`, the lecture's "nivel max".
+    MaxDepth,
+    /// A square's level in a formula (`4^{−level}`).
+    LevelSymbol,
+    /// A leaf's colour's subscript in a formula (`C_leaf`).
+    LeafSymbol,
+    /// The sampling of a heat map, before its kind in Romanian (`--aa` in English).
+    SamplingIs,
 }
 
 impl Label {
@@ -477,7 +485,7 @@ impl Label {
             Self::Scene => ("scene", "scena"),
             Self::GivenRay => ("a given ray", "o rază dată"),
             Self::NothingBetween => ("nothing in between", "nimic între ele"),
-            Self::TowardsLight => ("to the light", "spre Isursa"),
+            Self::TowardsLight => ("to the light", "spre sursa S"),
             Self::Opaque => ("opaque", "opac"),
             Self::PlaneUw => (
                 "3D trace projected onto the camera's (u, w) plane",
@@ -485,7 +493,7 @@ impl Label {
             ),
             Self::SectionsNote => (
                 "solid outlines: sections by that plane; dashed: outlines of the projections",
-                "contur plin: secțiunea cu acest plan; punctat: conturul proiecției",
+                "contur plin: secțiunea cu acest plan; întrerupt: conturul proiecției",
             ),
             Self::PlaneOfIncidence => {
                 ("drawn in the plane of incidence (N, D)", "desenat în planul de incidență (N, D)")
@@ -598,6 +606,10 @@ impl Label {
             Self::CornersOnly => {
                 ("K = 0: the 4 corners, no subdivision", "K = 0: cele 4 colțuri, fără subdivizare")
             }
+            Self::MaxDepth => ("max_depth", "nivel max"),
+            Self::LevelSymbol => ("level", "nivel"),
+            Self::LeafSymbol => ("leaf", "frunză"),
+            Self::SamplingIs => ("--aa", "eșantionare:"),
             Self::PlaneOfRow => (
                 "each panel drawn in the plane of its row of rays (u and the row's direction)",
                 "fiecare panou desenat în planul rândului său de raze (u și direcția rândului)",
@@ -821,11 +833,20 @@ pub fn target(target: &Target, dim: usize, lang: Lang) -> String {
     }
 }
 
-/// `scene NAME · pixel (i, j) (picked: …)`: the caption's first part.
+/// `scene NAME · `, a caption's lead in English; nothing in Romanian, where the scene's file
+/// name (`flat`, `mirrors_2d`) would be English on the slide (issue 32 item 4).
+#[must_use]
+pub fn scene_lead(scene_name: &str, lang: Lang) -> String {
+    match lang {
+        Lang::En => format!("{} {} · ", Label::Scene.text(lang), markup_escape(scene_name)),
+        Lang::Ro => String::new(),
+    }
+}
+
+/// `scene NAME · pixel (i, j) (picked: …)`: the caption's first part ([`scene_lead`]).
 #[must_use]
 pub fn traced(scene_name: &str, what: &Target, pick: Pick, dim: usize, lang: Lang) -> String {
-    let mut out =
-        format!("{} {} · {}", Label::Scene.text(lang), markup_escape(scene_name), target(what, dim, lang));
+    let mut out = format!("{}{}", scene_lead(scene_name, lang), target(what, dim, lang));
     if let Some(why) = pick_reason(pick, lang) {
         out.push_str(&format!(" ({}: {why})", Label::Picked.text(lang)));
     }
@@ -937,6 +958,10 @@ mod tests {
         Label::CornersPanel,
         Label::AdaptivePanel,
         Label::BvhName,
+        Label::MaxDepth,
+        Label::LevelSymbol,
+        Label::LeafSymbol,
+        Label::SamplingIs,
     ];
 
     #[test]
@@ -956,5 +981,8 @@ mod tests {
         assert_eq!(Label::PrimaryRay.text(Lang::Ro), "rază primară P");
         assert_eq!(Label::TitleRayTree.text(Lang::Ro), "Arborele de raze");
         assert_eq!(Label::ViewWindow.text(Lang::Ro), "fereastra vizuală");
+        // "spre sursa S", not "Isursa" (the source's intensity); the lecture's "nivel max".
+        assert_eq!(Label::TowardsLight.text(Lang::Ro), "spre sursa S");
+        assert_eq!(Label::MaxDepth.text(Lang::Ro), "nivel max");
     }
 }

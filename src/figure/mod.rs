@@ -198,6 +198,8 @@ pub fn draw<V: Planar>(
         .ok_or_else(|| FigureError(format!("a {}×{} canvas is empty", opts.width, opts.height)))?;
     // No label may hide a ray it does not name (issue 23 item 9).
     d.guard_lines(style::RAY_TAG);
+    // No label may sit on another object's outline (issue 32 item 1).
+    d.guard_outlines(style::OBJECT_TAG);
     let input = kinds::Input { traces, scene, lang: opts.lang };
     kinds::draw(kind, &input, d)
 }

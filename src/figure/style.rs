@@ -39,6 +39,9 @@ pub const OPAQUE_DASH: Dash = Dash { on: 8.0, off: 8.0 };
 /// The prefix of every ray's tag ([`RayRole::tag`]): the lines a label keeps off unless it names
 /// them ([`crate::canvas::Drawing::guard_lines`]).
 pub const RAY_TAG: &str = "ray:";
+/// The tag prefix of every object's outline (`object:2`): labels keep off the outlines of the
+/// objects they do not name ([`crate::canvas::Drawing::guard_outlines`]).
+pub const OBJECT_TAG: &str = "object:";
 
 /// The least contrast against the white page ([`Rgba::contrast_on_white`]) that a tree node's
 /// ring or fill must reach to be seen: 3:1, what WCAG 2.1 (success criterion 1.4.11, "Non-text

@@ -41,8 +41,14 @@ pub struct Drawing {
     /// The tag prefix of the lines a label placed clear keeps off unless it names them
     /// ([`Drawing::guard_lines`]).
     pub guard: Option<String>,
+    /// The tag prefix of the object outlines a label placed clear keeps off unless it names
+    /// the object or its point lies on it ([`Drawing::guard_outlines`]).
+    pub outline_guard: Option<String>,
     /// The events of the items added now ([`Drawing::with_events`]).
     pub(super) events: Vec<usize>,
+    /// The labels placed clear, as indices into `items`, each with whether it may go far
+    /// ([`TextOpts::far`]): the ones [`Drawing::settle_labels`] may move again.
+    pub(super) placed_clear: Vec<(usize, bool)>,
 }
 
 impl Drawing {
@@ -66,7 +72,9 @@ impl Drawing {
             title: None,
             label_area: None,
             guard: None,
+            outline_guard: None,
             events: Vec::new(),
+            placed_clear: Vec::new(),
         }
     }
 
@@ -120,6 +128,15 @@ impl Drawing {
     /// [`Drawing::labels_on_lines`], the check.
     pub fn guard_lines(&mut self, prefix: &str) -> &mut Self {
         self.guard = Some(prefix.to_owned());
+        self
+    }
+
+    /// Makes the outlines tagged `prefix…` (the objects) guarded: a label placed clear from now
+    /// on keeps off each one unless it names that object (`object-name:2` names `object:2`) or
+    /// its anchor lies on it, at [`OUTLINE_COST`](super::label::OUTLINE_COST) an outline; see
+    /// also [`Drawing::labels_on_outlines`], the check.
+    pub fn guard_outlines(&mut self, prefix: &str) -> &mut Self {
+        self.outline_guard = Some(prefix.to_owned());
         self
     }
 

@@ -45,6 +45,47 @@ pub const MIN_CROSSING: f64 = 4.0;
 pub const GUARDED_LINE_COST: f64 = 30.0;
 /// What each ring farther from the anchor costs: a label far from its anchor loses its meaning.
 pub const RING_COST: f64 = 1.5;
+/// What a candidate spot without a leader costs when it lies as near another anchor of the
+/// label's kind as its own ([`Drawing::labels_nearer_another_anchor`]): the reader takes a
+/// name for the nearest point's, so it weighs more than a few rings and plain lines, but less
+/// than crossing a guarded line: [`Drawing::settle_labels`] then gives the name a leader
+/// rather than laying it on a ray.
+pub const OWNER_COST: f64 = 25.0;
+/// What a candidate spot costs per object outline ([`Drawing::guard_outlines`]) it crosses
+/// that is not its own: as much as a guarded line, a name on an outline reads as that object's.
+pub const OUTLINE_COST: f64 = GUARDED_LINE_COST;
+/// Two anchors closer than this many reference pixels are one point
+/// ([`Drawing::labels_nearer_another_anchor`]): labels that share a point share its anchor.
+pub const SAME_ANCHOR: f64 = 1.0;
+/// An outline that passes this close to a label's anchor, in reference pixels, is the outline
+/// of the object the label's point lies on: its own ([`Drawing::labels_on_outlines`]).
+pub const OWN_OUTLINE: f64 = 3.0;
+
+/// The kind of a label, by its tag: the part before the first `:` (`object-name:2` →
+/// `object-name`). A label names its anchor among the anchors of the labels of its kind.
+#[must_use]
+pub fn label_kind(tag: &str) -> &str {
+    tag.split(':').next().unwrap_or(tag)
+}
+
+/// The part of a tag after its first `:` (`object-name:2` → `2`, `object:2` → `2`), if any: a
+/// label and an outline with the same one name the same object.
+fn tag_id(tag: &str) -> Option<&str> {
+    tag.split_once(':').map(|(_, id)| id)
+}
+
+/// The distance in pixels from `p` to the segment `a`–`b`.
+fn to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let t =
+        if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+    p.distance(a + ab * t)
+}
+
+/// The distance in pixels from `p` to the nearest point of `b` (0 inside).
+fn gap_to(b: &PxRect, p: DVec2) -> f64 {
+    (p.clamp(b.min, b.max) - p).length()
+}
 
 /// The distances, in gaps of [`RING_GAP`], at which [`Placement::Clear`] tries the eight
 /// directions around the anchor: near, for a crowded diagram, where a name far from its object
@@ -86,7 +127,8 @@ impl Drawing {
             Placement::AsGiven => {}
             Placement::Clear => {
                 let steps: &[f64] = if opts.far { &FAR_STEPS } else { &NEAR_STEPS };
-                self.place_clear(&mut label, opts.leader, steps);
+                self.place_clear(tag, &mut label, opts.leader, steps);
+                self.placed_clear.push((self.items.len(), opts.far));
             }
             Placement::StackDown { floor } => self.place_stacked(&mut label, floor),
         }
@@ -250,6 +292,116 @@ impl Drawing {
         out
     }
 
+    /// The pairs `(label, rival)`, as indices into `items`, of a text item without a leader
+    /// whose ink box (see [`Drawing::overlapping_labels`]) lies as near the anchor of `rival` —
+    /// another text item of its kind ([`label_kind`]) anchored elsewhere (farther than
+    /// [`SAME_ANCHOR`]) — as its own anchor: a name beside another point reads as that point's
+    /// (issue 32 item 1). Empty when every label belongs to its point.
+    #[must_use]
+    pub fn labels_nearer_another_anchor(&self) -> Vec<(usize, usize)> {
+        let tf = self.frame().transform;
+        let mut out = Vec::new();
+        for (i, item) in self.items.iter().enumerate() {
+            if let Mark::Text(label) = &item.mark {
+                if let Some(j) = self.rival(&item.tag, label, i, &tf) {
+                    out.push((i, j));
+                }
+            }
+        }
+        out
+    }
+
+    /// The first text item of `tag`'s kind, other than item `skip`, anchored elsewhere, whose
+    /// anchor lies as near `label`'s ink as `label`'s own anchor; `None` when there is none or
+    /// `label` has a leader (see [`Drawing::labels_nearer_another_anchor`]).
+    fn rival(&self, tag: &str, label: &Text, skip: usize, tf: &Transform) -> Option<usize> {
+        if Self::place_text(label, tf).leader.is_some() {
+            return None;
+        }
+        let ink = Self::ink_box(label, tf);
+        let own = tf.to_px(label.anchor);
+        let own_gap = gap_to(&ink, own);
+        let kind = label_kind(tag);
+        self.items.iter().enumerate().find_map(|(k, item)| match &item.mark {
+            Mark::Text(other) if k != skip && label_kind(&item.tag) == kind => {
+                let at = tf.to_px(other.anchor);
+                let elsewhere = at.distance(own) > tf.ref_px(SAME_ANCHOR);
+                (elsewhere && gap_to(&ink, at) <= own_gap).then_some(k)
+            }
+            _ => None,
+        })
+    }
+
+    /// The pairs `(label, outline)`, as indices into `items`, of a text item whose ink box lies
+    /// on the outline of an object it does not name (issue 32 item 1): a stroked item whose tag
+    /// starts with `prefix` (`object:`), neither named by the label's tag (`object-name:2` names
+    /// `object:2`) nor passing within [`OWN_OUTLINE`] of the label's anchor (the object a hit
+    /// point lies on). "Lies on" as in [`Drawing::labels_on_lines`]. Empty for a legible layout.
+    #[must_use]
+    pub fn labels_on_outlines(&self, prefix: &str) -> Vec<(usize, usize)> {
+        let tf = self.frame().transform;
+        let boxes = self.ink_boxes(&tf);
+        let mut out = Vec::new();
+        for (j, line) in self.items.iter().enumerate() {
+            if !Self::guarded(line, prefix) {
+                continue;
+            }
+            let mut segments = Vec::new();
+            Self::item_segments(line, &tf, &mut segments);
+            let half = tf.ref_px(line.pen.width) / 2.0;
+            for (i, b) in &boxes {
+                let Mark::Text(label) = &self.items[*i].mark else { continue };
+                if Self::own_outline(&self.items[*i].tag, label, line, &segments, &tf) {
+                    continue;
+                }
+                let stroke = b.inflate(half);
+                let inside: f64 = segments.iter().map(|(p, q)| stroke.length_inside(*p, *q)).sum();
+                if inside > tf.ref_px(MIN_CROSSING) {
+                    out.push((*i, j));
+                }
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// How long, in pixels, the outlines tagged `prefix…` that are not its own (see
+    /// [`Drawing::labels_on_outlines`]) run inside the ink box of `label`, tagged `tag`: 0 for
+    /// a spot clear of every other object's outline.
+    #[must_use]
+    pub fn outline_crossing(&self, tag: &str, label: &Text, prefix: &str) -> f64 {
+        let tf = self.frame().transform;
+        let ink = Self::ink_box(label, &tf);
+        let mut crossed = 0.0;
+        for line in self.items.iter().filter(|item| Self::guarded(item, prefix)) {
+            let mut segments = Vec::new();
+            Self::item_segments(line, &tf, &mut segments);
+            if Self::own_outline(tag, label, line, &segments, &tf) {
+                continue;
+            }
+            let stroke = ink.inflate(tf.ref_px(line.pen.width) / 2.0);
+            crossed += segments.iter().map(|(p, q)| stroke.length_inside(*p, *q)).sum::<f64>();
+        }
+        crossed
+    }
+
+    /// Whether `outline` (its pixel `segments`) is the outline of what a label tagged `tag`
+    /// names: the same tag id, or an outline through the label's anchor.
+    fn own_outline(
+        tag: &str,
+        label: &Text,
+        outline: &Item,
+        segments: &[(DVec2, DVec2)],
+        tf: &Transform,
+    ) -> bool {
+        if tag_id(tag).is_some() && tag_id(tag) == tag_id(&outline.tag) {
+            return true;
+        }
+        let at = tf.to_px(label.anchor);
+        let near = tf.ref_px(OWN_OUTLINE) + tf.ref_px(outline.pen.width) / 2.0;
+        segments.iter().any(|(p, q)| to_segment(at, *p, *q) <= near)
+    }
+
     /// Whether a label drawing `events` names `line`: they draw a trace event in common.
     fn names(events: &[usize], line: &Item) -> bool {
         events.iter().any(|e| line.events.contains(e))
@@ -270,6 +422,56 @@ impl Drawing {
                 _ => None,
             })
             .collect()
+    }
+
+    /// Places again every label placed clear ([`TextOpts::avoid_overlap`]) that, now that every
+    /// label is drawn, lies as near another anchor of its kind as its own or on an outline it
+    /// does not name (issue 32 item 1): a label is placed against the labels before it, so a
+    /// later point's name could not be foreseen. It goes to the clearest spot against all the
+    /// others, with a leader when that spot is far or still nearer another anchor.
+    pub fn settle_labels(&mut self) {
+        let tf = self.placed_legend().transform;
+        for (index, far) in self.placed_clear.clone() {
+            let Mark::Text(label) = &self.items[index].mark else { continue };
+            let tag = self.items[index].tag.clone();
+            let on_outline = self
+                .outline_guard
+                .as_ref()
+                .is_some_and(|prefix| self.labels_on_outlines(prefix).iter().any(|(i, _)| *i == index));
+            let on_line = self
+                .guard
+                .as_ref()
+                .is_some_and(|guard| self.labels_on_lines(guard).iter().any(|(i, _)| *i == index));
+            // Far from its point with nothing to join them: the reader cannot tell whose it is.
+            let far_alone = !label.leader && label.offset.length() > LEADER_FROM;
+            if self.rival(&tag, label, index, &tf).is_none() && !on_outline && !on_line && !far_alone {
+                continue;
+            }
+            let old = self.items[index].clone();
+            let mut item = self.items.remove(index);
+            let before = std::mem::replace(&mut self.events, item.events.clone());
+            if let Mark::Text(label) = &mut item.mark {
+                let steps: &[f64] = if far { &FAR_STEPS } else { &NEAR_STEPS };
+                self.place_clear(&tag, label, true, steps);
+                self.items.insert(index, item);
+                let Mark::Text(label) = &self.items[index].mark else { unreachable!() };
+                if self.rival(&tag, label, index, &tf).is_some() {
+                    if let Mark::Text(label) = &mut self.items[index].mark {
+                        label.leader = true;
+                    }
+                }
+                // A new spot on another label is worse than the old one: keep that, joined.
+                if self.overlapping_labels().iter().any(|(a, b)| *a == index || *b == index) {
+                    self.items[index] = old;
+                    if let Mark::Text(label) = &mut self.items[index].mark {
+                        label.leader = true;
+                    }
+                }
+            } else {
+                self.items.insert(index, item);
+            }
+            self.events = before;
+        }
     }
 
     /// Moves `label` down, a line at a time, off the earlier labels and no lower than world
@@ -305,9 +507,33 @@ impl Drawing {
     /// [`Drawing::text`]), with a leader when `leader` and the spot is farther than
     /// [`LEADER_FROM`]. A spot costs [`COVER_COST`], [`LINE_COST`], [`OUTSIDE_COST`],
     /// [`LEADER_CROSSING_COST`] and [`RING_COST`] per what each counts; the cheapest wins.
-    pub(super) fn place_clear(&self, label: &mut Text, leader: bool, steps: &[f64]) {
+    pub(super) fn place_clear(&self, tag: &str, label: &mut Text, leader: bool, steps: &[f64]) {
         let PlacedLegend { transform: tf, plot, .. } = self.placed_legend();
         let segments = self.segments(&tf);
+        // The anchors of the other labels of its kind, elsewhere: a spot as near one of them as
+        // its own reads as that one's name.
+        let own = tf.to_px(label.anchor);
+        let kind = label_kind(tag);
+        let rivals: Vec<DVec2> = self
+            .items
+            .iter()
+            .filter_map(|item| match &item.mark {
+                Mark::Text(other) if label_kind(&item.tag) == kind => Some(tf.to_px(other.anchor)),
+                _ => None,
+            })
+            .filter(|at| at.distance(own) > tf.ref_px(SAME_ANCHOR))
+            .collect();
+        // The outlines of the objects it does not name.
+        let mut foreign = Vec::new();
+        if let Some(prefix) = &self.outline_guard {
+            for item in self.items.iter().filter(|item| Self::guarded(item, prefix)) {
+                let mut outline = Vec::new();
+                Self::item_segments(item, &tf, &mut outline);
+                if !Self::own_outline(tag, label, item, &outline, &tf) {
+                    foreign.push(outline);
+                }
+            }
+        }
         // The guarded lines this label does not name (it draws none of their events).
         let mut guarded = Vec::new();
         if let Some(guard) = &self.guard {
@@ -342,6 +568,10 @@ impl Drawing {
             let crossings = segments.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
             let guarded_crossings = guarded.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
             let outside = if area.contains_rect(&b) { 0.0 } else { 1.0 };
+            let ink = Self::ink_box(candidate, &tf);
+            let own_gap = gap_to(&ink, own);
+            let not_its_own = placed.leader.is_none() && rivals.iter().any(|r| gap_to(&ink, *r) <= own_gap);
+            let outlines = foreign.iter().filter(|o| o.iter().any(|(a, c)| b.meets_segment(*a, *c))).count();
             // A box that holds the anchor meets every leader: only the others count.
             let leader_over_labels = placed.leader.map_or(0, |(a, c)| {
                 boxes.iter().filter(|o| !o.contains_point(a) && o.meets_segment(a, c)).count()
@@ -351,6 +581,8 @@ impl Drawing {
                 + GUARDED_LINE_COST * guarded_crossings as f64
                 + OUTSIDE_COST * outside
                 + LEADER_CROSSING_COST * leader_over_labels as f64
+                + if not_its_own { OWNER_COST } else { 0.0 }
+                + OUTLINE_COST * outlines as f64
         };
         let requested = with_leader(label.clone());
         let mut best = (cost(&requested), requested.offset, requested.align);

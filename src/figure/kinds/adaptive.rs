@@ -278,9 +278,10 @@ fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
     if pixel.uniform {
         return lines;
     }
-    let weight = if V::DIM == 2 { "2^{−level}" } else { "4^{−level}" };
+    let (level, leaf) = (input.t(Label::LevelSymbol), input.t(Label::LeafSymbol));
+    let base = if V::DIM == 2 { 2 } else { 4 };
     lines.push(format!(
-        "{} = Σ {weight}·C_{{leaf}} = {}",
+        "{} = Σ {base}^{{−{level}}}·C_{{{leaf}}} = {}",
         input.t(Label::PixelColour),
         rgb_text(pixel.color)
     ));

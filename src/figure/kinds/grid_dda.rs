@@ -232,7 +232,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 .offset(sx * STEP_INSET.x, sy * STEP_INSET.y)
                 .bold();
             let label = opts.label(&number, at);
-            let crossed = Drawing::ink_box(&label, &tf).inflate(stroke).length_inside(ray_a, ray_b);
+            // Neither the ray nor another object's outline may run through it (issue 32 item 1).
+            let crossed = Drawing::ink_box(&label, &tf).inflate(stroke).length_inside(ray_a, ray_b)
+                + d.outline_crossing("step", &label, style::OBJECT_TAG);
             (crossed, at, opts)
         };
         let corners = [

@@ -14,7 +14,6 @@ use crate::figure::labels::Label;
 use crate::figure::plane::Planar;
 use crate::figure::style::{self, Rgba};
 use crate::figure::FigureError;
-use crate::format::markup_escape;
 use crate::format::slide_number;
 use crate::sample::Sampling;
 
@@ -84,12 +83,19 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let colour = |n: u32| shade(bins.iter().position(|(a, b)| (*a..=*b).contains(&n)).unwrap_or(0));
 
     d.set_title(input.t(Label::TitleHeatMap));
+    // The sampling as the command line writes it in English (`--aa adaptive`), in words in Romanian.
+    let kind = |en: &str, word: Label| match input.lang {
+        crate::figure::Lang::En => en.to_owned(),
+        crate::figure::Lang::Ro => input.t(word).to_owned(),
+    };
+    let aa = input.t(Label::SamplingIs);
     let mode = match counts.sampling {
-        Sampling::Center => "--aa center".to_owned(),
-        Sampling::Corners => "--aa corners".to_owned(),
+        Sampling::Center => format!("{aa} {}", kind("center", Label::SamplingCentre)),
+        Sampling::Corners => format!("{aa} {}", kind("corners", Label::SamplingCorners)),
         Sampling::Adaptive { threshold, max_level } => {
             format!(
-                "--aa adaptive, {} = {}, K = {max_level}",
+                "{aa} {}, {} = {}, K = {max_level}",
+                kind("adaptive", Label::SamplingAdaptive),
                 input.t(Label::Threshold),
                 slide_number(threshold)
             )
@@ -99,9 +105,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let sum: u64 = counts.per_pixel.iter().map(|n| u64::from(*n)).sum();
     let rows = if V::DIM == 2 { String::new() } else { format!(" · {}", input.t(Label::RowsFromBottom)) };
     d.set_caption(&format!(
-        "{} {} · {mode} · {} · {}: {} · {}: {}{rows}",
-        input.t(Label::Scene),
-        markup_escape(&input.traces.scene_name),
+        "{}{mode} · {} · {}: {} · {}: {}{rows}",
+        crate::figure::labels::scene_lead(&input.traces.scene_name, input.lang),
         input.t(Label::HeatMapCounts),
         input.t(Label::RaysTraced),
         counts.traced,

@@ -89,6 +89,14 @@ pub fn draw<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: Drawing) -> Re
 
 /// Draws `kind` into `d` once.
 fn draw_once<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
+    draw_kind(kind, input, d)?;
+    // With every label drawn, each placed clear goes back to its own point if a later one took it.
+    d.settle_labels();
+    Ok(())
+}
+
+/// Draws `kind`'s items into `d`.
+fn draw_kind<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
     match kind {
         FigureKind::BackwardRays => backward::draw(input, d),
         FigureKind::CameraFrame => camera_frame::draw(input, d),

@@ -19,7 +19,7 @@ use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{FigureTrace, Target};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
-use crate::format::{markup_escape, slide_number};
+use crate::format::slide_number;
 use crate::scene::camera::{Camera, Projection};
 use crate::scene::Scene;
 
@@ -123,7 +123,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
 
     d.set_title(input.t(Label::TitleProjections));
     let row = match ortho.targets.first() {
-        Some(Target::Pixel { j, .. }) if V::DIM == 3 => format!(" · {} j = {j}", input.t(Label::Row)),
+        Some(Target::Pixel { j, .. }) if V::DIM == 3 => format!("{} j = {j} · ", input.t(Label::Row)),
         _ => String::new(),
     };
     let columns: Vec<String> = ortho
@@ -135,9 +135,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         })
         .collect();
     d.set_caption(&format!(
-        "{} {}{row} · {} i = {} · {}{}",
-        input.t(Label::Scene),
-        markup_escape(&input.traces.scene_name),
+        "{}{row}{} i = {} · {}{}",
+        crate::figure::labels::scene_lead(&input.traces.scene_name, lang),
         input.t(Label::Columns),
         columns.join(", "),
         input.t(Label::PrimaryOnly),

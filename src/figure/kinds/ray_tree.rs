@@ -180,9 +180,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let omitted =
         if shadows { String::new() } else { format!(" · {}", input.t(Label::ShadowLeavesOmitted)) };
     d.set_caption(&format!(
-        "{} · {}: max\\_depth = {}{limit}{omitted}",
+        "{} · {}: {} = {}{limit}{omitted}",
         input.traced(traced),
         input.t(Label::DepthLimit),
+        markup_escape(input.t(Label::MaxDepth)),
         traced.max_depth
     ));
     d.legend_entry(
@@ -271,7 +272,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             .align(Align { h: HAlign::Left, v: VAlign::Top })
             .offset(0.0, -8.0)
             .color(style::VERMILLION);
-        let text = format!("{}: max\\_depth = {}", input.t(Label::DepthLimit), traced.max_depth);
+        let text = format!(
+            "{}: {} = {}",
+            input.t(Label::DepthLimit),
+            markup_escape(input.t(Label::MaxDepth)),
+            traced.max_depth
+        );
         d.with_events(limits.iter().copied(), |d| {
             d.segment("depth-limit", DVec2::new(left, limit_y), DVec2::new(right, limit_y), line);
             d.text("label", DVec2::new(left, limit_y), &text, opts);

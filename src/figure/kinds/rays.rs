@@ -17,6 +17,7 @@ use crate::figure::plane::Planar;
 use crate::figure::source::{first_hit, Target};
 use crate::figure::style::{self, RayRole};
 use crate::figure::FigureError;
+use crate::format::markup_escape;
 use crate::record::event::Event;
 
 /// The drawn length of a normal N, as a share of the view's smaller side: long enough that its
@@ -91,7 +92,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     // Title, caption and legend first: they decide the plot area the view is fitted to.
     d.set_title(input.t(Label::TitleRays));
     let through_name = if first.is_some() { "I_1" } else { "O" };
-    let depth = format!(" · max\\_depth = {}", traced.max_depth);
+    let depth = format!(" · {} = {}", markup_escape(input.t(Label::MaxDepth)), traced.max_depth);
     d.set_caption(&format!(
         "{}{depth}{}",
         input.traced(traced),

@@ -18,7 +18,6 @@ use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{bound_test_index, bound_test_of, BoundTestOf, FigureTrace, Target};
 use crate::figure::style::{self, RayRole, Rgba, TextSize};
 use crate::figure::FigureError;
-use crate::format::markup_escape;
 use crate::format::slide_number;
 use crate::record::event::ObjectRef;
 
@@ -179,7 +178,7 @@ pub fn draw<V: Planar>(
     d.set_title(input.t(title));
     let object = object_name(scene, ObjectRef { index: focus, triangle: None }, input.lang);
     let mut caption =
-        format!("{} {} · {object}", input.t(Label::Scene), markup_escape(&input.traces.scene_name));
+        format!("{}{object}", crate::figure::labels::scene_lead(&input.traces.scene_name, lang));
     for t in &tested {
         let target = t.traced.targets.first().cloned().unwrap_or(Target::Ray);
         let verdict = if t.hit { Label::MeetsVolume } else { Label::MissesVolume };
