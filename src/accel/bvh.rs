@@ -375,10 +375,13 @@ impl<V: Vector> Builder<'_, V> {
             return (count > MAX_LEAF || depth >= BALANCE_DEPTH).then(|| self.median(lo, hi, axis));
         }
         let BinSplit { cost, axis, bin } = self.best_bin_split(lo, hi, cbox, bounds);
-        // A leaf costs the tests of all its primitives.
-        let leaf: f64 = self.items[lo..hi].iter().map(|it| f64::from(it.cost)).sum();
-        if count <= MAX_LEAF && cost >= leaf {
-            return None;
+        // A leaf costs the tests of all its primitives; summed only where a leaf may be chosen
+        // (otherwise one more pass over every item at every level of the build).
+        if count <= MAX_LEAF {
+            let leaf: f64 = self.items[lo..hi].iter().map(|it| f64::from(it.cost)).sum();
+            if cost >= leaf {
+                return None;
+            }
         }
         // Partition by bin: those left of the split first.
         let (cmin, scale) = bin_map(cbox, axis);

@@ -19,7 +19,7 @@ use crate::record::stats::Stats;
 use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::shape::plane::Plane;
-use crate::shape::{Dim, Found, SurfaceHit};
+use crate::shape::{Dim, Found, MeshPrepared, SurfaceHit};
 use std::cell::RefCell;
 
 /// How an acceleration structure hands primitives to the question being answered.
@@ -80,13 +80,16 @@ pub struct Nearest<'a, V: Dim> {
     best_t: f64,
     /// The nearest so far, its surface left to compute where it can wait ([`Found`]).
     best: Option<(Prim, Found<V>)>,
+    /// What the ray's mesh tests share, computed at the first
+    /// ([`crate::shape::Shape::part_found_prepared`]).
+    prepared: Option<MeshPrepared<V>>,
 }
 
 impl<'a, V: Dim> Nearest<'a, V> {
     /// The question for `ray`, nothing found yet.
     #[must_use]
     pub fn new(scene: &'a Scene<V>, ray: &'a Ray<V>) -> Self {
-        Self { scene, ray, best_t: f64::INFINITY, best: None }
+        Self { scene, ray, best_t: f64::INFINITY, best: None, prepared: None }
     }
     /// The nearest hit found, named as traces name it.
     #[must_use]
@@ -105,7 +108,7 @@ impl<V: Dim> Visitor<V> for Nearest<'_, V> {
     }
     #[inline(always)]
     fn visit<R: Recorder<V>>(&mut self, prim: Prim, stats: &mut Stats, rec: &mut R) -> bool {
-        let found = test_prim_found(self.scene, prim, self.ray, stats, rec);
+        let found = test_prim_found(self.scene, prim, self.ray, &mut self.prepared, stats, rec);
         self.offer(prim, found);
         false
     }
@@ -160,6 +163,9 @@ pub struct Shadow<'a, V: Dim> {
     transparent: PrimSet,
     /// The opaque occluder that ended the search.
     opaque: Option<Prim>,
+    /// What the ray's mesh tests share, computed at the first
+    /// ([`crate::shape::Shape::part_hit_t_prepared`]).
+    prepared: Option<MeshPrepared<V>>,
 }
 
 impl<V: Dim> Visitor<V> for Shadow<'_, V> {
@@ -173,7 +179,7 @@ impl<V: Dim> Visitor<V> for Shadow<'_, V> {
         if self.transparent.has_object(prim.object) {
             return false;
         }
-        let t = test_prim_t(self.scene, prim, self.ray, stats, rec);
+        let t = test_prim_t(self.scene, prim, self.ray, &mut self.prepared, stats, rec);
         self.offer(prim, t)
     }
     #[inline(always)]
@@ -203,11 +209,12 @@ impl<'a, V: Dim> Shadow<'a, V> {
     /// The question for the segment of `ray` over `0 < t < d_l`, nothing found yet.
     #[must_use]
     pub fn new(scene: &'a Scene<V>, ray: &'a Ray<V>, d_l: f64) -> Self {
-        Self { scene, ray, d_l, transparent: PrimSet::default(), opaque: None }
+        Self { scene, ray, d_l, transparent: PrimSet::default(), opaque: None, prepared: None }
     }
     /// Reports the occluders found to `on`, until it returns false: the transparent ones in
-    /// object-index order, then the opaque one that ended the search.
-    pub fn report(mut self, mut on: impl FnMut(ObjectRef) -> bool) {
+    /// object-index order, then the opaque one that ended the search. By reference: moving the
+    /// question out by value made every shadow ray copy it (a `memcpy` call).
+    pub fn report(&mut self, mut on: impl FnMut(ObjectRef) -> bool) {
         let scene = self.scene;
         for &prim in self.transparent.sorted() {
             if !on(object_ref(scene, prim)) {
@@ -350,12 +357,13 @@ pub(crate) fn node_skip<V: Dim, R: Recorder<V>>(
 
 /// [`test_prim`] as the nearest-hit search keeps it ([`crate::shape::Shape::part_found`]): the
 /// same count, the same event, the same hit, but a sphere's or plane's point and normal wait for
-/// the nearest.
+/// the nearest, and a mesh's triangles share the ray's `prepared` shear.
 #[inline(always)]
 pub fn test_prim_found<V: Dim, R: Recorder<V>>(
     scene: &Scene<V>,
     prim: Prim,
     ray: &Ray<V>,
+    prepared: &mut Option<MeshPrepared<V>>,
     stats: &mut Stats,
     rec: &mut R,
 ) -> Option<Found<V>> {
@@ -363,16 +371,18 @@ pub fn test_prim_found<V: Dim, R: Recorder<V>>(
         return test_prim(scene, prim, ray, stats, rec).map(Found::Hit);
     }
     stats.tests.object += 1;
-    scene.objects[prim.object()].shape.part_found(prim.part(), ray)
+    scene.objects[prim.object()].shape.part_found_prepared(prim.part(), ray, prepared)
 }
 
 /// [`test_prim`] for a question that needs only t (a shadow segment): the same count, the same
-/// event, the same t, but spheres and planes skip their point and normal.
+/// event, the same t, but spheres, planes and mesh triangles skip their point and normal, and a
+/// mesh's triangles share the ray's `prepared` shear.
 #[inline(always)]
 pub fn test_prim_t<V: Dim, R: Recorder<V>>(
     scene: &Scene<V>,
     prim: Prim,
     ray: &Ray<V>,
+    prepared: &mut Option<MeshPrepared<V>>,
     stats: &mut Stats,
     rec: &mut R,
 ) -> Option<f64> {
@@ -380,7 +390,7 @@ pub fn test_prim_t<V: Dim, R: Recorder<V>>(
         return test_prim(scene, prim, ray, stats, rec).map(|h| h.t);
     }
     stats.tests.object += 1;
-    scene.objects[prim.object()].shape.part_hit_t(prim.part(), ray)
+    scene.objects[prim.object()].shape.part_hit_t_prepared(prim.part(), ray, prepared)
 }
 
 /// §11, the prune test of every traversal: a node or cell entered at `t_in` can hold nothing

@@ -8,7 +8,7 @@
 //! `parse_obj` reads the OBJ through `tobj`, its errors naming their line; `NoMesh` is the empty
 //! mesh type of 2D.
 
-use super::triangle::crossing;
+use super::triangle::{crossing, crossing_sheared, Crossing, Shear};
 use super::{Parts, SurfaceHit};
 use crate::geom::ray::Ray;
 use crate::geom::Vector;
@@ -217,12 +217,7 @@ impl Parts<DVec3> for Mesh {
     fn hit(&self, k: usize, ray: &Ray<DVec3>) -> Option<SurfaceHit<DVec3>> {
         let [a, b, c] = self.triangle(k);
         let x = crossing(&[a, b, c], ray)?;
-        if !(x.t > 0.0) {
-            return None;
-        }
-        let point = a * x.weights[0] + b * x.weights[1] + c * x.weights[2];
-        let normal = (b - a).cross(c - a).try_unit()?;
-        Some(SurfaceHit { t: x.t, point, normal })
+        hit_of(a, b, c, &x)
     }
     fn roots(&self, k: usize, ray: &Ray<DVec3>) -> Vec<f64> {
         crossing(&self.triangle(k), ray).map(|x| x.t).into_iter().collect()
@@ -246,6 +241,37 @@ impl Parts<DVec3> for Mesh {
     fn meets_box(&self, k: usize, lo: DVec3, hi: DVec3) -> bool {
         super::triangle::triangle_meets_box(&self.triangle(k), lo, hi)
     }
+    type Prepared = Shear;
+    #[inline]
+    fn prepare(ray: &Ray<DVec3>) -> Shear {
+        Shear::of(ray.dir)
+    }
+    /// [`Parts::hit`] with the ray's shear computed once.
+    #[inline]
+    fn hit_prepared(&self, k: usize, ray: &Ray<DVec3>, shear: &Shear) -> Option<SurfaceHit<DVec3>> {
+        let [a, b, c] = self.triangle(k);
+        let x = crossing_sheared(&[a, b, c], ray.origin, shear)?;
+        hit_of(a, b, c, &x)
+    }
+    /// The t of [`Parts::hit_prepared`], which never fails for want of a normal: the same
+    /// `(b − a) × (c − a)` was normalised when the mesh was built, or the triangle skipped.
+    #[inline]
+    fn hit_t_prepared(&self, k: usize, ray: &Ray<DVec3>, shear: &Shear) -> Option<f64> {
+        let x = crossing_sheared(&self.triangle(k), ray.origin, shear)?;
+        (x.t > 0.0).then_some(x.t)
+    }
+}
+
+/// The hit of triangle `a, b, c` at crossing `x`, when `t > 0`: I from the barycentrics,
+/// N = normalize((b − a) × (c − a)).
+#[inline]
+fn hit_of(a: DVec3, b: DVec3, c: DVec3, x: &Crossing) -> Option<SurfaceHit<DVec3>> {
+    if !(x.t > 0.0) {
+        return None;
+    }
+    let point = a * x.weights[0] + b * x.weights[1] + c * x.weights[2];
+    let normal = (b - a).cross(c - a).try_unit()?;
+    Some(SurfaceHit { t: x.t, point, normal })
 }
 
 /// 2D scenes have no meshes: this type has no values.
@@ -278,6 +304,14 @@ impl Parts<DVec2> for NoMesh {
         match *self {}
     }
     fn meets_box(&self, _: usize, _: DVec2, _: DVec2) -> bool {
+        match *self {}
+    }
+    type Prepared = ();
+    fn prepare(_: &Ray<DVec2>) {}
+    fn hit_prepared(&self, _: usize, _: &Ray<DVec2>, (): &()) -> Option<SurfaceHit<DVec2>> {
+        match *self {}
+    }
+    fn hit_t_prepared(&self, _: usize, _: &Ray<DVec2>, (): &()) -> Option<f64> {
         match *self {}
     }
 }

@@ -6,6 +6,8 @@
 //! A `Shape` is found through its parts: `parts` and `part_hit` see a mesh's triangles, else the
 //! object itself (`Parts` is a many-part object). A sphere's or plane's hit is kept as its t
 //! (`part_found`, `Found`); its I and N are computed once, for the nearest, by `surface`.
+//! A mesh's triangle tests share what depends on the ray alone (`Parts::prepare`: the
+//! triangle test's shear), computed once per ray by the search (`part_found_prepared`).
 
 pub mod aabox;
 pub mod mesh;
@@ -114,7 +116,19 @@ pub trait Parts<V>: Clone + std::fmt::Debug + Send + Sync + 'static {
     fn skipped(&self) -> usize;
     /// Whether part `k` itself shares a point with the closed box `[lo, hi]`.
     fn meets_box(&self, k: usize, lo: V, hi: V) -> bool;
+    /// What every test of one ray against these parts shares, computed once per ray
+    /// ([`Parts::prepare`]): a mesh's triangle shear; nothing elsewhere.
+    type Prepared: Copy;
+    /// The shared part of `ray`'s tests.
+    fn prepare(ray: &Ray<V>) -> Self::Prepared;
+    /// [`Parts::hit`] with `prepared = prepare(ray)`: the same hit, bit for bit.
+    fn hit_prepared(&self, k: usize, ray: &Ray<V>, prepared: &Self::Prepared) -> Option<SurfaceHit<V>>;
+    /// `hit_prepared(k, ray, prepared).map(|h| h.t)`, without I and N: what a shadow ray asks.
+    fn hit_t_prepared(&self, k: usize, ray: &Ray<V>, prepared: &Self::Prepared) -> Option<f64>;
 }
+
+/// What a ray's tests of a mesh's triangles share ([`Parts::prepare`]).
+pub type MeshPrepared<V> = <<V as Dim>::Mesh as Parts<V>>::Prepared;
 
 /// A primitive of a scene, in 2D or 3D.
 #[derive(Clone, Debug)]
@@ -290,6 +304,41 @@ impl<V: Dim> Shape<V> {
             Self::Sphere(s) => s.hit_t(ray),
             Self::Plane(p) => p.hit_t(ray),
             _ => self.part_hit(k, ray).map(|h| h.t),
+        }
+    }
+    /// [`Shape::part_found`] for a ray whose shared part is `prepared` (computed on the first
+    /// mesh it meets): the same answer, bit for bit, a mesh's triangle tests sharing the ray's
+    /// shear.
+    #[inline(always)]
+    pub fn part_found_prepared(
+        &self,
+        k: usize,
+        ray: &Ray<V>,
+        prepared: &mut Option<MeshPrepared<V>>,
+    ) -> Option<Found<V>> {
+        match self {
+            Self::Mesh(m) => {
+                let p = prepared.get_or_insert_with(|| V::Mesh::prepare(ray));
+                m.hit_prepared(k, ray, p).map(Found::Hit)
+            }
+            _ => self.part_found(k, ray),
+        }
+    }
+    /// [`Shape::part_hit_t`] for a ray whose shared part is `prepared` (see
+    /// [`Shape::part_found_prepared`]).
+    #[inline(always)]
+    pub fn part_hit_t_prepared(
+        &self,
+        k: usize,
+        ray: &Ray<V>,
+        prepared: &mut Option<MeshPrepared<V>>,
+    ) -> Option<f64> {
+        match self {
+            Self::Mesh(m) => {
+                let p = prepared.get_or_insert_with(|| V::Mesh::prepare(ray));
+                m.hit_t_prepared(k, ray, p)
+            }
+            _ => self.part_hit_t(k, ray),
         }
     }
     /// [`Shape::part_hit`] as the nearest-hit search keeps it (see [`Found`]).

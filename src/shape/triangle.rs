@@ -42,23 +42,53 @@ impl Triangle {
     }
 }
 
+/// What the Woop–Benthin–Wald test takes from the ray's direction alone, the same for every
+/// triangle the ray meets: the axis `kz` where `|D|` is largest (x and y swapped when `D_kz < 0`,
+/// to keep the winding) and the shear `S = (D_kx/D_kz, D_ky/D_kz, 1/D_kz)`. A mesh computes it
+/// once per ray ([`super::Parts::prepare`]) instead of once per triangle; the test is the same,
+/// bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shear {
+    sx: f64,
+    sy: f64,
+    sz: f64,
+    /// The axes `kx, ky, kz`, as bytes: the search keeps a `Shear` beside every question, and
+    /// a smaller one is cheaper to set up and to move.
+    k: [u8; 3],
+}
+
+impl Shear {
+    /// The shear of direction `d`.
+    #[inline]
+    #[must_use]
+    pub fn of(d: DVec3) -> Self {
+        // Permute so that z is the axis where |D| is largest; swap x and y to keep the winding.
+        let kz = d.abs().max_position();
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        // Shear constants. The axes are 0, 1 or 2: they fit in a byte.
+        #[allow(clippy::cast_possible_truncation)]
+        let k = [kx as u8, ky as u8, kz as u8];
+        Self { sx: d[kx] / d[kz], sy: d[ky] / d[kz], sz: 1.0 / d[kz], k }
+    }
+}
+
 /// The Woop–Benthin–Wald test of the triangle `vertices`; `None` if the line misses or is
 /// edge-on. Shared by scene triangles and mesh triangles.
 #[inline]
 pub(crate) fn crossing(vertices: &[DVec3; 3], ray: &Ray<DVec3>) -> Option<Crossing> {
-    let d = ray.dir;
-    // Permute so that z is the axis where |D| is largest; swap x and y to keep the winding.
-    let kz = d.abs().max_position();
-    let mut kx = (kz + 1) % 3;
-    let mut ky = (kx + 1) % 3;
-    if d[kz] < 0.0 {
-        std::mem::swap(&mut kx, &mut ky);
-    }
-    // Shear constants.
-    let sx = d[kx] / d[kz];
-    let sy = d[ky] / d[kz];
-    let sz = 1.0 / d[kz];
-    let [a, b, c] = vertices.map(|p| p - ray.origin);
+    crossing_sheared(vertices, ray.origin, &Shear::of(ray.dir))
+}
+
+/// [`crossing`] of a ray from `origin` whose direction's shear is `shear`.
+#[inline]
+pub(crate) fn crossing_sheared(vertices: &[DVec3; 3], origin: DVec3, shear: &Shear) -> Option<Crossing> {
+    let Shear { sx, sy, sz, k } = *shear;
+    let [kx, ky, kz] = k.map(usize::from);
+    let [a, b, c] = vertices.map(|p| p - origin);
     let sheared = |p: DVec3| (p[kx] - sx * p[kz], p[ky] - sy * p[kz]);
     let (ax, ay) = sheared(a);
     let (bx, by) = sheared(b);
