@@ -4,11 +4,11 @@
 //!
 //! - Every lesson file (`lessons/*.json`) and every scene of `lessons/scenes/` and `scenes/`,
 //!   listed in `$OUT_DIR/course.rs` as `include_str!`s of their files (136 KB in all).
-//! - The WebAssembly module of the course, in a release build (`cargo install`, `./run.sh`) whose
-//!   machine has its toolchain (`web/build.sh --check`): `web/build.sh` builds it (in its own
-//!   target folder, `target/wasm-build`, with Debian's rustc) and `$OUT_DIR/course.rs` includes
-//!   it. Elsewhere (a debug build, no toolchain, `WHITTED_WASM=skip`) the binary has no module and
-//!   `whitted lessons` reads `--wasm` or says how to get it.
+//! - The WebAssembly module of the course, in a release build (`cargo install`, `./run.sh`) when
+//!   `web/build.sh` has built it (`target/wasm/whitted_web.wasm`; `./run.sh` builds it first
+//!   where the toolchain is, and so does the README's install line). Elsewhere (a debug build, no
+//!   module, `WHITTED_WASM=skip`) the binary has none and `whitted lessons` reads `--wasm` or
+//!   says how to get it.
 //!
 //! Nothing is done without the `cli` feature (the library built for the browser needs none of it).
 #![forbid(unsafe_code)]
@@ -17,15 +17,13 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// The folders whose files are embedded, relative to the package: the lessons, their scenes, and
 /// the example scenes the lessons name (`../scenes/whitted.json`).
 const EMBEDDED: [(&str, &str); 3] = [("lessons", "json"), ("lessons/scenes", "json"), ("scenes", "json")];
 
-/// What the module's build reads: a change to any of them rebuilds it.
-const MODULE_INPUTS: [&str; 6] =
-    ["src", "web/src", "web/Cargo.toml", "web/build.sh", "Cargo.toml", "Cargo.lock"];
+/// Where `web/build.sh` writes the module.
+const MODULE: &str = "target/wasm/whitted_web.wasm";
 
 fn main() {
     let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
@@ -72,8 +70,11 @@ fn files(dir: &Path, ext: &str) -> Vec<String> {
     names
 }
 
-/// The module built by `web/build.sh`, in a native release build on a machine with the toolchain;
-/// `None` (with a warning when the build failed) otherwise.
+/// The module `web/build.sh` built (`target/wasm/whitted_web.wasm`), in a native release build
+/// (`cargo install --path .`, `./run.sh`); `None` otherwise. The module is not built from here: a
+/// cargo run from a build script can wait forever on the package cache the outer cargo holds
+/// (the module's build downloads the standard library's dependencies), so `./run.sh` builds it
+/// first, as the README's install line does.
 fn module(root: &Path) -> Option<PathBuf> {
     let release = std::env::var("PROFILE").is_ok_and(|p| p == "release");
     let native = !std::env::var("TARGET").unwrap_or_default().starts_with("wasm");
@@ -81,39 +82,8 @@ fn module(root: &Path) -> Option<PathBuf> {
     if !release || !native || skipped {
         return None;
     }
-    for input in MODULE_INPUTS {
-        println!("cargo::rerun-if-changed={input}");
-    }
-    let script = root.join("web/build.sh");
-    // The nested build starts from a clean environment: cargo gives a build script its own
-    // flags (CARGO_ENCODED_RUSTFLAGS, the profile's settings…), which would override the module's.
-    let run = |arg: Option<&str>| {
-        let mut command = Command::new(&script);
-        command.args(arg).env_clear().current_dir(root);
-        for keep in ["PATH", "HOME", "CARGO_HOME", "RUSTUP_HOME", "TMPDIR", "CARGO_MAKEFLAGS"] {
-            if let Some(value) = std::env::var_os(keep) {
-                command.env(keep, value);
-            }
-        }
-        command.output()
-    };
-    match run(Some("--check")) {
-        Ok(o) if o.status.success() => {}
-        _ => return None,
-    }
-    match run(None) {
-        Ok(o) if o.status.success() => {
-            let path = PathBuf::from(String::from_utf8_lossy(&o.stdout).trim());
-            path.is_file().then_some(path)
-        }
-        Ok(o) => {
-            let why = String::from_utf8_lossy(&o.stderr).replace('\n', " ");
-            println!("cargo::warning=web/build.sh failed; whitted has no WebAssembly module: {}", why.trim());
-            None
-        }
-        Err(e) => {
-            println!("cargo::warning=web/build.sh could not run ({e}); whitted has no WebAssembly module");
-            None
-        }
-    }
+    let wasm = root.join(MODULE);
+    // Watched even while missing: the build that follows web/build.sh embeds it.
+    println!("cargo::rerun-if-changed={}", wasm.display());
+    wasm.is_file().then_some(wasm)
 }

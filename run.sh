@@ -4,8 +4,8 @@
 # pages, and measure what accuracy costs on Whitted's scene (out/tradeoff.md, out/tradeoff/).
 #
 # The course is live on a fresh machine: the WebAssembly toolchain is installed first when it is
-# missing (`web/build.sh --install`, as ./test.sh does; it needs root), so that the release build
-# builds the module into the binary (build.rs) and `whitted lessons` writes it beside the pages.
+# missing (`web/build.sh --install`, as ./test.sh does; it needs root) and the module built, so
+# that the release build carries it (build.rs) and `whitted lessons` writes it beside the pages.
 # Where it cannot be installed, the rest of out/ is written and the pages are static (stderr
 # says so and how to get the live part).
 set -euo pipefail
@@ -24,12 +24,11 @@ elif [ "$code" -ne 0 ]; then
   exit "$code"
 fi
 
-cargo build --release --quiet
-# The module (target/wasm/whitted_web.wasm): the release build made it already unless
-# WHITTED_WASM=skip; this call is then a no-op.
+# The module (target/wasm/whitted_web.wasm), before the release build that embeds it.
 if [ "$toolchain" = yes ]; then
   web/build.sh > /dev/null
 fi
+cargo build --release --quiet
 
 mkdir -p out
 bin=target/release/whitted

@@ -68,7 +68,7 @@ const HOW_TO_GET_THE_MODULE: &str = "the pages are written without their live pa
      repository, ./run.sh builds the module (installing its toolchain when missing) and writes the \
      live course; or build it with `web/build.sh` (`web/build.sh --install` first installs its \
      toolchain, as root) and pass `--wasm target/wasm/whitted_web.wasm`. An installed whitted \
-     carries the module when the toolchain was there at `cargo install --path .`.";
+     carries the module when `web/build.sh` built it before `cargo install --path .`.";
 
 /// The module the pages run: `--wasm FILE` when given; else the one built into this binary
 /// (`build.rs`); else `web/build.sh`'s in the current folder. The error says why there is none

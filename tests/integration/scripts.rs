@@ -1,5 +1,6 @@
 //! The course on a fresh machine and after `cargo install`: `run.sh`'s logic (the WebAssembly
-//! toolchain installed when missing, then the module built, then the live course written; a
+//! toolchain installed when missing, then the module built before the release build that embeds
+//! it, then the live course written; a
 //! machine where it cannot be installed still gets the rest), run against stand-ins for cargo,
 //! `web/build.sh` and the binary that log their calls; and the binary run from a folder outside
 //! the repository, writing the whole course from the lessons it carries.
@@ -89,8 +90,8 @@ fn run_sh_installs_a_missing_toolchain_before_the_build_then_writes_the_live_cou
         [
             "build.sh --check",
             "build.sh --install --check",
-            "cargo build --release --quiet",
             "build.sh ",
+            "cargo build --release --quiet",
             "whitted lessons --out out"
         ],
         "{err}"
@@ -107,7 +108,7 @@ fn run_sh_with_the_toolchain_installs_nothing() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(
         course_calls(&calls),
-        ["build.sh --check", "cargo build --release --quiet", "build.sh ", "whitted lessons --out out"]
+        ["build.sh --check", "build.sh ", "cargo build --release --quiet", "whitted lessons --out out"]
     );
 }
 
@@ -158,7 +159,7 @@ fn the_binary_writes_the_whole_course_from_any_folder() {
     // The playground offers the scenes the binary carries, Whitted's first.
     let play = std::fs::read_to_string(course.join("en/play.html")).unwrap();
     assert!(play.contains("whitted.json") && play.contains("groups_2d.json"), "the playground's examples");
-    // A test build carries no module (build.rs builds it in release builds only): the pages are
+    // A test build carries no module (build.rs embeds it in release builds only): the pages are
     // static, and stderr says how to get the live part.
     if course.join("whitted-wasm.js").exists() {
         assert!(!err.contains("without their live part"), "{err}");
