@@ -5,7 +5,8 @@
 #     `web/build.sh --install`, which runs `apt-get update` first;
 #   - Debian's chromium (apt-get update only if the step above did not already run it);
 #   - playwright-core, pinned in tests/browser/package-lock.json (`npm ci`): it drives Chromium
-#     over the DevTools protocol, has no dependencies and downloads no browser.
+#     over the DevTools protocol, has no dependencies and downloads no browser; and axe-core,
+#     pinned there too, the accessibility checker the browser tests run in every page.
 # Installing needs root (as on CI); otherwise the missing piece and its command are printed.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -31,8 +32,8 @@ if ! [ -x /usr/bin/chromium ]; then
   DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends chromium >&2
 fi
 
-if ! [ -d tests/browser/node_modules/playwright-core ]; then
-  echo "test.sh: installing playwright-core (npm ci in tests/browser)" >&2
+if ! [ -d tests/browser/node_modules/playwright-core ] || ! [ -d tests/browser/node_modules/axe-core ]; then
+  echo "test.sh: installing playwright-core and axe-core (npm ci in tests/browser)" >&2
   (cd tests/browser && npm ci --no-audit --no-fund >&2)
 fi
 
