@@ -365,7 +365,7 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
          <label class=\"adaptive-only\">{ml_label} <input type=\"number\" data-whitted=\"max_level\" min=\"0\" max=\"{MAX_LEVEL}\" value=\"{max_level}\"></label>\
          <label>{accel_label} {accel}</label><label>{kind_label} {kinds}</label></fieldset>\n\
          <p class=\"command\">{command} <code data-whitted=\"command\"></code></p>\n\
-         <details class=\"steps-box\" open><summary>{steps}</summary><ol class=\"steps\" data-whitted=\"steps\"></ol>\
+         <details class=\"steps-box\" open><summary>{steps}</summary><ol class=\"steps\" data-whitted=\"steps\" tabindex=\"0\"></ol>\
          <p class=\"stats\" data-whitted=\"cost\"></p></details>\n\
          <details class=\"editor\"><summary>{scene}</summary>\
          <textarea data-whitted=\"scene\" aria-label=\"{scene}\" spellcheck=\"false\" rows=\"16\">{text}</textarea></details>\n\
