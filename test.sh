@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The README's test command, and CI's after fmt and clippy: `cargo test`, then the course's pages
 # in headless Chromium (tests/browser/). What the browser tests need (the WebAssembly toolchain,
-# Debian's chromium, the pinned playwright-core) is installed when missing and the WebAssembly
+# Debian's chromium, the pinned playwright-core and axe-core) is installed when missing and the WebAssembly
 # module built by tests/setup.sh, in the background while `cargo test` runs; its failure fails
 # this script, with its log (a failing `cargo test` leaves it to finish: an install is not cut
 # short). Installing needs root (as on CI); otherwise the missing piece and its command are printed.

@@ -28,6 +28,7 @@ use crate::scene::Scene;
 use crate::shape::Dim;
 use crate::trace::Tracer;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// What a render produced.
 #[derive(Clone, Debug)]
@@ -237,6 +238,32 @@ fn center_rows<V: Dim>(
     total(rows)
 }
 
+/// Pixel rows `rows` (j from the bottom) of a centre-sampled render, one after the other on the
+/// calling thread: the very colours [`render`] writes there (§2, `u = l + (r − l)·(i + 0.5)/Nx`,
+/// `v = b + (t − b)·(j + 0.5)/Ny`) and the rays and tests they took, so that the sum over bands
+/// of rows is the whole render's. A page renders in bands to show its progress (`web/`). Rows past
+/// the camera's Ny are left out.
+#[must_use]
+pub fn center_band<V: Dim>(
+    scene: &Scene<V>,
+    accel: &Accel<V>,
+    max_depth: u32,
+    rows: Range<usize>,
+) -> (Image, Stats) {
+    let cam = &scene.camera;
+    let rows = rows.start.min(cam.ny)..rows.end.min(cam.ny);
+    let mut band =
+        Image { width: cam.nx, height: rows.len(), pixels: Vec::with_capacity(cam.nx * rows.len()) };
+    let mut tracer = tracer(scene, accel, max_depth);
+    for j in rows {
+        for i in 0..cam.nx {
+            let (u, v) = cam.pixel_center(i, j);
+            band.pixels.push(tracer.trace_primary(&cam.primary_ray(u, v), &[]));
+        }
+    }
+    (band, tracer.stats)
+}
+
 fn tracer<'s, V: Dim>(scene: &'s Scene<V>, accel: &'s Accel<V>, max_depth: u32) -> Tracer<'s, V, NoRecorder> {
     let mut tracer = Tracer::new(scene, accel, NoRecorder);
     tracer.max_depth = max_depth;
@@ -381,5 +408,27 @@ mod tests {
         assert_eq!(job_rows(Lattice::new(&hd, 8), EDGE_MEMORY, 2), 270);
         // Fewer rows than threads: one-row jobs.
         assert_eq!(job_rows(Lattice::new(&camera(8, 3), 8), 1, 4), 1);
+    }
+
+    #[test]
+    fn bands_of_rows_are_the_render_and_its_counts() {
+        let text = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "resolution": [9, 7],
+            "window": {"l": -1, "r": 1, "b": -0.8, "t": 0.8}},
+            "lights": [{"position": [3, 3, 3]}],
+            "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"ks": 0.5}},
+                        {"type": "plane", "point": [0,-1,0], "normal": [0,1,0]}]}"#;
+        let Ok(AnyScene::Space(scene)) = load_str(text) else { panic!("a 3D scene") };
+        let accel = Accel::build_with(&scene, &crate::accel::AccelOptions::of(crate::accel::AccelKind::Bvh));
+        let whole = render_centers(&scene, &accel, scene.max_depth, None);
+        let mut pixels = Vec::new();
+        let mut stats = Stats::default();
+        for start in (0..7).step_by(3) {
+            let (band, counted) = center_band(&scene, &accel, scene.max_depth, start..start + 3);
+            assert_eq!(band.height, (7 - start).min(3));
+            pixels.extend(band.pixels);
+            stats += counted;
+        }
+        assert_eq!(pixels, whole.image.pixels);
+        assert_eq!(stats, whole.stats);
     }
 }

@@ -14,9 +14,11 @@
 use serde_json::{Map, Value};
 
 use crate::accel::AccelKind;
+use crate::bounds::VolumeKind;
 use crate::figure::{FigureKind, Lang};
 use crate::format::html_escape;
 use crate::lesson::{FigureSpec, Lesson};
+use crate::request::figure::structure;
 use crate::sample::{Sampling, DEFAULT_MAX_LEVEL, DEFAULT_THRESHOLD, MAX_LEVEL};
 
 /// The file the page scripts read the module from (`whitted-wasm.js`, beside `whitted.js`).
@@ -70,6 +72,37 @@ const WORDS: &[(&str, &str, &str)] = &[
     ("rendering", "Rendering in the background…", "Se randează în fundal…"),
     ("rendered", "{w}×{h} pixels, {rays} rays, {ms} ms in the page",
      "{w}×{h} pixeli, {rays} raze, {ms} ms în pagină"),
+    ("rendering_rows", "Rendering: {p} % of the rows…", "Se randează: {p} % din rânduri…"),
+    ("cost_image", "The whole image: {cost}", "Toată imaginea: {cost}"),
+    ("cost_pixel", "This pixel: {cost}", "Acest pixel: {cost}"),
+    ("cost",
+     "rays {rays} (primary {primary}, reflected {reflected}, transmitted {transmitted}, shadow {shadow}); tests: objects {object}, volumes {bound}, nodes {node}, voxels {voxel}",
+     "raze {rays} (primare {primary}, reflectate {reflected}, transmise {transmitted}, de umbră {shadow}); teste: obiecte {object}, volume {bound}, noduri {node}, voxeli {voxel}"),
+    ("fallback", "Pixel ({pixel}) has no {what}, which the “{kind}” figure draws: shown are its rays.",
+     "Pixelul ({pixel}) nu are {what}, pe care o desenează figura „{kind}”: sunt arătate razele lui."),
+    ("want_refraction", "refraction", "refracție"),
+    ("want_hit", "hit", "intersecție"),
+    ("want_shadow", "shadow ray", "rază de umbră"),
+    ("want_volume", "bounding volume met by its ray", "intersecție a razei cu un volum încadrator"),
+    ("want_other", "such a trace", "o asemenea urmă"),
+    ("searching", "Looking for a nearby pixel that has it…", "Se caută un pixel vecin care o are…"),
+    ("nearby", "Nearby pixel ({pixel}) has it", "Pixelul vecin ({pixel}) o are"),
+    ("none_nearby", "No nearby pixel has it.", "Niciun pixel vecin nu o are."),
+    ("lesson_pixel", "The lesson's pixel ({pixel})", "Pixelul lecției ({pixel})"),
+    ("undrawn", "Not drawn in this figure: {what}", "Nu apare în această figură: {what}"),
+    ("too_large",
+     "The scene's image ({w}×{h}) is over the page's limit of 4096×2048 pixels: lower the camera's resolution in the scene.",
+     "Imaginea scenei ({w}×{h}) depășește limita paginii, de 4096×2048 pixeli: micșorați rezoluția camerei în scenă."),
+    ("last_good", "Last good image and steps, not of the scene as it is now.",
+     "Ultima imagine și ultimii pași corecți, nu ai scenei de acum."),
+    ("link_pixel", "The link's pixel {given} is outside the {w}×{h} image: shown is the nearest, ({pixel}).",
+     "Pixelul {given} din link este în afara imaginii de {w}×{h}: este arătat cel mai apropiat, ({pixel})."),
+    ("link_part", "The link's {part}={given} could not be used: shown is {used}.",
+     "Partea {part}={given} a link-ului nu poate fi folosită: se arată {used}."),
+    ("link_step", "The link's step {given} does not exist: shown is step {k} of {n}.",
+     "Pasul {given} din link nu există: este arătat pasul {k} din {n}."),
+    ("scene_depth", "the scene's depth", "adâncimea scenei"),
+    ("figure_name", "Figure “{kind}”, pixel ({pixel})", "Figura „{kind}”, pixelul ({pixel})"),
     ("missing",
      "The interactive part needs the WebAssembly module, which was not built: run ./run.sh (web/build.sh --install installs its toolchain). The figures below are the static ones.",
      "Partea interactivă are nevoie de modulul WebAssembly, care nu a fost construit: rulați ./run.sh (web/build.sh --install instalează uneltele necesare). Figurile de mai jos sunt cele statice."),
@@ -243,6 +276,14 @@ fn select(name: &str, options: &[(&str, String)], chosen: &str) -> String {
     out
 }
 
+/// The structure a view narrates with at first: the one its figure draws (`request::figure::
+/// structure`), and none where the figure draws no structure, as the lecture teaches ray casting
+/// (every object tested) before any structure (issue 30 item 2).
+#[must_use]
+pub fn view_accel(kind: FigureKind) -> AccelKind {
+    structure(kind, AccelKind::None)
+}
+
 /// One view's markup: the state attributes, image, figure, step controls, options, command,
 /// steps, editor and errors list (the contract of `docs/course.md`).
 fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
@@ -284,7 +325,10 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
             .iter()
             .map(|a| (a.name(), word(&format!("accel_{}", a.name()), lang).to_owned()))
             .collect();
-    let accel = select("accel", &accels, AccelKind::Bvh.name());
+    let accel = select("accel", &accels, view_accel(kind).name());
+    if kind == FigureKind::KayKajiya {
+        attrs.push_str(&format!(" data-bounds=\"{}\"", VolumeKind::Kdop.name()));
+    }
     let kinds: Vec<(&str, String)> =
         FigureKind::ALL.iter().map(|k| (k.name(), k.name().to_owned())).collect();
     let kinds = select("kind", &kinds, kind.name());
@@ -298,20 +342,22 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
     };
     format!(
         "<section class=\"view\" data-whitted=\"view\"{attrs} tabindex=\"-1\">\n{caption}{picker}\
+         <p class=\"message\" data-whitted=\"message\" role=\"alert\"></p>\n\
+         <p class=\"follow\" data-whitted=\"follow\" hidden></p>\n\
          <div class=\"panes\">\n<div class=\"pane image-pane\">\n\
-         <div class=\"imagebox\" aria-label=\"{image}\"><canvas data-whitted=\"image\" width=\"1\" height=\"1\"></canvas>\
+         <div class=\"imagebox\" role=\"group\" aria-label=\"{image}\"><canvas data-whitted=\"image\" width=\"1\" height=\"1\"></canvas>\
          <div class=\"mark\" data-whitted=\"mark\" hidden></div></div>\n\
-         <progress data-whitted=\"progress\" hidden></progress>\n\
+         <progress data-whitted=\"progress\" aria-label=\"{rendering}\" hidden></progress>\n\
          <p class=\"stats\" data-whitted=\"stats\"></p>\n\
          <form class=\"pixel-form\" data-whitted=\"pixel-form\"><label>{pixel} <input data-whitted=\"pixel\" size=\"9\" inputmode=\"numeric\" autocomplete=\"off\"></label> \
          <button type=\"submit\">{show}</button></form>\n\
-         <p class=\"message\" data-whitted=\"message\" role=\"alert\"></p>\n\
          <p class=\"pick\" data-whitted=\"pick\"></p>\n</div>\n\
-         <div class=\"pane figure-pane\">\n<div class=\"figure\" data-whitted=\"figure\">{figure}</div>\n\
+         <div class=\"pane figure-pane\">\n<div class=\"figure\" data-whitted=\"figure\" tabindex=\"0\">{figure}</div>\n\
          <div class=\"stepnav\"><button type=\"button\" data-whitted=\"back\">{back}</button>\
-         <span data-whitted=\"position\" aria-live=\"polite\"></span>\
+         <span data-whitted=\"position\"></span>\
          <button type=\"button\" data-whitted=\"next\">{next}</button></div>\n\
-         <pre class=\"current\" data-whitted=\"current\"></pre>\n</div>\n</div>\n\
+         <pre class=\"current\" data-whitted=\"current\" aria-live=\"polite\"></pre>\n\
+         <p class=\"undrawn\" data-whitted=\"undrawn\" hidden></p>\n</div>\n</div>\n\
          <fieldset class=\"controls\"><legend>{controls}</legend>\
          <label>{depth} <input type=\"number\" data-whitted=\"depth\" min=\"0\" max=\"64\" step=\"1\"></label>\
          <label>{aa_label} {aa}</label>\
@@ -319,12 +365,14 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
          <label class=\"adaptive-only\">{ml_label} <input type=\"number\" data-whitted=\"max_level\" min=\"0\" max=\"{MAX_LEVEL}\" value=\"{max_level}\"></label>\
          <label>{accel_label} {accel}</label><label>{kind_label} {kinds}</label></fieldset>\n\
          <p class=\"command\">{command} <code data-whitted=\"command\"></code></p>\n\
-         <details class=\"steps-box\" open><summary>{steps}</summary><ol class=\"steps\" data-whitted=\"steps\"></ol></details>\n\
+         <details class=\"steps-box\" open><summary>{steps}</summary><ol class=\"steps\" data-whitted=\"steps\" tabindex=\"0\"></ol>\
+         <p class=\"stats\" data-whitted=\"cost\"></p></details>\n\
          <details class=\"editor\"><summary>{scene}</summary>\
-         <textarea data-whitted=\"scene\" spellcheck=\"false\" rows=\"16\">{text}</textarea></details>\n\
+         <textarea data-whitted=\"scene\" aria-label=\"{scene}\" spellcheck=\"false\" rows=\"16\">{text}</textarea></details>\n\
          <ul class=\"errors\" data-whitted=\"errors\"></ul>\n</section>\n",
         picker = picker.unwrap_or(""),
         image = w("image"),
+        rendering = w("rendering"),
         pixel = w("pixel"),
         show = w("show"),
         back = w("back"),
@@ -499,6 +547,8 @@ mod tests {
             "a &lt;b&gt;",
             "<script src=\"../whitted-wasm.js\">",
             "href=\"../ro/glass.html\"",
+            // A figure that draws no structure is narrated with every object tested.
+            "<option value=\"none\" selected>",
         ] {
             assert!(page.contains(expected), "{expected} in {page}");
         }
@@ -520,6 +570,16 @@ mod tests {
         }
         let json: Value = serde_json::from_str(&words_json(Lang::Ro)).unwrap();
         assert_eq!(json["depth"], "Adâncimea");
+    }
+
+    #[test]
+    fn a_structure_figure_is_narrated_by_its_structure() {
+        assert_eq!(view_accel(FigureKind::GridDda), AccelKind::Grid);
+        assert_eq!(view_accel(FigureKind::Octree), AccelKind::Octree);
+        assert_eq!(view_accel(FigureKind::Bvh), AccelKind::Bvh);
+        assert_eq!(view_accel(FigureKind::SlabTest), AccelKind::Bounds);
+        assert_eq!(view_accel(FigureKind::Rays), AccelKind::None);
+        assert_eq!(view_accel(FigureKind::RayTree), AccelKind::None);
     }
 
     #[test]

@@ -8,14 +8,15 @@
 #      (`apt-get update` only if the step before did not run it);
 #   2. npm, beside 1.: playwright-core, pinned in tests/browser/package-lock.json (`npm ci`): it
 #      drives Chromium over the DevTools protocol, has no dependencies and downloads no browser;
+#      and axe-core, pinned there too, the accessibility checker the browser tests run on every page;
 #   3. after 1.: the module, target/wasm/whitted_web.wasm (web/build.sh).
 # Installing needs root (as on CI); otherwise the missing piece and its command are printed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 npm_job=
-if ! [ -d tests/browser/node_modules/playwright-core ]; then
-  echo "tests/setup.sh: installing playwright-core (npm ci in tests/browser)" >&2
+if ! [ -d tests/browser/node_modules/playwright-core ] || ! [ -d tests/browser/node_modules/axe-core ]; then
+  echo "tests/setup.sh: installing playwright-core and axe-core (npm ci in tests/browser)" >&2
   (cd tests/browser && npm ci --no-audit --no-fund >&2) &
   npm_job=$!
 fi

@@ -10,6 +10,7 @@
 
 pub mod kinds;
 pub mod labels;
+pub mod lighting;
 pub mod parts;
 pub mod plane;
 pub mod source;
@@ -201,5 +202,10 @@ pub fn draw<V: Planar>(
     // No label may sit on another object's outline (issue 32 item 1).
     d.guard_outlines(style::OBJECT_TAG);
     let input = kinds::Input { traces, scene, lang: opts.lang };
-    kinds::draw(kind, &input, d)
+    let mut drawn = kinds::draw(kind, &input, d)?;
+    // What each step lights beyond the kinds' own tags (issue 30 item 3); moves nothing.
+    if let Some(main) = traces.traces.first() {
+        lighting::complete(&mut drawn, &main.log);
+    }
+    Ok(drawn)
 }

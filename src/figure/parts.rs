@@ -266,9 +266,16 @@ pub fn draw_observer(d: &mut Drawing, at: DVec2) {
     d.marker("observer", at, style::DOT_RADIUS * 1.3, style::BLACK, Pen::NONE);
 }
 
-/// A light: a yellow dot outlined in black.
-pub fn draw_light(d: &mut Drawing, at: DVec2) {
-    d.marker("light", at, style::LIGHT_RADIUS, style::LIGHT, style::outline(style::BLACK));
+/// Light `index` of the scene: a yellow dot outlined in black, tagged `light:index`
+/// ([`lighting::LIGHT_TAG`](super::lighting::LIGHT_TAG)).
+pub fn draw_light(d: &mut Drawing, index: usize, at: DVec2) {
+    d.marker(
+        &format!("{}{index}", super::lighting::LIGHT_TAG),
+        at,
+        style::LIGHT_RADIUS,
+        style::LIGHT,
+        style::outline(style::BLACK),
+    );
 }
 
 /// A tree's node: a disc of `radius` reference pixels filled with `fill` and ringed with `ring`,

@@ -41,6 +41,8 @@ pub struct Narrated {
     pub narration: Narration,
     /// The pixel and `(u, v)` (None for a ray).
     pub target: TraceTarget,
+    /// The rays traced and the tests done, by kind (the trace document's `stats`).
+    pub stats: Stats,
 }
 
 /// A finished trace: the log and what it was asked as.
@@ -138,7 +140,7 @@ impl Trace {
                 sample_narration(&done.target, self.sampling, traced, &done.stats, lang, &done.log)
             }
         };
-        Ok(Narrated { narration, target: done.target })
+        Ok(Narrated { narration, target: done.target, stats: done.stats })
     }
 
     /// Checks the target and the structure as the trace will, without tracing, and returns the

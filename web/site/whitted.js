@@ -146,12 +146,19 @@
     return [o, d];
   }
 
-  /** The fragment `#pixel=I,J&step=K&depth=N&aa=MODE…` as a map. */
+  /** The fragment `#pixel=I,J&step=K&depth=N&aa=MODE…` as a map; the parts that cannot be
+   *  decoded (a broken percent escape) are listed in its `bad`, as written. */
   function readFragment() {
     const state = new Map();
+    state.bad = [];
     for (const pair of location.hash.replace(/^#/, '').split('&')) {
       const at = pair.indexOf('=');
-      if (at > 0) state.set(decodeURIComponent(pair.slice(0, at)), decodeURIComponent(pair.slice(at + 1)));
+      if (at <= 0) continue;
+      try {
+        state.set(decodeURIComponent(pair.slice(0, at)), decodeURIComponent(pair.slice(at + 1)));
+      } catch (error) {
+        state.bad.push([pair.slice(0, at), pair.slice(at + 1)]);
+      }
     }
     return state;
   }
@@ -174,6 +181,30 @@
 
   // ---- A live view --------------------------------------------------------------------------
 
+  /** The structure each figure kind draws, and the kind that draws each structure (issue 30
+   *  item 2: a figure is narrated by the structure it draws). */
+  const KIND_ACCEL = { 'slab-test': 'bounds', 'kay-kajiya': 'bounds', bvh: 'bvh', 'grid-dda': 'grid', octree: 'octree' };
+  const ACCEL_KIND = { bounds: 'slab-test', bvh: 'bvh', grid: 'grid-dda', octree: 'octree' };
+  /** What a figure kind needs in a pixel's trace (the words of its refusal), by kind. */
+  const KIND_WANTS = {
+    refraction: 'want_refraction', 'local-model': 'want_hit', shadows: 'want_shadow',
+    'slab-test': 'want_volume', 'kay-kajiya': 'want_volume',
+  };
+  /** The kind a figure falls back to when the view's kind cannot draw a pixel: every ray of it. */
+  const FALLBACK_KIND = 'rays';
+  /** How far (in pixels) and how many candidates the search for a nearby pixel goes. */
+  const NEAR_RADII = [2, 4, 8, 16, 32, 64];
+  /** Beyond the rings, the points tried on the way to the lesson's pixel (which has it). */
+  const NEAR_TOWARDS = 16;
+  const NEAR_DIRECTIONS = [[1, 0], [0, 1], [-1, 0], [0, -1], [1, 1], [-1, 1], [-1, -1], [1, -1]];
+  /** The deepest `--depth` the command line takes. */
+  const DEPTH_MAX = 64;
+  /** The bands of rows a centre-sampled 3D image is rendered in, to show its progress. */
+  const RENDER_BANDS = 10;
+
+  /** A pixel as the page writes it: `i, j` (`i` in 2D). */
+  const pixelText = (p) => p.join(', ');
+
   // One element with data-whitted="view": a click picks a pixel, which is narrated and drawn; the
   // narration's steps are shown one at a time (aria-current) with the figure items they name lit;
   // the options and the scene editor (checked as it is typed) change it; the URL fragment keeps it.
@@ -194,22 +225,28 @@
       this.traceGen = 0;
       this.renderGen = 0;
       this.good = null; // the last target traced without a refusal
+      // Refusals by what was refused (scene, render, trace, link): each stays until that part of
+      // the state changes, all shown at the top of the view.
+      this.refusals = new Map();
+      this.lessonKind = root.dataset.kind;
+      this.lessonPixel = null; // the lesson's own pixel, once known (given, or the figure's pick)
       const d = root.dataset;
       if (d.pixel) this.target = { pixel: d.pixel.split(',').map(Number) };
       else if (d.ray) this.target = { ray: parseRay(d.ray) };
+      if (this.target && this.target.pixel) this.lessonPixel = this.target.pixel;
       if (d.depth) this.part('depth').value = d.depth;
       if (d.grid) this.grid = d.grid.split(',').map(Number);
       // `data-busy` counts the work in flight, so that a test can wait for the view to settle.
       this.busy = 0;
       this.root.dataset.busy = '0';
-      for (const name of ['rescene', 'rerender', 'retrace', 'render']) {
+      for (const name of ['rescene', 'rerender', 'retrace', 'render', 'seekNearby']) {
         const work = this[name].bind(this);
         this[name] = async (...args) => {
           this.root.dataset.busy = String(++this.busy);
           try {
             return await work(...args);
           } catch (error) {
-            this.message(say('failed', { e: error.message }));
+            this.refuse('failed', say('failed', { e: error.message }));
           } finally {
             this.root.dataset.busy = String(--this.busy);
           }
@@ -226,26 +263,63 @@
       performance.mark('whitted-view-' + this.index);
     }
 
+    /** The fragment's state, each part checked: a part that cannot be used is replaced by the
+     *  nearest valid value, and the view says what it corrected. */
     applyFragment(state) {
+      const said = [];
+      const bad = (part, given, used) => said.push(say('link_part', { part, given, used }));
+      for (const [part, given] of state.bad || []) bad(part, given, '–');
       if (state.has('pixel')) {
         const pixel = parsePixel(state.get('pixel'));
         if (pixel) this.target = { pixel };
+        else bad('pixel', state.get('pixel'), this.lessonPixel ? '(' + pixelText(this.lessonPixel) + ')' : '–');
+        this.linkPixel = pixel ? state.get('pixel') : null;
       }
       for (const name of ['depth', 'aa', 'threshold', 'max_level', 'accel', 'kind']) {
-        if (state.has(name)) this.part(name).value = state.get(name);
+        if (!state.has(name)) continue;
+        const given = state.get(name);
+        const control = this.part(name);
+        if (control.tagName === 'SELECT') {
+          if ([...control.options].some((o) => o.value === given)) control.value = given;
+          else bad(name, given, control.value);
+        } else if (name === 'depth') {
+          // Past the limit the view keeps its own depth (the lesson's, else the scene's): a depth
+          // near the limit could ask a glass scene for 2^64 rays.
+          const depth = /^\d+$/.test(given) ? Number(given) : NaN;
+          if (depth <= DEPTH_MAX) control.value = given;
+          else bad(name, given, control.value || say('scene_depth'));
+        } else if (name === 'max_level') {
+          const level = /^\d+$/.test(given) ? Number(given) : NaN;
+          const max = Number(control.max);
+          if (level <= max) control.value = given;
+          else bad(name, given, control.value);
+        } else if (/^(inf|\d+(\.\d+)?)$/.test(given)) {
+          control.value = given;
+        } else {
+          bad(name, given, control.value);
+        }
       }
+      if (state.has('kind') && state.has('accel') === false) this.matchAccel();
       this.wantedStep = state.has('step') ? Number(state.get('step')) : null;
+      this.linkStep = state.has('step') ? state.get('step') : null;
+      if (said.length) this.refusals.set('link', said.join('\n'));
+      this.showMessages();
     }
 
     wire() {
+      this.canvas.addEventListener('pointerdown', (event) => { this.pressed = this.offset(event); });
       this.canvas.addEventListener('click', (event) => this.clicked(event));
       this.part('pixel-form').addEventListener('submit', (event) => {
         event.preventDefault();
         const pixel = parsePixel(this.part('pixel').value);
         if (!pixel) {
-          this.message(say('pixel_format'));
+          this.refuse('trace', say('pixel_format'));
           return;
         }
+        // Enter traces, and gives ← and → back to the steps.
+        this.part('pixel').blur();
+        this.root.focus({ preventScroll: true });
+        View.active = this;
         this.choose({ pixel });
       });
       this.part('back').addEventListener('click', () => this.go(this.step - 1));
@@ -254,13 +328,22 @@
         const item = event.target.closest('[data-step]');
         if (item) this.go(this.steps.findIndex((s) => s.step === Number(item.dataset.step)));
       });
+      this.part('follow').addEventListener('click', (event) => {
+        const button = event.target.closest('button[data-pixel]');
+        if (button) this.choose({ pixel: button.dataset.pixel.split(',').map(Number) });
+      });
       for (const name of ['depth', 'aa', 'threshold', 'max_level', 'accel']) {
         this.part(name).addEventListener('change', () => {
+          if (name === 'accel') this.matchKind();
           this.updateAdaptive();
           this.rerender();
         });
       }
-      this.part('kind').addEventListener('change', () => this.retrace());
+      this.part('kind').addEventListener('change', () => {
+        // A structure's figure is narrated by its structure: the control follows the figure.
+        if (this.matchAccel()) this.rerender();
+        else this.retrace();
+      });
       let timer = null;
       this.editor.addEventListener('input', () => {
         clearTimeout(timer);
@@ -271,6 +354,25 @@
       });
       this.root.addEventListener('focusin', () => View.active = this);
       this.root.addEventListener('pointerdown', () => View.active = this);
+    }
+
+    /** The figure kind follows the structure chosen: a structure's own figure where the view
+     *  shows one (its cells, nodes or slabs drawn), the lesson's figure otherwise. */
+    matchKind() {
+      const kind = this.part('kind');
+      const accel = this.part('accel').value;
+      if (!(kind.value in KIND_ACCEL)) return;
+      const wanted = accel in ACCEL_KIND ? ACCEL_KIND[accel] : FALLBACK_KIND;
+      kind.value = KIND_ACCEL[this.lessonKind] === accel ? this.lessonKind : wanted;
+    }
+
+    /** The structure follows the figure kind chosen; true when it changed. */
+    matchAccel() {
+      const accel = this.part('accel');
+      const wanted = KIND_ACCEL[this.part('kind').value];
+      if (!wanted || accel.value === wanted) return false;
+      accel.value = wanted;
+      return true;
     }
 
     updateAdaptive() {
@@ -289,7 +391,8 @@
         o.max_level = Number(this.part('max_level').value);
       }
       o.accel = this.part('accel').value;
-      if (this.grid) o.grid = this.grid;
+      if (o.accel === 'bounds' && this.root.dataset.bounds) o.bounds = this.root.dataset.bounds;
+      if (this.grid && o.accel === 'grid') o.grid = this.grid;
       return o;
     }
 
@@ -298,14 +401,34 @@
       return { scene: this.scene, name, objs: this.objs, options: this.options(), lang: LANG };
     }
 
-    message(text) {
-      this.part('message').textContent = text || '';
+    /** Shows every refusal in force at the top of the view, and marks what they leave shown as
+     *  the last good image and steps. */
+    showMessages() {
+      const lines = [...this.refusals.values()].filter(Boolean);
+      const stale = ['scene', 'render', 'trace', 'failed'].some((k) => this.refusals.has(k));
+      if (stale && !this.refusals.has('scene')) lines.push(say('last_good'));
+      this.part('message').textContent = lines.join('\n');
+      this.root.classList.toggle('stale', stale);
     }
 
-    /** A request's errors, or the engine's failure, as one message. */
-    complain(answer) {
-      const errors = answer.json && answer.json.errors;
-      this.message(errors ? errors.join('\n') : say('failed', { e: answer.text }));
+    /** Says why `what` was refused; it stays until `what` succeeds again. */
+    refuse(what, text) {
+      this.refusals.set(what, text);
+      this.showMessages();
+    }
+
+    /** `what` succeeded: its refusal goes. */
+    accept(what) {
+      if (this.refusals.delete(what)) this.showMessages();
+    }
+
+    /** A request's errors, or the engine's failure, in the page's words where the page has them. */
+    complain(what, answer) {
+      const errors = (answer.json && answer.json.errors) || [];
+      const text = errors.join('\n');
+      const large = /renders at most \d+ pixels .*got (\d+)x(\d+)/.exec(text);
+      if (large) this.refuse(what, say('too_large', { w: large[1], h: large[2] }));
+      else this.refuse(what, errors.length ? text : say('failed', { e: answer.text }));
     }
 
     /** The scene changed (or the page opened): check it; if good, render and trace again. */
@@ -320,12 +443,10 @@
           item.textContent = error;
           list.append(item);
         }
-        this.root.classList.add('stale');
-        this.message(say('stale'));
+        this.refuse('scene', say('stale'));
         return;
       }
-      this.root.classList.remove('stale');
-      this.message('');
+      this.accept('scene');
       await this.rerender();
     }
 
@@ -333,13 +454,25 @@
     async rerender() {
       const info = await this.engines.quick.call({ op: 'info', ...this.base() });
       if (info.status !== 0) {
-        this.complain(info);
+        this.complain('render', info);
         return;
       }
-      this.message('');
       this.info = info.json;
       this.part('depth').placeholder = String(this.info.max_depth);
-      if (this.target && this.target.pixel && !this.inside(this.target.pixel)) this.target = null;
+      if (this.target && this.target.pixel && !this.inside(this.target.pixel)) {
+        const given = this.linkPixel || pixelText(this.target.pixel);
+        const nearest = this.nearest(this.target.pixel);
+        if (this.linkPixel) {
+          this.refusals.set('link', [this.refusals.get('link'),
+            say('link_pixel', { given, w: this.info.width, h: this.info.height, pixel: pixelText(nearest) })]
+            .filter(Boolean).join('\n'));
+          this.target = { pixel: nearest };
+        } else {
+          this.target = null;
+        }
+        this.showMessages();
+      }
+      this.linkPixel = null;
       const tracing = this.retrace();
       await Promise.all([this.render(), tracing]);
     }
@@ -349,45 +482,96 @@
       return pixel[0] < width && (dimension === 2 || (pixel.length === 2 && pixel[1] < height));
     }
 
-    /** Renders the whole image in the render worker (the module renders a whole image per call),
-     *  the progress bar running meanwhile; a newer render's image replaces an older one's. */
+    /** The pixel of the image nearest `pixel`. */
+    nearest(pixel) {
+      const { width, height, dimension } = this.info;
+      const i = Math.min(width - 1, pixel[0]);
+      return dimension === 2 ? [i] : [i, Math.min(height - 1, pixel.length > 1 ? pixel[1] : 0)];
+    }
+
+    /** The cost of a trace or a render (`rays` and `tests` by kind) in the page's words. */
+    static cost(json) {
+      const rays = json.rays || {};
+      const tests = json.tests || {};
+      const n = (x) => Number(x || 0).toLocaleString(LANG);
+      const total = Object.values(rays).reduce((a, b) => a + b, 0);
+      return say('cost', {
+        rays: n(total), primary: n(rays.primary), reflected: n(rays.reflected), transmitted: n(rays.transmitted),
+        shadow: n(rays.shadow), object: n(tests.object), bound: n(tests.bound), node: n(tests.node), voxel: n(tests.voxel),
+      });
+    }
+
+    /** Renders the image in the render worker, a newer render's image replacing an older one's:
+     *  a centre-sampled 3D image in RENDER_BANDS bands of rows, each drawn as it comes with the
+     *  share of rows done (issue 30 item 8); any other in one call (the module reports no partial
+     *  progress), the progress bar running meanwhile. */
     async render() {
       const gen = ++this.renderGen;
-      const { width, height } = this.info;
+      const { width, height, dimension } = this.info;
       const progress = this.part('progress');
       const started = performance.now();
       progress.hidden = false;
-      progress.removeAttribute('value'); // indeterminate: the module reports no partial progress
+      progress.removeAttribute('value');
       this.part('stats').textContent = say('rendering');
-      const answer = await this.engines.render.call({ op: 'render', ...this.base() });
-      if (gen !== this.renderGen) return;
-      progress.hidden = true;
-      if (answer.status !== 0) {
-        this.part('stats').textContent = '';
-        this.complain(answer);
-        return;
+      const banded = dimension === 3 && this.part('aa').value === 'center';
+      const rows = banded ? Math.max(1, Math.ceil(height / RENDER_BANDS)) : height;
+      const cost = { rays: {}, tests: {} };
+      for (let first = 0; first < height; first += rows) {
+        const request = { op: 'render', ...this.base() };
+        if (banded) request.rows = [first, rows];
+        const answer = await this.engines.render.call(request);
+        if (gen !== this.renderGen) return;
+        if (answer.status !== 0) {
+          progress.hidden = true;
+          this.part('stats').textContent = '';
+          this.complain('render', answer);
+          return;
+        }
+        if (first === 0) {
+          this.canvas.width = width;
+          this.canvas.height = height;
+          this.root.classList.toggle('strip', dimension === 2);
+        }
+        const band = banded ? answer.json.rows[1] : height;
+        const pixels = new Uint8ClampedArray(answer.bytes.buffer, answer.bytes.byteOffset, answer.bytes.length);
+        this.canvas.getContext('2d').putImageData(new ImageData(pixels, width, band), 0, first);
+        for (const part of ['rays', 'tests']) {
+          for (const [key, n] of Object.entries(answer.json[part] || {})) cost[part][key] = (cost[part][key] || 0) + n;
+        }
+        const done = Math.min(height, first + band);
+        progress.max = height;
+        progress.value = done;
+        if (done < height) this.part('stats').textContent = say('rendering_rows', { p: Math.floor((100 * done) / height) });
       }
-      this.canvas.width = width;
-      this.canvas.height = height;
-      const pixels = new Uint8ClampedArray(answer.bytes.buffer, answer.bytes.byteOffset, answer.bytes.length);
-      this.canvas.getContext('2d').putImageData(new ImageData(pixels, width, height), 0, 0);
-      this.root.classList.toggle('strip', this.info.dimension === 2);
+      progress.hidden = true;
+      this.accept('render');
       // `rays` is by kind (primary, reflected, transmitted, shadow), as `render --json` gives it.
-      const rays = Object.values(answer.json.rays || {}).reduce((a, b) => a + b, 0);
+      const rays = Object.values(cost.rays).reduce((a, b) => a + b, 0);
       const ms = Math.round(performance.now() - started);
-      this.part('stats').textContent = say('rendered', { w: width, h: height, rays: rays.toLocaleString(LANG), ms });
+      this.part('stats').textContent = say('rendered', { w: width, h: height, rays: rays.toLocaleString(LANG), ms })
+        + '\n' + say('cost_image', { cost: View.cost(cost) });
       this.mark();
     }
 
-    /** A click at CSS offset (x, y) of the W×H image → i = ⌊x·Nx/W⌋, j = Ny − 1 − ⌊y·Ny/H⌋. */
+    /** Where a pointer event lands on the image, in fractional CSS pixels of its box. */
+    offset(event) {
+      const box = this.canvas.getBoundingClientRect();
+      return { x: event.clientX - box.left, y: event.clientY - box.top, w: box.width, h: box.height };
+    }
+
+    /** A click at CSS offset (x, y) of the W×H image → i = ⌊x·Nx/W⌋, j = Ny − 1 − ⌊y·Ny/H⌋, with
+     *  x and y in fractional CSS pixels: the pointer's own position where the browser gives it
+     *  finer than the click's whole pixels (issue 30 item 7). */
     clicked(event) {
       if (!this.info) return;
-      const box = this.canvas.getBoundingClientRect();
+      const at = this.offset(event);
+      const pressed = this.pressed;
+      this.pressed = null;
+      // The press's position when it is the same click (a click's coordinates may be rounded).
+      const p = pressed && Math.abs(pressed.x - at.x) < 1 && Math.abs(pressed.y - at.y) < 1 ? pressed : at;
       const { width, height, dimension } = this.info;
-      const x = event.clientX - box.left;
-      const y = event.clientY - box.top;
-      const i = Math.min(width - 1, Math.max(0, Math.floor((x * width) / box.width)));
-      const j = height - 1 - Math.min(height - 1, Math.max(0, Math.floor((y * height) / box.height)));
+      const i = Math.min(width - 1, Math.max(0, Math.floor((p.x * width) / p.w)));
+      const j = height - 1 - Math.min(height - 1, Math.max(0, Math.floor((p.y * height) / p.h)));
       this.choose({ pixel: dimension === 2 ? [i] : [i, j] });
     }
 
@@ -397,44 +581,155 @@
       this.tracing = this.retrace(); // awaited by the benchmark
     }
 
-    /** Traces the target again: figure and narration, together. */
+    /** Traces the target again: narration and figure, together. The narration follows any pixel;
+     *  where the view's figure kind cannot draw it, the figure shows the pixel's rays and says
+     *  why, with a nearby pixel that the kind can draw and the lesson's own pixel a click away. */
     async retrace() {
       const gen = ++this.traceGen;
       const quick = this.engines.quick;
       const kind = this.part('kind').value;
       const base = this.base();
-      let figure;
-      let narration = null;
-      if (this.target) {
-        const request = { ...base, target: this.target };
-        [figure, narration] = await Promise.all([
-          quick.call({ op: 'figure', ...request, kind }),
-          quick.call({ op: 'narrate', ...request }),
-        ]);
-      } else {
+      let figure = null;
+      let target = this.target;
+      if (!target) {
         // The figure picks its pixel; the narration follows that pixel.
         figure = await quick.call({ op: 'figure', ...base, kind });
+        if (gen !== this.traceGen) return;
         if (figure.status === 0 && figure.json.pixel) {
-          narration = await quick.call({ op: 'narrate', ...base, target: { pixel: figure.json.pixel } });
+          target = { pixel: figure.json.pixel };
+          if (!this.lessonPixel && kind === this.lessonKind) this.lessonPixel = figure.json.pixel;
         }
       }
+      let narration = null;
+      if (target) {
+        const request = { ...base, target };
+        [narration, figure] = await Promise.all([
+          quick.call({ op: 'narrate', ...request }),
+          figure ? Promise.resolve(figure) : quick.call({ op: 'figure', ...request, kind }),
+        ]);
+      }
       if (gen !== this.traceGen) return;
-      const failed = figure.status !== 0 ? figure : narration && narration.status !== 0 ? narration : null;
+      let fallback = null;
+      if (narration && narration.status === 0 && figure.status !== 0 && target.pixel) {
+        // The kind cannot draw this pixel: its rays instead, and a nearby pixel that it can draw.
+        fallback = { why: figure, kind };
+        figure = await quick.call({ op: 'figure', ...base, target, kind: FALLBACK_KIND });
+        if (gen !== this.traceGen) return;
+      }
+      const failed = narration && narration.status !== 0 ? narration : figure.status !== 0 ? figure : null;
       if (failed) {
         // Refused (a pixel outside the image, an option beyond its limits): the message says why,
-        // and the last good trace stays, with its pixel.
-        this.complain(failed);
+        // and the last good trace stays, with its pixel, marked as the last good one.
+        this.complain('trace', failed);
         this.target = this.good;
         this.saveState();
         return;
       }
+      this.accept('trace');
+      this.accept('failed');
       this.good = this.target;
-      this.message('');
       this.part('pick').textContent = figure.json.pick || '';
-      this.shown = figure.json.pixel || null;
-      this.part('figure').innerHTML = isolateIds(figure.json.svg, 'v' + this.index + '-');
+      this.shown = figure.json.pixel || (target && target.pixel) || null;
+      this.showFigure(figure.json.svg, fallback ? FALLBACK_KIND : kind);
+      this.follow(fallback, target);
       this.showSteps(narration ? narration.json : null);
       this.mark();
+    }
+
+    /** Inserts the figure's SVG: an image with a name, its labels never under LABEL_MIN_PX. */
+    showFigure(svgText, kind) {
+      const box = this.part('figure');
+      box.innerHTML = isolateIds(svgText, 'v' + this.index + '-');
+      const svg = box.querySelector('svg');
+      if (!svg) return;
+      svg.setAttribute('role', 'img');
+      const pixel = this.shown ? pixelText(this.shown) : '–';
+      svg.setAttribute('aria-label', say('figure_name', { kind, pixel }));
+      readable(svg);
+    }
+
+    /** The line under the view's top that says what the figure shows instead, and the pixels one
+     *  click away: a nearby pixel the lesson's kind can draw, and the lesson's own. */
+    follow(fallback, target) {
+      const line = this.part('follow');
+      line.replaceChildren();
+      const pixel = target && target.pixel;
+      const add = (text, p) => {
+        const button = document.createElement('button');
+        button.type = 'button';
+        button.dataset.pixel = p.join(',');
+        button.textContent = text;
+        line.append(' ', button);
+        return button;
+      };
+      if (fallback) {
+        const kind = fallback.kind;
+        const what = say(KIND_WANTS[kind] || 'want_other');
+        const span = document.createElement('span');
+        span.textContent = say('fallback', { pixel: pixelText(pixel), what, kind });
+        line.append(span);
+        const seeking = document.createElement('span');
+        seeking.dataset.whitted = 'nearby';
+        seeking.textContent = ' ' + say('searching');
+        line.append(seeking);
+        this.seekNearby(pixel, kind, seeking);
+      }
+      const lesson = this.lessonPixel;
+      if (lesson && (!pixel || pixelText(lesson) !== pixelText(pixel))) {
+        add(say('lesson_pixel', { pixel: pixelText(lesson) }), lesson);
+      }
+      line.hidden = line.childNodes.length === 0;
+    }
+
+    /** Looks around `pixel`, nearest first, for a pixel whose figure of `kind` can be drawn, and
+     *  offers it in `where`; gives up when the view traces something else. */
+    async seekNearby(pixel, kind, where) {
+      const gen = this.traceGen;
+      const { width, height, dimension } = this.info;
+      if (!this.lessonPixel && kind === this.lessonKind && !this.root.dataset.ray) {
+        // A view opened on a linked pixel has not met its own yet: the figure's pick is it.
+        const pick = await this.engines.quick.call({ op: 'figure', ...this.base(), kind });
+        if (gen !== this.traceGen) return;
+        if (pick.status === 0 && pick.json.pixel) {
+          this.lessonPixel = pick.json.pixel;
+          const button = document.createElement('button');
+          button.type = 'button';
+          button.dataset.pixel = this.lessonPixel.join(',');
+          button.textContent = say('lesson_pixel', { pixel: pixelText(this.lessonPixel) });
+          where.after(' ', button);
+        }
+      }
+      const seen = new Set();
+      const candidates = [];
+      for (const r of NEAR_RADII) {
+        for (const [di, dj] of dimension === 2 ? [[1, 0], [-1, 0]] : NEAR_DIRECTIONS) {
+          candidates.push([pixel[0] + di * r, dimension === 2 ? 0 : pixel[1] + dj * r]);
+        }
+      }
+      const lesson = this.lessonPixel;
+      if (lesson) {
+        for (let k = 1; k <= NEAR_TOWARDS; k++) {
+          const at = (a, b) => Math.round(a + ((b - a) * k) / NEAR_TOWARDS);
+          candidates.push([at(pixel[0], lesson[0]), dimension === 2 ? 0 : at(pixel[1], lesson[1] || 0)]);
+        }
+      }
+      for (const [i, j] of candidates) {
+        if (i < 0 || j < 0 || i >= width || j >= height) continue;
+        const candidate = dimension === 2 ? [i] : [i, j];
+        if (seen.has(candidate.join())) continue;
+        seen.add(candidate.join());
+        const answer = await this.engines.quick.call({ op: 'figure', ...this.base(), target: { pixel: candidate }, kind });
+        if (gen !== this.traceGen) return;
+        if (answer.status === 0) {
+          const button = document.createElement('button');
+          button.type = 'button';
+          button.dataset.pixel = candidate.join(',');
+          button.textContent = say('nearby', { pixel: pixelText(candidate) });
+          where.replaceChildren(' ', button);
+          return;
+        }
+      }
+      where.textContent = ' ' + say('none_nearby');
     }
 
     showSteps(narration) {
@@ -442,6 +737,7 @@
       list.replaceChildren();
       this.steps = narration ? narration.steps : [];
       this.part('command').textContent = narration ? narration.command : '';
+      this.part('cost').textContent = narration && narration.stats ? say('cost_pixel', { cost: View.cost(narration.stats) }) : '';
       for (const s of this.steps) {
         const item = document.createElement('li');
         item.dataset.step = s.step;
@@ -453,17 +749,31 @@
       }
       if (!narration) this.part('current').textContent = say('no_steps');
       const wanted = this.steps.findIndex((s) => s.step === this.wantedStep);
+      if (this.wantedStep !== null && this.wantedStep !== undefined && wanted < 0 && this.linkStep !== null
+        && this.linkStep !== undefined && this.steps.length) {
+        const n = this.steps[this.steps.length - 1].step;
+        this.refusals.set('link', [this.refusals.get('link'),
+          say('link_step', { given: this.linkStep, k: Math.min(n, Math.max(1, Number(this.linkStep) || 1)), n })]
+          .filter(Boolean).join('\n'));
+        this.showMessages();
+      }
+      const fallbackStep = this.linkStep !== null && this.linkStep !== undefined && Number(this.linkStep) > 1
+        ? this.steps.length - 1 : 0;
+      this.linkStep = null;
       this.wantedStep = null;
-      this.go(wanted >= 0 ? wanted : 0);
+      this.go(wanted >= 0 ? wanted : fallbackStep);
     }
 
-    /** Makes step `k` (an index) current: aria-current, lit items, the text beside the figure. */
+    /** Makes step `k` (an index) current: aria-current, lit items, the text beside the figure,
+     *  and, when the step names nothing the figure draws, a line saying so. */
     go(k) {
       const n = this.steps.length;
+      const undrawn = this.part('undrawn');
       if (n === 0) {
         this.part('back').disabled = true;
         this.part('next').disabled = true;
         this.part('position').textContent = '';
+        undrawn.hidden = true;
         this.saveState();
         return;
       }
@@ -485,17 +795,24 @@
       }
       const events = new Set(current.events);
       const svg = this.part('figure').querySelector('svg');
+      let lit = 0;
       if (svg) {
         svg.classList.add('stepping');
         for (const item of svg.querySelectorAll('[data-events]')) {
-          item.classList.toggle('lit', [...eventSet(item.getAttribute('data-events'))].some((e) => events.has(e)));
+          const on = [...eventSet(item.getAttribute('data-events'))].some((e) => events.has(e));
+          item.classList.toggle('lit', on);
+          if (on) lit++;
         }
       }
-      this.part('position').textContent = say('step_of', { k: current.step, n: this.steps[n - 1].step });
       // The step without its nesting: its first line's indent taken off every line.
       const indent = current.text.length - current.text.trimStart().length;
-      this.part('current').textContent = current.text.split('\n')
+      const text = current.text.split('\n')
         .map((line) => line.slice(Math.min(indent, line.length - line.trimStart().length))).join('\n');
+      const title = text.split('\n')[0].replace(/^\d+\.\s*/, '');
+      undrawn.textContent = lit === 0 && svg ? say('undrawn', { what: title }) : '';
+      undrawn.hidden = !(lit === 0 && svg);
+      this.part('position').textContent = say('step_of', { k: current.step, n: this.steps[n - 1].step });
+      this.part('current').textContent = text;
       this.part('back').disabled = k === 0;
       this.part('next').disabled = k === n - 1;
       this.saveState();
@@ -537,18 +854,37 @@
 
   View.active = null;
 
-  /** ← and → walk the active view's steps, except while typing. */
+  /** The smallest a figure's label may be drawn, in CSS pixels (issue 30 item 6). */
+  const LABEL_MIN_PX = 11;
+
+  /** Keeps an SVG figure's smallest label at LABEL_MIN_PX or more on a narrow page: the figure is
+   *  drawn at least as wide as that needs (`--figure-min`), and its box scrolls sideways. */
+  function readable(svg) {
+    const box = svg.viewBox && svg.viewBox.baseVal;
+    if (!box || !box.width) return;
+    let smallest = Infinity;
+    for (const text of svg.querySelectorAll('text')) {
+      const size = parseFloat(text.getAttribute('font-size') || getComputedStyle(text).fontSize);
+      if (size > 0) smallest = Math.min(smallest, size);
+    }
+    if (!Number.isFinite(smallest)) return;
+    // whitted.css applies it where the panes stack (a phone's width).
+    svg.style.setProperty('--figure-min', Math.ceil((box.width * LABEL_MIN_PX) / smallest) + 'px');
+  }
+
+  /** ← and → walk the active view's steps, except while typing; on a select they walk the steps
+   *  too instead of changing its value. */
   function keys(views) {
     document.addEventListener('keydown', (event) => {
       if (event.altKey || event.ctrlKey || event.metaKey) return;
-      if (event.target.closest && event.target.closest('input, textarea, select')) return;
+      if (event.key !== 'ArrowRight' && event.key !== 'ArrowLeft') return;
+      if (event.target.closest && event.target.closest('input, textarea')) return;
       const view = View.active || views[0];
       if (!view) return;
       if (event.key === 'ArrowRight') view.go(view.step + 1);
-      else if (event.key === 'ArrowLeft') view.go(view.step - 1);
-      else return;
+      else view.go(view.step - 1);
       event.preventDefault();
-    });
+    }, true);
   }
 
   /** The playground's file picker and examples replace the view's scene. */

@@ -19,6 +19,7 @@ use whitted::request::render::{self as job, Job};
 use whitted::request::target::Target;
 use whitted::request::trace::{document_text, Trace};
 use whitted::request::{check, Failure};
+use whitted::sample::Sampling;
 use whitted::scene::load::load_str_with;
 use whitted::scene::{AnyScene, Scene};
 use whitted::shape::Dim;
@@ -72,7 +73,7 @@ fn image_size<V: Dim>(scene: &Scene<V>, strip_rows: Option<usize>) -> (usize, us
 }
 
 /// The fields a request may have.
-const FIELDS: [&str; 8] = ["op", "scene", "objs", "name", "options", "target", "lang", "kind"];
+const FIELDS: [&str; 9] = ["op", "scene", "objs", "name", "options", "target", "lang", "kind", "rows"];
 
 /// The name a request's scene goes by when it gives none (in `check`'s text, captions and
 /// commands).
@@ -194,6 +195,9 @@ fn info<V: Dim>(scene: &mut Scene<V>, options: &Options) -> Value {
 fn render_op(f: &Fields<'_>) -> Result<Answer, Failure> {
     let options = ask::options(f.get("options"))?;
     let chosen = options.sampling.choose(Aa::Center)?;
+    if let Some(rows) = f.get("rows") {
+        return band_op(&options, scene(f)?, ask::rows(rows)?, chosen.sampling);
+    }
     let watch = Stopwatch::start();
     let scene = scene(f)?;
     let load_seconds = watch.seconds();
@@ -224,6 +228,46 @@ fn render_op(f: &Fields<'_>) -> Result<Answer, Failure> {
         chosen.notes.into_iter().chain(options.accel.notes(options.accel.kind)).collect();
     doc["notes"] = json!(notes);
     Ok(Answer { code: 0, json: doc.to_string(), bytes: outcome.rendered.image.to_rgba8() })
+}
+
+/// A render's band of file rows `[first, first + count)` (the top row 0), for a page that shows
+/// the render's progress: the same colours and counts as those rows of the whole render
+/// (`render::center_band`). Only a centre-sampled 3D image is rendered by bands: a 2D strip is one
+/// row, and corners and adaptive sampling share lattice rows between pixel rows.
+fn band_op(
+    options: &ask::Options,
+    scene: AnyScene,
+    (first, count): (usize, usize),
+    sampling: Sampling,
+) -> Result<Answer, Failure> {
+    let AnyScene::Space(mut s) = scene else {
+        return Err(Failure::input("request.rows: a 2D scene renders one row; render it whole"));
+    };
+    if sampling != Sampling::Center {
+        return Err(Failure::input(format!(
+            "request.rows: --aa {} shares samples between rows; render it whole",
+            sampling.name()
+        )));
+    }
+    resize(&mut s, options.size);
+    let (w, h) = image_size(&s, None);
+    fits("render", w, h)?;
+    if first >= h {
+        return Err(Failure::input(format!("request.rows: the image has {h} rows, got first row {first}")));
+    }
+    let accel = whitted::accel::Accel::build_with(&s, &options.accel.options(3)?);
+    // File row f is image row j = Ny − 1 − f: the band's rows from the bottom.
+    let top = h - first;
+    let bottom = top.saturating_sub(count);
+    let depth = options.depth.unwrap_or(s.max_depth);
+    let (band, stats) = whitted::render::center_band(&s, &accel, depth, bottom..top);
+    let mut doc = whitted::doc::stats(&stats);
+    doc["rows"] = json!([first, band.height]);
+    doc["width"] = json!(w);
+    doc["height"] = json!(h);
+    doc["accel"] = json!(accel.kind().name());
+    doc["notes"] = json!(options.accel.notes(options.accel.kind));
+    Ok(Answer { code: 0, json: doc.to_string(), bytes: band.to_rgba8() })
 }
 
 /// What a `trace` or `narrate` request asks for.
@@ -275,6 +319,7 @@ fn narrate_op(f: &Fields<'_>) -> Result<Answer, Failure> {
         "command": command(name(f)?, &trace.target, &options, lang),
         "steps": steps,
         "notes": notes,
+        "stats": whitted::doc::stats(&narrated.stats),
     });
     traced(&mut answer, &narrated.target);
     Ok(Answer::ok(answer.to_string()))

@@ -170,8 +170,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             });
         }
     }
-    for l in &scene.lights {
-        draw_light(d, plane.point(l.position));
+    for (k, l) in scene.lights.iter().enumerate() {
+        draw_light(d, k, plane.point(l.position));
     }
     for s in &segments {
         if let Some(to) = s.to {

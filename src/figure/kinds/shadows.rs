@@ -157,8 +157,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             });
         }
     }
-    for (l, _) in lights.iter().zip(&far).filter(|(_, far)| !**far) {
-        draw_light(d, *l);
+    for (k, l) in lights.iter().enumerate().filter(|(k, _)| !far[*k]) {
+        draw_light(d, k, *l);
     }
     d.with_events(hit_ev, |d| {
         d.dot("hit", i, style::HIT);
