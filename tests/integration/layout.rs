@@ -66,6 +66,9 @@ const TREE_OBJECT: &str =
 /// Why the ray-casting lesson's Romanian lens name is open: its dense 2D trace (pixel 32) leaves no
 /// spot near the lens clear of every ray for the longer word.
 const CROWDED_LENS: &str = "no spot near the lens is clear of every ray in the dense 2D trace";
+/// Why R₃ of the ray-casting lesson is open: once every name must also lie nearer its own point
+/// than any other (issue 32 item 1), the only spot beside R₃'s point crosses a shadow ray there.
+const CROWDED_RAYS: &str = "R₃'s only spot nearer its own point than any other crosses a shadow ray";
 
 /// Single labels still open under the rays check, each named by its figure and its text (as the
 /// failure prints it) with why it is there: no whole figure kind is exempt, so a new label on a
@@ -95,6 +98,8 @@ const RAYS_OPEN: &[(&str, &str, &str)] = &[
     ("recursion-depth-3-ray-tree (ro)", "\"oglinda de sus\" [object]", TREE_OBJECT),
     ("recursion-depth-3-ray-tree (ro)", "\"oglinda de jos\" [object]", TREE_OBJECT),
     ("ray-casting-2-rays (ro)", "\"lentilă\" [object-name:1]", CROWDED_LENS),
+    ("ray-casting-2-rays (en)", "\"R_3\" [label]", CROWDED_RAYS),
+    ("ray-casting-2-rays (ro)", "\"R_3\" [label]", CROWDED_RAYS),
 ];
 
 #[test]
@@ -443,7 +448,7 @@ fn words_of(d: &Drawing) -> Vec<String> {
 /// too. The lecture's own English terms ("Ray tracing", "Ray casting") and its symbols (`fat`,
 /// `lum`, `min`, `max`, `I_local`, `tMax`, `cos`, `sin`, `asin`), names (Kay, Kajiya, Whitted,
 /// Pareto) and abbreviations (BVH, DDA, RMSE), and the Romanian words spelled as English ones
-/// (`transparent`, `plane`, `volume`, `vector`, `pixel`).
+/// (`transparent`, `plane`, `volume`, `vector`, `pixel`, `are`), and the lecture's `lookAt`.
 const ROMANIAN_ALSO_ENGLISH: &[&str] = &[
     "ray",
     "tracing",
@@ -469,6 +474,9 @@ const ROMANIAN_ALSO_ENGLISH: &[&str] = &[
     "volume",
     "vector",
     "pixel",
+    // Romanian "are" (has), and the lecture's lookAt.
+    "are",
+    "lookat",
 ];
 /// Issue 32 item 4: no English on a Romanian slide. The English word list is every word the
 /// English lesson figures print; a word of a Romanian lesson figure that is on it, and not on

@@ -116,7 +116,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             d.with_events(shadow_events, |d| draw_ray(d, RayRole::Shadow, i, s));
         }
         draw_observer(d, plane.point(cam.eye) + offset);
-        draw_light(d, s);
+        draw_light(d, light, s);
         d.dot("hit", i, style::HIT);
         panel_heading(d, DVec2::new((lo.x + hi.x) / 2.0 + offset.x, hi.y), input.t(heading));
     }

@@ -13,12 +13,12 @@ use super::Input;
 use crate::accel::AccelKind;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
 use crate::complexity::{Cost, FIGURE_WIDTH};
-use crate::figure::labels::Label;
+use crate::figure::labels::{scene_lead, Label};
 use crate::figure::parts::panel_heading;
 use crate::figure::plane::Planar;
 use crate::figure::style::{self, Rgba, TextSize};
 use crate::figure::FigureError;
-use crate::format::{markup_escape, slide_number};
+use crate::format::slide_number;
 
 /// The gap between the two plots, in decades of n.
 const PLOT_GAP: f64 = 1.0;
@@ -137,9 +137,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         format!(" × {}", FIGURE_WIDTH * input.scene.camera.ny / input.scene.camera.nx.max(1))
     };
     d.set_caption(&format!(
-        "{} {} · {} · {FIGURE_WIDTH}{rows} px · {} · n = {}: {}",
-        input.t(Label::Scene),
-        markup_escape(&input.traces.scene_name),
+        "{}{} · {FIGURE_WIDTH}{rows} px · {} · n = {}: {}",
+        scene_lead(&input.traces.scene_name, input.lang),
         input.t(Label::CrowdCaption),
         input.t(Label::RayCastingCount),
         tick(decade(last as f64, false)),

@@ -10,7 +10,7 @@ use glam::DVec2;
 
 use super::Input;
 use crate::canvas::{Align, Drawing, LegendIcon, Pen, TextOpts};
-use crate::figure::labels::Label;
+use crate::figure::labels::{scene_lead, Label};
 use crate::figure::parts::{draw_objects, draw_ray, label, label_objects, legend_role};
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{node_events, DISCRIMINANT_OFFSETS, DISCRIMINANT_START};
@@ -54,9 +54,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
 
     d.set_title(input.t(Label::TitleDiscriminant));
     d.set_caption(&format!(
-        "{} {} · {} · {} · {}",
-        input.t(Label::Scene),
-        crate::format::markup_escape(&input.traces.scene_name),
+        "{}{} · {} · {}",
+        scene_lead(&input.traces.scene_name, input.lang),
         input.t(Label::ThreeRays),
         input.t(Label::Quadratic),
         input.t(Label::NearestRoot),

@@ -10,12 +10,12 @@ use glam::DVec2;
 
 use super::Input;
 use crate::canvas::{Align, Drawing, Pen, TextOpts};
-use crate::figure::labels::Label;
+use crate::figure::labels::{scene_lead, Label};
 use crate::figure::parts::swatch;
 use crate::figure::plane::Planar;
 use crate::figure::style::{self, TextSize};
 use crate::figure::FigureError;
-use crate::format::{markup_escape, slide_number};
+use crate::format::slide_number;
 use crate::sample::Sampling;
 
 /// The gap between the two panels, in pixels of the crop.
@@ -48,9 +48,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.set_title(input.t(Label::TitleJagged));
     let rows = if V::DIM == 2 { String::new() } else { format!(", j = {}…{}", j0, j0 + h - 1) };
     d.set_caption(&format!(
-        "{} {} · {}: i = {}…{}{rows} · {}: {} / {} · {}: {}",
-        input.t(Label::Scene),
-        markup_escape(&input.traces.scene_name),
+        "{}{}: i = {}…{}{rows} · {}: {} / {} · {}: {}",
+        scene_lead(&input.traces.scene_name, input.lang),
         input.t(Label::Crop),
         i0,
         i0 + w - 1,
