@@ -186,6 +186,24 @@ pub fn lesson_page(lesson: &Lesson, views: &[View], lang: Lang, nav: &Nav, modul
     for view in views {
         body.push_str(&view_html(view, lang, None));
     }
+    // The lesson's exercise sheets (`whitted exercises`), written beside this page.
+    if !lesson.exercises.is_empty() {
+        let (title, sheet, answers) = match lang {
+            Lang::En => ("Exercises", "sheet", "answers"),
+            Lang::Ro => ("Exerciții", "fișa", "răspunsuri"),
+        };
+        body.push_str(&format!("<h2>{title}</h2>\n<ul class=\"exercises\">\n"));
+        for k in 0..lesson.exercises.len() {
+            let (ex, ans) = lesson.exercise_files(k);
+            body.push_str(&format!(
+                "<li><a href=\"{}\">{sheet} {}</a> (<a href=\"{}\">{answers}</a>)</li>\n",
+                html_escape(&ex),
+                k + 1,
+                html_escape(&ans)
+            ));
+        }
+        body.push_str("</ul>\n");
+    }
     page(lesson.title.get(lang), &body, lang, nav, module)
 }
 

@@ -19,6 +19,7 @@ use whitted::canvas::Drawing;
 use whitted::figure::{Lang, Options};
 use whitted::lesson::claim::Verdict;
 use whitted::lesson::{self, FigureSpec, Lesson};
+use whitted::request::exercises::sheets;
 use whitted::request::figure::{figure_checked, Request};
 use whitted::request::options::canvas;
 use whitted::request::parse;
@@ -425,6 +426,18 @@ fn write_site(
             };
             let page = site::lesson_page(lesson, &views, *lang, &nav, module);
             write_file(&dir.join(format!("{}.html", lesson.name)), page.as_bytes())?;
+            // The lesson's exercise sheets beside its page (`whitted exercises`).
+            for (k, spec) in lesson.exercises.iter().enumerate() {
+                let path = r.dir.join(&spec.scene);
+                let scene = load_scene(&path)?;
+                let signed = |n: usize| i64::try_from(n).unwrap_or(i64::MAX);
+                let pixel = (signed(spec.pixel.0), spec.pixel.1.map(signed));
+                let made = sheets(&scene, &scene_name(&path), pixel, *lang, spec.seed)
+                    .map_err(|f| Failure::input(format!("{} exercises[{k}]: {}", lesson.name, f.message)))?;
+                let (ex, ans) = lesson.exercise_files(k);
+                write_file(&dir.join(ex), made.exercises.as_bytes())?;
+                write_file(&dir.join(ans), made.answers.as_bytes())?;
+            }
         }
         // Whitted's scene first, then the others in the lessons' order.
         let mut examples: Vec<(String, String)> = texts

@@ -70,6 +70,19 @@ pub struct Lesson {
     pub text: Both,
     /// Its figures, in order.
     pub figures: Vec<FigureSpec>,
+    /// Its exercise sheets (`whitted exercises`), written beside its pages; may be empty.
+    pub exercises: Vec<ExerciseSpec>,
+}
+
+/// One exercise sheet of a lesson: a pixel of a scene, and the seed that picks its questions.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ExerciseSpec {
+    /// The scene file, relative to the lesson file.
+    pub scene: String,
+    /// `[i, j]` (`[i]` in 2D).
+    pub pixel: (usize, Option<usize>),
+    /// `--seed` (default 1).
+    pub seed: u64,
 }
 
 impl Lesson {
@@ -77,6 +90,14 @@ impl Lesson {
     #[must_use]
     pub fn file_stem(&self, index: usize) -> String {
         format!("{}-{}-{}", self.name, index + 1, self.figures[index].kind.name())
+    }
+    /// The files of exercise sheet `index` (from 0): `NAME-exercises-K.html`, `NAME-answers-K.html`.
+    #[must_use]
+    pub fn exercise_files(&self, index: usize) -> (String, String) {
+        (
+            format!("{}-exercises-{}.html", self.name, index + 1),
+            format!("{}-answers-{}.html", self.name, index + 1),
+        )
     }
 }
 
@@ -90,7 +111,7 @@ pub fn parse(text: &str) -> Result<Lesson, Vec<String>> {
     let Some(root) = value.as_object() else {
         return Err(vec!["a lesson is a JSON object".into()]);
     };
-    unknown(root, "", &["name", "title", "text", "figures"], &mut errors);
+    unknown(root, "", &["name", "title", "text", "figures", "exercises"], &mut errors);
     let name = match root.get("name").and_then(Value::as_str) {
         Some(n)
             if !n.is_empty()
@@ -116,11 +137,60 @@ pub fn parse(text: &str) -> Result<Lesson, Vec<String>> {
         }
         _ => errors.push("figures: must be a non-empty array".into()),
     }
+    let mut exercises = Vec::new();
+    match root.get("exercises").map(Value::as_array) {
+        None => {}
+        Some(Some(list)) => {
+            for (k, e) in list.iter().enumerate() {
+                if let Some(spec) = exercise(e, &format!("exercises[{k}]"), &mut errors) {
+                    exercises.push(spec);
+                }
+            }
+        }
+        Some(None) => errors.push("exercises: must be an array".into()),
+    }
     if errors.is_empty() {
-        Ok(Lesson { name, title, text, figures })
+        Ok(Lesson { name, title, text, figures, exercises })
     } else {
         Err(errors)
     }
+}
+
+/// One exercise sheet: `{ "scene": …, "pixel": [i, j], "seed": N }`.
+fn exercise(value: &Value, path: &str, errors: &mut Vec<String>) -> Option<ExerciseSpec> {
+    let Some(map) = value.as_object() else {
+        errors.push(format!("{path}: must be an object"));
+        return None;
+    };
+    unknown(map, &format!("{path}."), &["scene", "pixel", "seed"], errors);
+    let scene = map.get("scene").and_then(Value::as_str).map(str::to_owned);
+    if scene.is_none() {
+        errors.push(format!("{path}.scene: must be the path of a scene file"));
+    }
+    let whole = |v: &Value| v.as_u64().and_then(|n| usize::try_from(n).ok());
+    let pixel = match map
+        .get("pixel")
+        .and_then(Value::as_array)
+        .map(|a| a.iter().map(whole).collect::<Option<Vec<_>>>())
+    {
+        Some(Some(p)) if p.len() == 1 => Some((p[0], None)),
+        Some(Some(p)) if p.len() == 2 => Some((p[0], Some(p[1]))),
+        _ => {
+            errors.push(format!("{path}.pixel: must be [i, j] (or [i] in 2D) with whole numbers"));
+            None
+        }
+    };
+    let seed = match map.get("seed") {
+        None => Some(1),
+        Some(v) => {
+            let n = v.as_u64();
+            if n.is_none() {
+                errors.push(format!("{path}.seed: must be a whole number ≥ 0"));
+            }
+            n
+        }
+    };
+    Some(ExerciseSpec { scene: scene?, pixel: pixel?, seed: seed? })
 }
 
 /// Runs `read` with the scenes' all-errors [`Reader`] and adds what it found to `errors`, so a
@@ -308,6 +378,28 @@ mod tests {
         assert_eq!(lesson.title.get(Lang::Ro), "Raze");
         assert_eq!(lesson.figures[0].title, None);
         assert_eq!(lesson.figures[1].title.as_ref().map(|t| t.get(Lang::Ro)), Some("Ț"));
+    }
+
+    #[test]
+    fn a_lesson_lists_its_exercise_sheets() {
+        let text = GOOD.replacen("\"figures\"", "\"exercises\": [ { \"scene\": \"s.json\", \"pixel\": [4, 2], \"seed\": 7 },\n            { \"scene\": \"t.json\", \"pixel\": [1] } ], \"figures\"", 1);
+        let lesson = parse(&text).unwrap();
+        assert_eq!(
+            lesson.exercises[0],
+            ExerciseSpec { scene: "s.json".into(), pixel: (4, Some(2)), seed: 7 }
+        );
+        assert_eq!(lesson.exercises[1].seed, 1);
+        assert_eq!(lesson.exercise_files(1), ("rays-exercises-2.html".into(), "rays-answers-2.html".into()));
+        assert!(parse(GOOD).unwrap().exercises.is_empty());
+        let bad = GOOD.replacen(
+            "\"figures\"",
+            "\"exercises\": [ { \"scene\": 1, \"pixel\": [-1], \"seeds\": 2 } ], \"figures\"",
+            1,
+        );
+        let all = parse(&bad).unwrap_err().join("\n");
+        for expected in ["exercises[0].seeds: unknown field", "exercises[0].scene:", "exercises[0].pixel:"] {
+            assert!(all.contains(expected), "{expected} in {all}");
+        }
     }
 
     #[test]

@@ -213,3 +213,19 @@ fn exercise_sheets_ask_six_to_ten_questions_and_answer_them_with_the_narrations_
     let ro = std::fs::read_to_string(scratch.join("ro").join("exercises.html")).unwrap();
     assert!(ro.contains("calculați") && ro.contains("lang=\"ro\""));
 }
+
+#[test]
+fn a_lessons_exercise_sheets_are_written_beside_its_pages_and_linked() {
+    let scratch = Scratch::new();
+    let out = scratch.arg("course");
+    let (code, _, err) = whitted(&["lessons", "--only", "ray-tree", "--out", &out, "--size", "640x360"]);
+    assert_eq!(code, 0, "{err}");
+    for (lang, words) in [("en", "sheet 1"), ("ro", "fișa 1")] {
+        let dir = scratch.join("course").join(lang);
+        let page = std::fs::read_to_string(dir.join("ray-tree.html")).unwrap();
+        assert!(page.contains("href=\"ray-tree-exercises-1.html\"") && page.contains(words), "{lang}");
+        let sheet = std::fs::read_to_string(dir.join("ray-tree-exercises-1.html")).unwrap();
+        assert!(sheet.contains(&format!("lang=\"{lang}\"")) && sheet.contains("(100, 60)"));
+        assert!(dir.join("ray-tree-answers-1.html").exists());
+    }
+}
