@@ -429,7 +429,7 @@ fn write_site(
             // The lesson's exercise sheets beside its page (`whitted exercises`).
             for (k, spec) in lesson.exercises.iter().enumerate() {
                 let path = r.dir.join(&spec.scene);
-                let scene = load_scene(&path)?;
+                let scene = from.load_scene(&path)?;
                 let signed = |n: usize| i64::try_from(n).unwrap_or(i64::MAX);
                 let pixel = (signed(spec.pixel.0), spec.pixel.1.map(signed));
                 let made = sheets(&scene, &scene_name(&path), pixel, *lang, spec.seed)
