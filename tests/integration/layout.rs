@@ -6,6 +6,7 @@
 use crate::support::lesson_files;
 use glam::DVec2;
 use std::path::Path;
+use std::sync::OnceLock;
 use whitted::canvas::{Drawing, Item, Mark};
 use whitted::figure::style::{MIN_NODE_CONTRAST, OBJECT_TAG, RAY_TAG};
 use whitted::figure::{Lang, Options};
@@ -13,8 +14,18 @@ use whitted::lesson;
 use whitted::request::figure::{figure, Request};
 use whitted::scene::load::load_str;
 
-/// Every lesson figure as `whitted lessons` draws it at slide size: `(name, drawing)`.
-fn lesson_figures(lang: Lang) -> Vec<(String, Drawing)> {
+/// Every lesson figure as `whitted lessons` draws it at slide size: `(name, drawing)`. Drawn once
+/// per language and shared by every test of this file (each walks all of them).
+fn lesson_figures(lang: Lang) -> &'static [(String, Drawing)] {
+    static DRAWN: [OnceLock<Vec<(String, Drawing)>>; 2] = [OnceLock::new(), OnceLock::new()];
+    let slot = match lang {
+        Lang::En => &DRAWN[0],
+        Lang::Ro => &DRAWN[1],
+    };
+    slot.get_or_init(|| draw_lesson_figures(lang))
+}
+
+fn draw_lesson_figures(lang: Lang) -> Vec<(String, Drawing)> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
     let mut out = Vec::new();
     for (_, text) in lesson_files() {
@@ -48,7 +59,7 @@ fn no_label_of_any_lesson_figure_lies_on_another() {
     for lang in [Lang::En, Lang::Ro] {
         for (name, d) in lesson_figures(lang) {
             for (a, b) in d.overlapping_labels() {
-                found.push(format!("{name}: {} over {}", text_of(&d, a), text_of(&d, b)));
+                found.push(format!("{name}: {} over {}", text_of(d, a), text_of(d, b)));
             }
         }
     }
@@ -108,7 +119,7 @@ fn no_label_of_any_lesson_figure_lies_on_a_ray_it_does_not_name() {
     for lang in [Lang::En, Lang::Ro] {
         for (name, d) in lesson_figures(lang) {
             for (label, ray) in d.labels_on_lines(RAY_TAG) {
-                let text = text_of(&d, label);
+                let text = text_of(d, label);
                 let known = RAYS_OPEN.iter().find(|(figure, words, _)| name == *figure && text == *words);
                 match known {
                     Some(k) if !open.contains(k) => open.push(*k),
@@ -161,8 +172,8 @@ fn point_share(d: &Drawing) -> f64 {
 fn a_shadows_figure_keeps_its_point_large_however_far_the_light() {
     let mut small = Vec::new();
     for lang in [Lang::En, Lang::Ro] {
-        for (name, d) in lesson_figures(lang).into_iter().filter(|(name, _)| name.contains("-shadows (")) {
-            let share = point_share(&d);
+        for (name, d) in lesson_figures(lang).iter().filter(|(name, _)| name.contains("-shadows (")) {
+            let share = point_share(d);
             if share < MIN_POINT_SHARE {
                 small.push(format!("{name}: {share:.2}"));
             }
@@ -375,14 +386,14 @@ fn every_label_of_every_lesson_figure_is_nearer_its_own_anchor_than_another_of_i
     for lang in [Lang::En, Lang::Ro] {
         for (name, d) in lesson_figures(lang) {
             for (label, rival) in d.labels_nearer_another_anchor() {
-                let kind = kind_of(&d, label);
+                let kind = kind_of(d, label);
                 if let Some(k) = ANCHOR_OPEN.iter().find(|k| **k == kind) {
                     if !open.contains(k) {
                         open.push(*k);
                     }
                     continue;
                 }
-                found.push(format!("{name}: {} nearer {}", text_of(&d, label), text_of(&d, rival)));
+                found.push(format!("{name}: {} nearer {}", text_of(d, label), text_of(d, rival)));
             }
         }
     }
@@ -399,14 +410,14 @@ fn no_label_of_any_lesson_figure_lies_on_an_object_outline_it_does_not_name() {
     for lang in [Lang::En, Lang::Ro] {
         for (name, d) in lesson_figures(lang) {
             for (label, outline) in d.labels_on_outlines(OBJECT_TAG) {
-                let kind = kind_of(&d, label);
+                let kind = kind_of(d, label);
                 if let Some(k) = OUTLINE_OPEN.iter().find(|k| **k == kind) {
                     if !open.contains(k) {
                         open.push(*k);
                     }
                     continue;
                 }
-                found.push(format!("{name}: {} on {}", text_of(&d, label), d.items[outline].tag));
+                found.push(format!("{name}: {} on {}", text_of(d, label), d.items[outline].tag));
             }
         }
     }
@@ -488,7 +499,7 @@ fn no_romanian_lesson_figure_prints_an_english_word() {
         lesson_figures(Lang::En).iter().flat_map(|(_, d)| words_of(d)).collect();
     let mut found = Vec::new();
     for (name, d) in lesson_figures(Lang::Ro) {
-        let mut words: Vec<String> = words_of(&d)
+        let mut words: Vec<String> = words_of(d)
             .into_iter()
             .filter(|w| english.contains(w) && !ROMANIAN_ALSO_ENGLISH.contains(&w.as_str()))
             .collect();

@@ -21,6 +21,8 @@
 //! There is no shaping beyond advances: the fonts carry their kerning in GPOS, which `ab_glyph`
 //! does not read, so pairs are not kerned. Labels are short, and this does not show.
 
+use std::cell::RefCell;
+use std::collections::HashMap;
 use std::sync::OnceLock;
 
 use ab_glyph::{Font, FontRef, GlyphId, OutlineCurve};
@@ -347,11 +349,8 @@ impl TextLayout {
         self.glyphs
             .iter()
             .filter_map(|g| {
-                // Font units, y up: the outline's lowest and highest point.
-                let bounds = g.face.font().outline(g.id)?.bounds;
+                let (lo, hi) = vertical_bounds(g.face, g.id)?;
                 let scale = g.size / g.face.units_per_em();
-                let (lo, hi) =
-                    (f64::from(bounds.min.y.min(bounds.max.y)), f64::from(bounds.min.y.max(bounds.max.y)));
                 Some((g.rise + hi * scale, -(g.rise + lo * scale)))
             })
             .fold(None, |acc: Option<(f64, f64)>, (a, b)| {
@@ -361,9 +360,51 @@ impl TextLayout {
     }
 }
 
-/// Lays out one line of markup at font size `size` (em, pixels).
+/// A vertical extent `(lowest, highest)`.
+type Span = (f64, f64);
+
+/// A glyph's outline from its lowest to its highest point, in font units, y up; `None` for a
+/// glyph without an outline (a space). Read from the font once per glyph and thread: label
+/// placement asks for the ink of every candidate spot.
+fn vertical_bounds(face: Face, id: GlyphId) -> Option<Span> {
+    thread_local! {
+        static BOUNDS: RefCell<HashMap<(Face, u16), Option<Span>>> = RefCell::new(HashMap::new());
+    }
+    BOUNDS.with(|cache| {
+        *cache.borrow_mut().entry((face, id.0)).or_insert_with(|| {
+            let b = face.font().outline(id)?.bounds;
+            Some((f64::from(b.min.y.min(b.max.y)), f64::from(b.min.y.max(b.max.y))))
+        })
+    })
+}
+
+/// At most this many layouts are kept per thread by [`layout`]; past it the memory starts over.
+const LAYOUT_CACHE_ENTRIES: usize = 4096;
+
+/// Lays out one line of markup at font size `size` (em, pixels). The same line at the same size
+/// and weight is laid out once per thread and then copied: placing a label measures it at every
+/// candidate spot.
 #[must_use]
 pub fn layout(markup: &str, size: f64, weight: Weight) -> TextLayout {
+    thread_local! {
+        static LAID: RefCell<HashMap<(String, u64, Weight), TextLayout>> = RefCell::new(HashMap::new());
+    }
+    LAID.with(|cache| {
+        let mut cache = cache.borrow_mut();
+        if let Some(laid) = cache.get(&(markup.to_owned(), size.to_bits(), weight)) {
+            return laid.clone();
+        }
+        if cache.len() >= LAYOUT_CACHE_ENTRIES {
+            cache.clear();
+        }
+        let laid = lay_out(markup, size, weight);
+        cache.insert((markup.to_owned(), size.to_bits(), weight), laid.clone());
+        laid
+    })
+}
+
+/// [`layout`] without the memory: the glyphs of each run, advanced along the baseline.
+fn lay_out(markup: &str, size: f64, weight: Weight) -> TextLayout {
     let main = font(weight);
     let units = f64::from(main.units_per_em().unwrap_or(1000.0));
     let line_ascent = f64::from(main.ascent_unscaled()) / units;

@@ -273,7 +273,10 @@ pub fn record<V: Dim>(
     let traces = match kind {
         FigureKind::Projections => projections(&tracer, aim),
         FigureKind::BackwardRays => {
-            let main = tracer.aimed(aim, Pick::LitDirectly, lit_directly_score);
+            // The score reads only the primary ray and its shadow rays, which no depth changes:
+            // the scan traces the primary rays alone (max_depth 0), the pixel picked at `depth`.
+            let primary_only = FigureTracer { depth: 0, ..tracer };
+            let main = tracer.aimed_by(aim, Pick::LitDirectly, || primary_only.scan(lit_directly_score));
             if lit_directly_score(&main.log).is_none() {
                 return Err(FigureError(missing(aim, "hit that a light reaches with nothing in between")));
             }
@@ -427,6 +430,7 @@ fn has<V>(log: &EventLog<V>, test: impl Fn(&Event<V>) -> bool) -> bool {
 }
 
 /// The tracer, set up once for all the pixels a figure traces.
+#[derive(Clone, Copy)]
 struct FigureTracer<'a, V: Dim> {
     scene: &'a Scene<V>,
     accel: &'a Accel<V>,
@@ -519,10 +523,21 @@ impl<V: Dim> FigureTracer<'_, V> {
     /// The trace of `aim`; with [`Aim::Auto`], of the pixel with the best `score` (picked as
     /// `why`), or the default pixel when no pixel scores.
     fn aimed(&self, aim: &Aim<V>, why: Pick, score: impl Fn(&EventLog<V>) -> Option<f64>) -> FigureTrace<V> {
+        self.aimed_by(aim, why, || self.scan(score))
+    }
+
+    /// The trace of `aim`; with [`Aim::Auto`], of the pixel `pick` finds (picked as `why`), or the
+    /// default pixel when it finds none.
+    fn aimed_by(
+        &self,
+        aim: &Aim<V>,
+        why: Pick,
+        pick: impl FnOnce() -> Option<(usize, usize)>,
+    ) -> FigureTrace<V> {
         match aim {
             Aim::Pixel(i, j) => self.pixel(*i, *j, Pick::Given),
             Aim::Ray(ray) => self.trace(self.scene, &[(*ray, Target::Ray)], self.depth, Pick::Given),
-            Aim::Auto => match self.scan(score) {
+            Aim::Auto => match pick() {
                 Some((i, j)) => self.pixel(i, j, why),
                 None => {
                     let (i, j) = default_pixel(self.scene);
