@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, readdirSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { join } from 'node:path';
-import { ROOT, launch, open, settled, shot } from './support.mjs';
+import { ROOT, launch, liveViews, open, settled, shot } from './support.mjs';
 
 const require = createRequire(import.meta.url);
 /** axe-core, pinned in package.json and package-lock.json. */
@@ -242,13 +242,18 @@ function lessons() {
     .map((f) => JSON.parse(readFileSync(join(ROOT, 'lessons', f), 'utf8')).name);
 }
 
-test('every page passes axe-core (no serious or critical violation) and reads at 390 px', { timeout: 60 * PAGE_MS }, async () => {
+test('every page opens live, passes axe-core (no serious or critical violation) and reads at 390 px', { timeout: 60 * PAGE_MS }, async () => {
   const rows = [];
   const pages = [];
   for (const lang of ['en', 'ro']) for (const name of [...lessons(), 'play']) pages.push(`${lang}/${name}.html`);
   for (const path of pages) {
     const page = await open(browser, path, { width: PHONE, height: 844 });
     await settled(page, PAGE_MS);
+    // Live: every view rendered its image, its cost and its figure, with no refusal.
+    const views = await page.evaluate(liveViews);
+    assert.ok(views.length > 0, path);
+    for (const v of views) assert.ok(v.live, `${path}: ${JSON.stringify(v)}`);
+    assert.deepEqual(page.problems, [], path);
     await page.addScriptTag({ path: AXE });
     const result = await page.evaluate(async () => {
       const r = await self.axe.run(document, { resultTypes: ['violations'] });

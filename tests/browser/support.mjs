@@ -79,3 +79,17 @@ export function dedent(text) {
   const indent = text.length - text.trimStart().length;
   return text.split('\n').map((line) => line.slice(Math.min(indent, line.length - line.trimStart().length))).join('\n');
 }
+
+/** Run in the page (`page.evaluate(liveViews)`): each view's state after it settled, and `live`
+ *  when it shows what a live view shows: a rendered image, its cost, a figure and no refusal. */
+export function liveViews() {
+  return [...document.querySelectorAll('[data-whitted="view"]')].map((v) => {
+    const state = {
+      width: v.querySelector('canvas').width,
+      stats: v.querySelector('[data-whitted="stats"]').textContent,
+      figure: !!v.querySelector('[data-whitted="figure"] svg'),
+      message: v.querySelector('[data-whitted="message"]').textContent,
+    };
+    return { ...state, live: state.width >= 1 && !!state.stats && state.figure && !state.message };
+  });
+}
