@@ -237,6 +237,9 @@ test('keys: Enter traces and gives the arrows back; arrows never change a select
 });
 
 /** The lessons' names. */
+/** How many pages the accessibility pass keeps open at once. */
+const PAGES_AT_ONCE = 2;
+
 function lessons() {
   return readdirSync(join(ROOT, 'lessons')).filter((f) => f.endsWith('.json')).sort()
     .map((f) => JSON.parse(readFileSync(join(ROOT, 'lessons', f), 'utf8')).name);
@@ -246,7 +249,9 @@ test('every page opens live, passes axe-core (no serious or critical violation) 
   const rows = [];
   const pages = [];
   for (const lang of ['en', 'ro']) for (const name of [...lessons(), 'play']) pages.push(`${lang}/${name}.html`);
-  for (const path of pages) {
+  // Each page is one renderer process, and the machine has two cores: two pages at once.
+  const queue = [...pages];
+  const check = async (path) => {
     const page = await open(browser, path, { width: PHONE, height: 844 });
     await settled(page, PAGE_MS);
     // Live: every view rendered its image, its cost and its figure, with no refusal.
@@ -276,7 +281,11 @@ test('every page opens live, passes axe-core (no serious or critical violation) 
     const serious = result.filter((v) => v.impact === 'serious' || v.impact === 'critical');
     rows.push({ path, violations: result.length, serious: serious.length, smallest: Math.min(...labels), detail: result });
     await page.close();
-  }
+  };
+  await Promise.all(Array.from({ length: PAGES_AT_ONCE }, async () => {
+    while (queue.length > 0) await check(queue.shift());
+  }));
+  rows.sort((a, b) => pages.indexOf(a.path) - pages.indexOf(b.path));
   console.log('| page | axe violations | serious or critical | smallest label at 390 px |\n|---|---|---|---|');
   for (const r of rows) {
     console.log(`| ${r.path} | ${r.violations} | ${r.serious} | ${Number.isFinite(r.smallest) ? r.smallest.toFixed(1) + ' px' : '–'} |`);
