@@ -199,17 +199,9 @@
    *  item 3). */
   const OVERVIEW_KINDS = ['projections', 'refraction', 'local-model', 'uv-map', 'jagged-edges', 'slab-test', 'kay-kajiya'];
   const OVERVIEW_KIND = 'ray-tree';
-  /** The overview's canvas (CSS-sized to the pane): OVERVIEW_WIDTH wide, OVERVIEW_ROW high for
-   *  each level of the tree and two more (its title and caption), so that a short tree stays low. */
-  const OVERVIEW_WIDTH = 1280;
-  const OVERVIEW_ROW = 110;
-
-  /** The overview's canvas for a narration: its deepest level from the steps' places
-   *  (`P → T₁ @ glass, level 2`). */
-  function overviewSize(steps) {
-    const levels = Math.max(1, ...steps.map((s) => Number((/level (\d+)/.exec(s.place || '') || [0, 1])[1])));
-    return [OVERVIEW_WIDTH, OVERVIEW_ROW * (levels + 2)];
-  }
+  /** The overview's canvas, a slide's shape (16:9): drawn at the pane's width, its labels are
+   *  then as large as the figure's (a flatter canvas would shrink them with its height). */
+  const OVERVIEW_SIZE = [1280, 720];
   /** How far (in pixels) and how many candidates the search for a nearby pixel goes. */
   const NEAR_RADII = [2, 4, 8, 16, 32, 64];
   /** Beyond the rings, the points tried on the way to the lesson's pixel (which has it). */
@@ -647,7 +639,7 @@
       let overview = null;
       if (!fallback && target && target.pixel && OVERVIEW_KINDS.includes(kind) && base.options.aa === 'center'
         && narration && narration.status === 0 && figure.status === 0) {
-        overview = await quick.call({ op: 'figure', ...base, options: { ...base.options, size: overviewSize(narration.json.steps) },
+        overview = await quick.call({ op: 'figure', ...base, options: { ...base.options, size: OVERVIEW_SIZE },
           target, kind: OVERVIEW_KIND });
         if (gen !== this.traceGen) return;
       }
