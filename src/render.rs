@@ -238,30 +238,82 @@ fn center_rows<V: Dim>(
     total(rows)
 }
 
-/// Pixel rows `rows` (j from the bottom) of a centre-sampled render, one after the other on the
-/// calling thread: the very colours [`render`] writes there (§2, `u = l + (r − l)·(i + 0.5)/Nx`,
-/// `v = b + (t − b)·(j + 0.5)/Ny`) and the rays and tests they took, so that the sum over bands
-/// of rows is the whole render's. A page renders in bands to show its progress (`web/`). Rows past
-/// the camera's Ny are left out.
+/// A band of the image, on the calling thread, for a page that shows a render's progress
+/// (`web/`): pixel rows `range` (j from the bottom) of a 3D image, or pixels `range` (i) of a 2D
+/// scene's one row, in any sampling mode. Its colours are those [`render`] writes there (§2, §8:
+/// each sample's colour depends on its lattice point alone) and its rays and tests those its
+/// samples took, so that the bands of an image summed are the whole render. With corners and
+/// adaptive sampling the band before this one shares its last edge (a lattice row, or a pixel
+/// end) and counted its samples there: this band first traces again, uncounted, what that band's
+/// last row traced on the edge (or the end), then counts only the rest. Parts of `range` past the
+/// image are left out. The image is `width × height` with its rows from the bottom: `Nx × rows`
+/// in 3D, `pixels × 1` in 2D.
 #[must_use]
-pub fn center_band<V: Dim>(
+pub fn band<V: Dim>(
     scene: &Scene<V>,
     accel: &Accel<V>,
-    max_depth: u32,
-    rows: Range<usize>,
+    (sampling, max_depth): (Sampling, u32),
+    range: Range<usize>,
 ) -> (Image, Stats) {
     let cam = &scene.camera;
-    let rows = rows.start.min(cam.ny)..rows.end.min(cam.ny);
-    let mut band =
-        Image { width: cam.nx, height: rows.len(), pixels: Vec::with_capacity(cam.nx * rows.len()) };
-    let mut tracer = tracer(scene, accel, max_depth);
-    for j in rows {
-        for i in 0..cam.nx {
-            let (u, v) = cam.pixel_center(i, j);
-            band.pixels.push(tracer.trace_primary(&cam.primary_ray(u, v), &[]));
+    let flat = V::DIM == 2;
+    let len = if flat { cam.nx } else { cam.ny };
+    let range = range.start.min(len)..range.end.min(len);
+    let (width, height) = if flat { (range.len(), 1) } else { (cam.nx, range.len()) };
+    let mut image = Image { width, height, pixels: vec![Rgb::default(); width * height] };
+    let mut counted = tracer(scene, accel, max_depth);
+    match sampling.rule() {
+        None => {
+            for (k, pixel) in image.pixels.iter_mut().enumerate() {
+                let (i, j) = if flat { (range.start + k, 0) } else { (k % cam.nx, range.start + k / cam.nx) };
+                let (u, v) = cam.pixel_center(i, j);
+                *pixel = counted.trace_primary(&cam.primary_ray(u, v), &[]);
+            }
+        }
+        Some(_) if range.is_empty() => {}
+        Some(rule) => {
+            let mut quiet = tracer(scene, accel, max_depth);
+            lattice_band(scene, (&mut counted, &mut quiet), rule, range, &mut image.pixels);
         }
     }
-    (band, tracer.stats)
+    (image, counted.stats)
+}
+
+/// [`band`]'s lattice modes: the band's rows (or a 2D line's pixels) into `pixels`, their samples
+/// counted by `counted`, the shared edge below the band traced again by `quiet`.
+fn lattice_band<'s, V: Dim>(
+    scene: &Scene<V>,
+    (counted, quiet): (&mut Tracer<'s, V, NoRecorder>, &mut Tracer<'s, V, NoRecorder>),
+    rule: (f64, u32),
+    range: Range<usize>,
+    pixels: &mut [Rgb],
+) {
+    let lattice = Lattice::new(&scene.camera, rule.1);
+    let mut scratch = Scratch::new(lattice);
+    if lattice.dims() == 1 {
+        // A 2D scene's line: pixels share only their ends (the finer points lie inside one pixel).
+        let axes = Axes::new(lattice, &scene.camera);
+        let ends = range.start..=range.end;
+        let edge = EdgeRow::trace_ends((&mut *counted, quiet), (lattice, &axes), ends, range.start > 0);
+        let edges = Edges { bottom: &edge, top: &edge, axes: &axes };
+        render_row(counted, lattice, rule, (range.start, 0), edges, &mut scratch, pixels, None);
+        return;
+    }
+    let edges = EdgeRows::new(lattice, &scene.camera);
+    let mut row = |tracer: &mut Tracer<'s, V, NoRecorder>, j: usize, out: &mut [Rgb]| {
+        let top = edges.acquire(tracer, j + 1);
+        let bottom = edges.acquire(tracer, j);
+        let pair = Edges { bottom: &bottom, top: &top, axes: edges.axes() };
+        render_row(tracer, lattice, rule, (0, j), pair, &mut scratch, out, None);
+        edges.release(j);
+        edges.release(j + 1);
+    };
+    if let Some(below) = range.start.checked_sub(1) {
+        row(quiet, below, &mut vec![Rgb::default(); lattice.nx]);
+    }
+    for (k, out) in pixels.chunks_mut(lattice.nx).enumerate() {
+        row(counted, range.start + k, out);
+    }
 }
 
 fn tracer<'s, V: Dim>(scene: &'s Scene<V>, accel: &'s Accel<V>, max_depth: u32) -> Tracer<'s, V, NoRecorder> {
@@ -373,7 +425,7 @@ fn lattice_row<V: Dim>(
     edges: Edges<'_>,
     (pixels, counts): (&mut [Rgb], Option<&mut [u32]>),
 ) {
-    render_row(tracer, lattice, rule, j, edges, scratch, pixels, counts);
+    render_row(tracer, lattice, rule, (0, j), edges, scratch, pixels, counts);
     if let Some(progress) = config.progress {
         progress(1);
     }
@@ -410,25 +462,57 @@ mod tests {
         assert_eq!(job_rows(Lattice::new(&camera(8, 3), 8), 1, 4), 1);
     }
 
+    /// Every mode's sampling, at a level deep enough that edges shared between bands hold finer
+    /// points.
+    const MODES: [Sampling; 3] =
+        [Sampling::Center, Sampling::Corners, Sampling::Adaptive { threshold: 0.05, max_level: 2 }];
+
+    /// Renders `scene` whole and in bands of `size` (rows in 3D, pixels in 2D) in each of
+    /// [`MODES`]: the bands' pixels laid side by side and their counts summed are the render's.
+    fn bands_are_the_render<V: Dim>(scene: &Scene<V>, size: usize) {
+        let accel = Accel::build_with(scene, &crate::accel::AccelOptions::of(crate::accel::AccelKind::Bvh));
+        let cam = &scene.camera;
+        let len = if V::DIM == 2 { cam.nx } else { cam.ny };
+        for sampling in MODES {
+            let config = RenderConfig { sampling, ..RenderConfig::centers(scene.max_depth) };
+            let whole = render(scene, &accel, &config);
+            if matches!(sampling, Sampling::Adaptive { .. }) {
+                // Some pixels split: finer points lie on the edges the bands share.
+                let corners = (cam.nx + 1) * if V::DIM == 2 { 1 } else { cam.ny + 1 };
+                assert!(whole.stats.rays.primary > corners as u64, "{:?}", whole.stats.rays);
+            }
+            let mut pixels = Vec::new();
+            let mut stats = Stats::default();
+            for start in (0..len).step_by(size) {
+                let (band, counted) = band(scene, &accel, (sampling, scene.max_depth), start..start + size);
+                assert_eq!(band.pixels.len(), (len - start).min(size) * if V::DIM == 2 { 1 } else { cam.nx });
+                pixels.extend(band.pixels);
+                stats += counted;
+            }
+            assert_eq!(pixels, whole.image.pixels[..cam.nx * cam.ny], "{}", sampling.name());
+            assert_eq!(stats, whole.stats, "{}", sampling.name());
+        }
+    }
+
     #[test]
-    fn bands_of_rows_are_the_render_and_its_counts() {
+    fn bands_of_rows_are_the_render_and_its_counts_in_every_mode() {
         let text = r#"{"camera": {"eye": [0,0,5], "center": [0,0,0], "resolution": [9, 7],
             "window": {"l": -1, "r": 1, "b": -0.8, "t": 0.8}},
             "lights": [{"position": [3, 3, 3]}],
             "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": {"ks": 0.5}},
                         {"type": "plane", "point": [0,-1,0], "normal": [0,1,0]}]}"#;
         let Ok(AnyScene::Space(scene)) = load_str(text) else { panic!("a 3D scene") };
-        let accel = Accel::build_with(&scene, &crate::accel::AccelOptions::of(crate::accel::AccelKind::Bvh));
-        let whole = render_centers(&scene, &accel, scene.max_depth, None);
-        let mut pixels = Vec::new();
-        let mut stats = Stats::default();
-        for start in (0..7).step_by(3) {
-            let (band, counted) = center_band(&scene, &accel, scene.max_depth, start..start + 3);
-            assert_eq!(band.height, (7 - start).min(3));
-            pixels.extend(band.pixels);
-            stats += counted;
-        }
-        assert_eq!(pixels, whole.image.pixels);
-        assert_eq!(stats, whole.stats);
+        bands_are_the_render(&scene, 3);
+    }
+
+    #[test]
+    fn bands_of_a_2d_line_are_its_render_and_its_counts_in_every_mode() {
+        let text = r#"{"camera": {"eye": [0,0], "center": [0,-1], "resolution": [23],
+            "window": {"l": -1, "r": 1}},
+            "lights": [{"position": [3, 3]}],
+            "objects": [{"type": "sphere", "center": [0,-4], "radius": 1, "material": {"ks": 0.5}},
+                        {"type": "plane", "point": [0,-6], "normal": [0,1]}]}"#;
+        let Ok(AnyScene::Flat(scene)) = load_str(text) else { panic!("a 2D scene") };
+        bands_are_the_render(&scene, 5);
     }
 }

@@ -72,7 +72,7 @@ const WORDS: &[(&str, &str, &str)] = &[
     ("rendering", "Rendering in the background…", "Se randează în fundal…"),
     ("rendered", "{w}×{h} pixels, {rays} rays, {ms} ms in the page",
      "{w}×{h} pixeli, {rays} raze, {ms} ms în pagină"),
-    ("rendering_rows", "Rendering: {p} % of the rows…", "Se randează: {p} % din rânduri…"),
+    ("rendering_share", "Rendering: {p} %…", "Se randează: {p} %…"),
     ("cost_image", "The whole image: {cost}", "Toată imaginea: {cost}"),
     ("cost_pixel", "This pixel: {cost}", "Acest pixel: {cost}"),
     ("cost",
@@ -103,6 +103,8 @@ const WORDS: &[(&str, &str, &str)] = &[
      "Pasul {given} din link nu există: este arătat pasul {k} din {n}."),
     ("scene_depth", "the scene's depth", "adâncimea scenei"),
     ("figure_name", "Figure “{kind}”, pixel ({pixel})", "Figura „{kind}”, pixelul ({pixel})"),
+    ("overview_name", "The ray tree of pixel ({pixel}): every ray of its computation",
+     "Arborele de raze al pixelului ({pixel}): toate razele calculului său"),
     ("missing",
      "The interactive part needs the WebAssembly module, which was not built: run ./run.sh (web/build.sh --install installs its toolchain). The figures below are the static ones.",
      "Partea interactivă are nevoie de modulul WebAssembly, care nu a fost construit: rulați ./run.sh (web/build.sh --install instalează uneltele necesare). Figurile de mai jos sunt cele statice."),
@@ -113,6 +115,17 @@ const WORDS: &[(&str, &str, &str)] = &[
      "Scena are erori; imaginea este ultima corectă."),
     ("no_steps", "This figure follows no single pixel: click one to see its computation.",
      "Figura nu urmărește un singur pixel: dați clic pe unul ca să-i vedeți calculul."),
+    // Why a figure kind that draws no pixel's trace has no steps until a pixel is clicked (issue
+    // 30 item 4), shown where the steps would be.
+    ("no_pixel_discriminant",
+     "No pixel to follow here: this figure draws three rays of its own against one sphere (Δ < 0, Δ = 0, Δ > 0), not a pixel of the image. Click the image to follow one of its pixels.",
+     "Aici nu se urmărește niciun pixel: figura desenează trei raze proprii față de o sferă (Δ < 0, Δ = 0, Δ > 0), nu un pixel al imaginii. Dați clic pe imagine ca să urmăriți unul dintre pixelii ei."),
+    ("no_pixel_complexity",
+     "No pixel to follow here: this figure plots the tests per ray measured on crowds of n spheres, not one pixel's computation. Click the image to follow one of its pixels.",
+     "Aici nu se urmărește niciun pixel: figura arată testele pe rază măsurate pe mulțimi de n sfere, nu calculul unui pixel. Dați clic pe imagine ca să urmăriți unul dintre pixelii ei."),
+    ("no_pixel_heat-map",
+     "No pixel to follow here: this figure counts the primary rays of every pixel of the image, not one pixel's computation. Click the image to follow one of them.",
+     "Aici nu se urmărește niciun pixel: figura numără razele primare ale fiecărui pixel al imaginii, nu calculul unuia singur. Dați clic pe imagine ca să urmăriți unul dintre ei."),
     ("ray", "a ray given by hand", "o rază dată explicit"),
     ("empty", "This scene has no errors.", "Scena nu are erori."),
 ];
@@ -371,6 +384,7 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
          <button type=\"submit\">{show}</button></form>\n\
          <p class=\"pick\" data-whitted=\"pick\"></p>\n</div>\n\
          <div class=\"pane figure-pane\">\n<div class=\"figure\" data-whitted=\"figure\" tabindex=\"0\">{figure}</div>\n\
+         <div class=\"figure overview\" data-whitted=\"overview\" tabindex=\"0\" hidden></div>\n\
          <div class=\"stepnav\"><button type=\"button\" data-whitted=\"back\">{back}</button>\
          <span data-whitted=\"position\"></span>\
          <button type=\"button\" data-whitted=\"next\">{next}</button></div>\n\
@@ -383,7 +397,8 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
          <label class=\"adaptive-only\">{ml_label} <input type=\"number\" data-whitted=\"max_level\" min=\"0\" max=\"{MAX_LEVEL}\" value=\"{max_level}\"></label>\
          <label>{accel_label} {accel}</label><label>{kind_label} {kinds}</label></fieldset>\n\
          <p class=\"command\">{command} <code data-whitted=\"command\"></code></p>\n\
-         <details class=\"steps-box\" open><summary>{steps}</summary><ol class=\"steps\" data-whitted=\"steps\" tabindex=\"0\"></ol>\
+         <details class=\"steps-box\" open><summary>{steps}</summary>\
+         <p class=\"nopixel\" data-whitted=\"nopixel\" hidden></p><ol class=\"steps\" data-whitted=\"steps\" tabindex=\"0\"></ol>\
          <p class=\"stats\" data-whitted=\"cost\"></p></details>\n\
          <details class=\"editor\"><summary>{scene}</summary>\
          <textarea data-whitted=\"scene\" aria-label=\"{scene}\" spellcheck=\"false\" rows=\"16\">{text}</textarea></details>\n\

@@ -102,9 +102,11 @@ pub fn narrate_samples(
     sample_narration::<f64>(target, sampling, pixel, stats_, lang, &EventLog::new()).text
 }
 
-/// [`narrate_samples`] with the events of its four steps, indices into `log`'s events: the
-/// samples (step 2) their primary rays, the squares (step 3) every read of a corner (`sample`
-/// events); the pixel (1) and the mean (4) explain none.
+/// [`narrate_samples`] with the events of its four steps, indices into `log`'s events: the pixel
+/// (step 1, "its corners … the pixel is their mean") the primary rays of its level-0 samples, the
+/// samples (step 2) every primary ray, the squares (step 3) and the mean of the leaves (step 4)
+/// every read of a corner (`sample` events), of which the squares' and the leaves' colours are
+/// made.
 #[must_use]
 pub fn sample_narration<V>(
     target: &TraceTarget,
@@ -117,12 +119,10 @@ pub fn sample_narration<V>(
     let of = |test: fn(&Event<V>) -> bool| -> Vec<usize> {
         log.events.iter().enumerate().filter(|(_, e)| test(&e.event)).map(|(k, _)| k).collect()
     };
-    let events = vec![
-        Vec::new(),
-        of(|e| matches!(e, Event::PrimaryRay { .. })),
-        of(|e| matches!(e, Event::Sample { .. })),
-        Vec::new(),
-    ];
+    let corners: Vec<usize> =
+        pixel.samples.iter().filter(|s| s.level == 0).filter_map(|s| log.spawned_by(s.root)).collect();
+    let reads = of(|e| matches!(e, Event::Sample { .. }));
+    let events = vec![corners, of(|e| matches!(e, Event::PrimaryRay { .. })), reads.clone(), reads];
     let t = |en: &'static str, ro: &'static str| if lang == Lang::En { en } else { ro };
     let mut out = String::new();
     let where_ = target

@@ -121,6 +121,24 @@ impl EdgeRow {
         let finer = (shared && lattice.max_level > 0).then(|| Line::new(lattice.row_len()));
         Self { corners, finer }
     }
+    /// A 2D scene's line (`j = 0`) with only the pixel ends `columns` traced, for a band of its
+    /// pixels: the first end by `quiet` when `quiet_first` (the band to its left counted it), the
+    /// others by `tracer`; the ends outside `columns` are black and never read by the band.
+    pub fn trace_ends<'s, V: Dim>(
+        (tracer, quiet): (&mut Tracer<'s, V, NoRecorder>, &mut Tracer<'s, V, NoRecorder>),
+        (lattice, axes): (Lattice, &Axes),
+        columns: std::ops::RangeInclusive<usize>,
+        quiet_first: bool,
+    ) -> Self {
+        let s = u64::from(lattice.scale);
+        let first = *columns.start();
+        let mut corners = vec![Rgb::default(); lattice.nx + 1];
+        for i in columns {
+            let by = if quiet_first && i == first { &mut *quiet } else { &mut *tracer };
+            corners[i] = trace_point(by, (lattice, axes), i as u64 * s, 0);
+        }
+        Self { corners, finer: None }
+    }
     /// The bytes of one edge row of `lattice` (corners and finer points).
     #[must_use]
     pub fn bytes(lattice: Lattice) -> usize {
@@ -274,8 +292,9 @@ pub struct Edges<'l> {
 }
 
 /// Renders pixel row `j` with the subdivision rule `(threshold, K)` between its traced edge rows:
-/// writes each pixel's colour to `pixels` and, if asked, the number of distinct samples it read
-/// to `used`.
+/// writes the colour of pixel `first + k` to `pixels[k]` and, if asked, the number of distinct
+/// samples it read to `used[k]` (a whole row starts at `first = 0`; a band of a 2D scene's line
+/// elsewhere).
 // Tracer, lattice, rule, row, edges, scratch and the two outputs are all distinct; a struct
 // would only rename them.
 #[allow(clippy::too_many_arguments)]
@@ -283,7 +302,7 @@ pub fn render_row<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     lattice: Lattice,
     (threshold, max_level): (f64, u32),
-    j: usize,
+    (first, j): (usize, usize),
     edges: Edges<'_>,
     scratch: &mut Scratch,
     pixels: &mut [Rgb],
@@ -293,7 +312,8 @@ pub fn render_row<V: Dim>(
     scratch.left.fill(None);
     scratch.left_any = false;
     let (b, t) = (&edges.bottom.corners, &edges.top.corners);
-    for (i, pixel) in pixels.iter_mut().enumerate() {
+    for (k, pixel) in pixels.iter_mut().enumerate() {
+        let i = first + k;
         // Most pixels are not split (every pixel with K = 0): their corners decide them where
         // the edge rows hold them, unread by the subdivision (which would read the same corners
         // in the same order and split nothing).
@@ -316,7 +336,7 @@ pub fn render_row<V: Dim>(
             count
         };
         if let Some(used) = used.as_deref_mut() {
-            used[i] = count;
+            used[k] = count;
         }
     }
 }

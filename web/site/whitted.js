@@ -192,6 +192,16 @@
   };
   /** The kind a figure falls back to when the view's kind cannot draw a pixel: every ray of it. */
   const FALLBACK_KIND = 'rays';
+  /** The kinds that draw one part of a pixel's trace (a row of primary rays, one hit's R and T,
+   *  one hit's local model, the pixel's window point, its colour in a crop, one object's slabs)
+   *  while the narration walks the whole tree: their view shows the pixel's ray tree under the
+   *  figure (OVERVIEW_KIND), where every step lights the ray, light or node it names (issue 30
+   *  item 3). */
+  const OVERVIEW_KINDS = ['projections', 'refraction', 'local-model', 'uv-map', 'jagged-edges', 'slab-test', 'kay-kajiya'];
+  const OVERVIEW_KIND = 'ray-tree';
+  /** The overview's canvas, a slide's shape (16:9): drawn at the pane's width, its labels are
+   *  then as large as the figure's (a flatter canvas would shrink them with its height). */
+  const OVERVIEW_SIZE = [1280, 720];
   /** How far (in pixels) and how many candidates the search for a nearby pixel goes. */
   const NEAR_RADII = [2, 4, 8, 16, 32, 64];
   /** Beyond the rings, the points tried on the way to the lesson's pixel (which has it). */
@@ -199,7 +209,7 @@
   const NEAR_DIRECTIONS = [[1, 0], [0, 1], [-1, 0], [0, -1], [1, 1], [-1, 1], [-1, -1], [1, -1]];
   /** The deepest `--depth` the command line takes. */
   const DEPTH_MAX = 64;
-  /** The bands of rows a centre-sampled 3D image is rendered in, to show its progress. */
+  /** The bands an image is rendered in, to show its progress: of rows in 3D, of pixels in 2D. */
   const RENDER_BANDS = 10;
 
   /** A pixel as the page writes it: `i, j` (`i` in 2D). */
@@ -501,10 +511,11 @@
       });
     }
 
-    /** Renders the image in the render worker, a newer render's image replacing an older one's:
-     *  a centre-sampled 3D image in RENDER_BANDS bands of rows, each drawn as it comes with the
-     *  share of rows done (issue 30 item 8); any other in one call (the module reports no partial
-     *  progress), the progress bar running meanwhile. */
+    /** Renders the image in the render worker, a newer render's image replacing an older one's,
+     *  in RENDER_BANDS bands in every sampling mode (issue 30 item 8): bands of rows of a 3D
+     *  image, bands of pixels of a 2D scene's line (drawn down its strip), each drawn as it comes
+     *  with the share done. The module gives each band the colours and counts of the whole
+     *  render's same pixels (`render::band`), so the summed counts are the image's. */
     async render() {
       const gen = ++this.renderGen;
       const { width, height, dimension } = this.info;
@@ -513,13 +524,13 @@
       progress.hidden = false;
       progress.removeAttribute('value');
       this.part('stats').textContent = say('rendering');
-      const banded = dimension === 3 && this.part('aa').value === 'center';
-      const rows = banded ? Math.max(1, Math.ceil(height / RENDER_BANDS)) : height;
+      const flat = dimension === 2;
+      const field = flat ? 'columns' : 'rows';
+      const total = flat ? width : height;
+      const size = Math.max(1, Math.ceil(total / RENDER_BANDS));
       const cost = { rays: {}, tests: {} };
-      for (let first = 0; first < height; first += rows) {
-        const request = { op: 'render', ...this.base() };
-        if (banded) request.rows = [first, rows];
-        const answer = await this.engines.render.call(request);
+      for (let first = 0; first < total; first += size) {
+        const answer = await this.engines.render.call({ op: 'render', ...this.base(), [field]: [first, size] });
         if (gen !== this.renderGen) return;
         if (answer.status !== 0) {
           progress.hidden = true;
@@ -527,21 +538,28 @@
           this.complain('render', answer);
           return;
         }
+        const context = this.canvas.getContext('2d');
         if (first === 0) {
           this.canvas.width = width;
           this.canvas.height = height;
-          this.root.classList.toggle('strip', dimension === 2);
+          this.root.classList.toggle('strip', flat);
         }
-        const band = banded ? answer.json.rows[1] : height;
+        const band = answer.json[field][1];
         const pixels = new Uint8ClampedArray(answer.bytes.buffer, answer.bytes.byteOffset, answer.bytes.length);
-        this.canvas.getContext('2d').putImageData(new ImageData(pixels, width, band), 0, first);
+        if (flat) {
+          // A 2D scene's line: its band of pixels down every row of the strip.
+          const line = new ImageData(pixels, band, 1);
+          for (let y = 0; y < height; y++) context.putImageData(line, first, y);
+        } else {
+          context.putImageData(new ImageData(pixels, width, band), 0, first);
+        }
         for (const part of ['rays', 'tests']) {
           for (const [key, n] of Object.entries(answer.json[part] || {})) cost[part][key] = (cost[part][key] || 0) + n;
         }
-        const done = Math.min(height, first + band);
-        progress.max = height;
+        const done = Math.min(total, first + band);
+        progress.max = total;
         progress.value = done;
-        if (done < height) this.part('stats').textContent = say('rendering_rows', { p: Math.floor((100 * done) / height) });
+        if (done < total) this.part('stats').textContent = say('rendering_share', { p: Math.floor((100 * done) / total) });
       }
       progress.hidden = true;
       this.accept('render');
@@ -616,6 +634,15 @@
         figure = await quick.call({ op: 'figure', ...base, target, kind: FALLBACK_KIND });
         if (gen !== this.traceGen) return;
       }
+      // The pixel's ray tree under a figure that draws a part of it (a centre-sampled pixel: a
+      // sampled one's steps are its samples, which its figure draws).
+      let overview = null;
+      if (!fallback && target && target.pixel && OVERVIEW_KINDS.includes(kind) && base.options.aa === 'center'
+        && narration && narration.status === 0 && figure.status === 0) {
+        overview = await quick.call({ op: 'figure', ...base, options: { ...base.options, size: OVERVIEW_SIZE },
+          target, kind: OVERVIEW_KIND });
+        if (gen !== this.traceGen) return;
+      }
       const failed = narration && narration.status !== 0 ? narration : figure.status !== 0 ? figure : null;
       if (failed) {
         // Refused (a pixel outside the image, an option beyond its limits): the message says why,
@@ -631,6 +658,7 @@
       this.part('pick').textContent = figure.json.pick || '';
       this.shown = figure.json.pixel || (target && target.pixel) || null;
       this.showFigure(figure.json.svg, fallback ? FALLBACK_KIND : kind);
+      this.showOverview(overview && overview.status === 0 ? overview.json.svg : null);
       this.follow(fallback, target);
       this.showSteps(narration ? narration.json : null);
       this.mark();
@@ -645,6 +673,18 @@
       svg.setAttribute('role', 'img');
       const pixel = this.shown ? pixelText(this.shown) : '–';
       svg.setAttribute('aria-label', say('figure_name', { kind, pixel }));
+      readable(svg);
+    }
+
+    /** The pixel's ray tree under the figure (`data-whitted="overview"`), or nothing. */
+    showOverview(svgText) {
+      const box = this.part('overview');
+      box.innerHTML = svgText ? isolateIds(svgText, 'v' + this.index + 'o-') : '';
+      const svg = box.querySelector('svg');
+      box.hidden = !svg;
+      if (!svg) return;
+      svg.setAttribute('role', 'img');
+      svg.setAttribute('aria-label', say('overview_name', { pixel: this.shown ? pixelText(this.shown) : '–' }));
       readable(svg);
     }
 
@@ -747,7 +787,13 @@
         item.append(text);
         list.append(item);
       }
-      if (!narration) this.part('current').textContent = say('no_steps');
+      // A figure that follows no pixel (the discriminant's own rays, the cost plot, a heat map)
+      // says why where the steps would be, until a pixel is clicked (issue 30 item 4).
+      const none = this.part('nopixel');
+      const why = WORDS['no_pixel_' + this.part('kind').value] ? say('no_pixel_' + this.part('kind').value) : say('no_steps');
+      none.textContent = narration ? '' : why;
+      none.hidden = Boolean(narration);
+      if (!narration) this.part('current').textContent = why;
       const wanted = this.steps.findIndex((s) => s.step === this.wantedStep);
       if (this.wantedStep !== null && this.wantedStep !== undefined && wanted < 0 && this.linkStep !== null
         && this.linkStep !== undefined && this.steps.length) {
@@ -796,9 +842,11 @@
       const events = new Set(current.events);
       const svg = this.part('figure').querySelector('svg');
       let lit = 0;
-      if (svg) {
-        svg.classList.add('stepping');
-        for (const item of svg.querySelectorAll('[data-events]')) {
+      // The figure's items and the overview's (the pixel's ray tree, where shown).
+      for (const drawn of [svg, this.part('overview').querySelector('svg')]) {
+        if (!drawn) continue;
+        drawn.classList.add('stepping');
+        for (const item of drawn.querySelectorAll('[data-events]')) {
           const on = [...eventSet(item.getAttribute('data-events'))].some((e) => events.has(e));
           item.classList.toggle('lit', on);
           if (on) lit++;

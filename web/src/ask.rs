@@ -77,8 +77,9 @@ impl<'a> Fields<'a> {
     }
 }
 
-/// The `rows` of a render by bands: `[first, count]`, whole numbers (file rows, the top one 0).
-pub fn rows(value: &Value) -> Result<(usize, usize), Failure> {
+/// The `rows` (or `columns`) of a render by bands: `[first, count]`, whole numbers (file rows,
+/// the top one 0; a 2D line's pixels, the left one 0).
+pub fn span(value: &Value, field: &str) -> Result<(usize, usize), Failure> {
     let pair = value.as_array().filter(|a| a.len() == 2).and_then(|a| {
         let first = usize::try_from(a[0].as_u64()?).ok()?;
         let count = usize::try_from(a[1].as_u64()?).ok()?;
@@ -86,7 +87,7 @@ pub fn rows(value: &Value) -> Result<(usize, usize), Failure> {
     });
     pair.filter(|(_, count)| *count > 0).ok_or_else(|| {
         Failure::input(format!(
-            "request.rows: expected [first, count], whole numbers, count ≥ 1, got `{value}`"
+            "request.{field}: expected [first, count], whole numbers, count ≥ 1, got `{value}`"
         ))
     })
 }

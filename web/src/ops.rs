@@ -73,7 +73,8 @@ fn image_size<V: Dim>(scene: &Scene<V>, strip_rows: Option<usize>) -> (usize, us
 }
 
 /// The fields a request may have.
-const FIELDS: [&str; 9] = ["op", "scene", "objs", "name", "options", "target", "lang", "kind", "rows"];
+const FIELDS: [&str; 10] =
+    ["op", "scene", "objs", "name", "options", "target", "lang", "kind", "rows", "columns"];
 
 /// The name a request's scene goes by when it gives none (in `check`'s text, captions and
 /// commands).
@@ -195,8 +196,10 @@ fn info<V: Dim>(scene: &mut Scene<V>, options: &Options) -> Value {
 fn render_op(f: &Fields<'_>) -> Result<Answer, Failure> {
     let options = ask::options(f.get("options"))?;
     let chosen = options.sampling.choose(Aa::Center)?;
-    if let Some(rows) = f.get("rows") {
-        return band_op(&options, scene(f)?, ask::rows(rows)?, chosen.sampling);
+    for field in BAND_FIELDS {
+        if let Some(span) = f.get(field) {
+            return band_op(&options, scene(f)?, (field, ask::span(span, field)?), chosen.sampling);
+        }
     }
     let watch = Stopwatch::start();
     let scene = scene(f)?;
@@ -230,39 +233,61 @@ fn render_op(f: &Fields<'_>) -> Result<Answer, Failure> {
     Ok(Answer { code: 0, json: doc.to_string(), bytes: outcome.rendered.image.to_rgba8() })
 }
 
-/// A render's band of file rows `[first, first + count)` (the top row 0), for a page that shows
-/// the render's progress: the same colours and counts as those rows of the whole render
-/// (`render::center_band`). Only a centre-sampled 3D image is rendered by bands: a 2D strip is one
-/// row, and corners and adaptive sampling share lattice rows between pixel rows.
+/// The fields that ask a render for a band: `rows` of a 3D image, `columns` of a 2D scene's
+/// line.
+const BAND_FIELDS: [&str; 2] = ["rows", "columns"];
+
+/// A render's band, for a page that shows the render's progress: file rows `[first, first +
+/// count)` of a 3D image (the top row 0), or pixels `[first, first + count)` of a 2D scene's line
+/// (`columns`), in any sampling mode; the same colours and counts as those pixels of the whole
+/// render (`render::band`).
 fn band_op(
     options: &ask::Options,
     scene: AnyScene,
-    (first, count): (usize, usize),
+    band: (&str, (usize, usize)),
     sampling: Sampling,
 ) -> Result<Answer, Failure> {
-    let AnyScene::Space(mut s) = scene else {
-        return Err(Failure::input("request.rows: a 2D scene renders one row; render it whole"));
-    };
-    if sampling != Sampling::Center {
+    match scene {
+        AnyScene::Flat(mut s) => band_of(&mut s, options, band, sampling),
+        AnyScene::Space(mut s) => band_of(&mut s, options, band, sampling),
+    }
+}
+
+fn band_of<V: Dim>(
+    s: &mut Scene<V>,
+    options: &ask::Options,
+    (field, (first, count)): (&str, (usize, usize)),
+    sampling: Sampling,
+) -> Result<Answer, Failure> {
+    let flat = V::DIM == 2;
+    let wanted = if flat { "columns" } else { "rows" };
+    if field != wanted {
         return Err(Failure::input(format!(
-            "request.rows: --aa {} shares samples between rows; render it whole",
-            sampling.name()
+            "request.{field}: a {}D scene renders in bands of {wanted}; ask for `{wanted}`",
+            V::DIM
         )));
     }
-    resize(&mut s, options.size);
-    let (w, h) = image_size(&s, None);
+    let strip = resize(s, options.size);
+    let (w, h) = image_size(s, strip);
     fits("render", w, h)?;
-    if first >= h {
-        return Err(Failure::input(format!("request.rows: the image has {h} rows, got first row {first}")));
+    let len = if flat { w } else { h };
+    if first >= len {
+        return Err(Failure::input(format!(
+            "request.{field}: the image has {len} {field}, got first {first}"
+        )));
     }
-    let accel = whitted::accel::Accel::build_with(&s, &options.accel.options(3)?);
+    let accel = whitted::accel::Accel::build_with(s, &options.accel.options(V::DIM)?);
     // File row f is image row j = Ny − 1 − f: the band's rows from the bottom.
-    let top = h - first;
-    let bottom = top.saturating_sub(count);
+    let range = if flat {
+        first..first.saturating_add(count)
+    } else {
+        let top = h - first;
+        top.saturating_sub(count)..top
+    };
     let depth = options.depth.unwrap_or(s.max_depth);
-    let (band, stats) = whitted::render::center_band(&s, &accel, depth, bottom..top);
+    let (band, stats) = whitted::render::band(s, &accel, (sampling, depth), range);
     let mut doc = whitted::doc::stats(&stats);
-    doc["rows"] = json!([first, band.height]);
+    doc[field] = json!([first, if flat { band.width } else { band.height }]);
     doc["width"] = json!(w);
     doc["height"] = json!(h);
     doc["accel"] = json!(accel.kind().name());

@@ -6,7 +6,9 @@
 //! events the item draws, space-separated, possibly empty); the title, caption and legend are
 //! groups with a `class` and no `data-tag`. Text stays text: `<text>` in the embedded font's family (the reader's copy of
 //! Noto Sans, or a sans-serif fallback), with sub- and superscripts as
-//! `<tspan baseline-shift="sub" font-size="…">` and the halo as a white stroke painted first.
+//! `<tspan baseline-shift="sub" font-size="…">` and the halo as a white stroke painted first; each
+//! `<text>` has the `textLength` it was laid out with, so a substitute font keeps every line's
+//! width (nothing runs past the picture or onto a neighbour).
 
 use std::fmt::Write as _;
 
@@ -279,6 +281,12 @@ fn text_line(
     );
     if weight == Weight::Bold {
         out.push_str(" font-weight=\"bold\"");
+    }
+    // The line keeps the width it was laid out with in the embedded font, whatever font the
+    // reader substitutes (a wider one would run a centred caption past the picture's edge).
+    let width = text::layout(markup, size, weight).width;
+    if width > 0.0 {
+        let _ = write!(out, " textLength=\"{}\" lengthAdjust=\"spacingAndGlyphs\"", svg_coordinate(width));
     }
     // Spaces are laid out as the PNG lays them out (an indented line, two spaces), not collapsed.
     if markup.contains("  ") || markup.starts_with(' ') || markup.ends_with(' ') {

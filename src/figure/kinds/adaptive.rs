@@ -99,12 +99,17 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             (lo, lo + DVec2::splat(side))
         }
     };
-    if flat {
-        d.rect("pixel", DVec2::ZERO, DVec2::new(1.0, BAR), style::object(), None);
-    }
-    // The events each item draws: a sample its primary ray and every read of it (`sample`
-    // events), a square (and its leaf colour) its corners'.
+    // The events each item draws: the pixel the primary rays of its corners (the narration's
+    // step 1), a sample its primary ray and every read of it (`sample` events), a square (and its
+    // leaf colour) its corners'.
     let log = &traced.log;
+    let pixel_events: Vec<usize> =
+        pixel.samples.iter().filter(|s| s.level == 0).filter_map(|s| log.spawned_by(s.root)).collect();
+    if flat {
+        d.with_events(pixel_events.iter().copied(), |d| {
+            d.rect("pixel", DVec2::ZERO, DVec2::new(1.0, BAR), style::object(), None);
+        });
+    }
     let sample_events: Vec<Vec<usize>> = (pixel.samples.iter().enumerate())
         .map(|(k, sample)| {
             let reads = (log.events.iter().enumerate())
@@ -129,7 +134,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         });
     }
     if !flat {
-        d.rect("pixel", DVec2::ZERO, DVec2::ONE, style::object(), None);
+        d.with_events(pixel_events.iter().copied(), |d| {
+            d.rect("pixel", DVec2::ZERO, DVec2::ONE, style::object(), None);
+        });
     }
     for s in pixel.squares.iter().filter(|s| !s.split) {
         let (lo, hi) = rect_of(s);
