@@ -229,3 +229,44 @@ fn a_lessons_exercise_sheets_are_written_beside_its_pages_and_linked() {
         assert!(dir.join("ray-tree-answers-1.html").exists());
     }
 }
+
+/// The page's `grade` op (web/, called natively) answers `whitted grade --json` and prints its
+/// report, both languages, for a correct document and a mistaken one; the stored documents the
+/// page's tests paste are the student tracer's output.
+#[test]
+fn the_page_grades_with_the_same_library_code_as_the_command_line() {
+    let scratch = Scratch::new();
+    let scene = std::fs::read_to_string(scene_path(WHITTED)).unwrap();
+    for mistake in [None, Some("inverted-eta")] {
+        let doc = student(&scratch, WHITTED, "93,66", mistake);
+        let text = std::fs::read_to_string(&doc).unwrap();
+        for lang in ["en", "ro"] {
+            let request = serde_json::json!({"op": "grade", "scene": scene, "student": text, "lang": lang});
+            let answer = whitted_web::call(request.to_string().as_bytes());
+            assert_eq!(answer.code, 0, "{}", answer.json);
+            let mut page: Value = serde_json::from_str(&answer.json).unwrap();
+            let page = page.as_object_mut().unwrap();
+            let report = page.remove("text").unwrap();
+            page.remove("words");
+            page.remove("page_step");
+            let (code, cli, _) = whitted(&["grade", &scene_path(WHITTED), &doc, "--lang", lang]);
+            assert_eq!(code, i32::from(mistake.is_some()));
+            assert_eq!(report.as_str(), Some(cli.as_str()), "{lang}");
+            let (_, cli_json, _) = whitted(&["grade", &scene_path(WHITTED), &doc, "--lang", lang, "--json"]);
+            let cli_json: Value = serde_json::from_str(&cli_json).unwrap();
+            assert_eq!(Value::Object(page.clone()), cli_json, "{lang}");
+        }
+    }
+    for (stored, mistake) in [
+        ("tests/data/grade/whitted-422-292.json", None),
+        ("tests/data/grade/whitted-422-292-reflect-sign.json", Some("reflect-sign")),
+    ] {
+        let made = student(&scratch, "scenes/whitted.json", "422,292", mistake);
+        let stored = std::fs::read_to_string(scene_path(stored)).unwrap();
+        assert_eq!(
+            std::fs::read_to_string(made).unwrap(),
+            stored,
+            "regenerate it with examples/student/tracer.py"
+        );
+    }
+}
