@@ -88,9 +88,11 @@ fn wasm_module(wasm: Option<&Path>) -> Result<std::borrow::Cow<'static, [u8]>, S
     })
 }
 
-/// The page script and style, written beside the pages (`out/whitted.js`, `out/whitted.css`).
-const SITE_FILES: [(&str, &str); 2] = [
+/// The page scripts and style, written beside the pages (`out/whitted.js`, `out/grade.js`,
+/// `out/whitted.css`).
+const SITE_FILES: [(&str, &str); 3] = [
     ("whitted.js", include_str!("../../web/site/whitted.js")),
+    ("grade.js", include_str!("../../web/site/grade.js")),
     ("whitted.css", include_str!("../../web/site/whitted.css")),
 ];
 
