@@ -19,8 +19,8 @@ const TRACER = join(ROOT, 'examples', 'student', 'tracer.py');
 const PAGE_MS = 120000;
 const PHONE = 390;
 const VIEW = '[data-whitted="view"]';
-/** The window heights of the verdict's screenshots at 1280 and 390 px. */
-const SHOT_HEIGHT = [1900, 2300];
+/** The window heights of the screenshots: the verdict at 1280 and 390 px, the exercise at 1280. */
+const SHOT_HEIGHT = [1900, 2300, 960];
 
 let browser;
 before(async () => { browser = await launch(); });
@@ -173,6 +173,7 @@ test('a student document is graded in the page: agreement, the first divergence 
   assert.deepEqual(off.rows, [false, true, true]);
   assert.match(off.text, /2 of 3 right/);
   assert.match(off.text, /off by 1\.6/);
+  await page.setViewportSize({ width: 1280, height: SHOT_HEIGHT[2] });
   await shot(page, 'grade-exercise-1280', `${VIEW} .figure-pane`);
   await page.locator(`${VIEW} [data-whitted="reveal"]`).first().click();
   assert.ok((await question(page)).currentShown, 'the worked step is shown on request');

@@ -205,7 +205,7 @@
         const a = this.asked;
         const example = a.count === 1 ? '0.5' : '(' + ['0.1', '−0.2', '0.3'].slice(0, a.count).join(', ') + ')';
         question.textContent = say('ask_' + a.quantity, { k, name: a.name }) + ' '
-          + say('ex_count', { count: a.count, example });
+          + say(a.count === 1 ? 'ex_count_one' : 'ex_count', { count: a.count, example });
         this.root.dataset.asked = a.quantity;
       } finally {
         this.root.dataset.checking = String(Number(this.root.dataset.checking) - 1);
