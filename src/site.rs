@@ -128,6 +128,66 @@ const WORDS: &[(&str, &str, &str)] = &[
      "Aici nu se urmărește niciun pixel: figura numără razele primare ale fiecărui pixel al imaginii, nu calculul unuia singur. Dați clic pe imagine ca să urmăriți unul dintre ei."),
     ("ray", "a ray given by hand", "o rază dată explicit"),
     ("empty", "This scene has no errors.", "Scena nu are erori."),
+    // Checking a student's own numbers (web/site/grade.js, docs/grading.md "In the page").
+    ("grade_box", "Check your own numbers", "Verificați-vă propriile calcule"),
+    ("grade_intro",
+     "Paste the trace document your own ray tracer writes for one pixel of this scene (the format of docs/grading.md; examples/student/tracer.py writes one), or open its file, then Check: the page compares it with this computation step by step and shows the first quantity that differs.",
+     "Lipiți documentul de urmărire pe care îl scrie propriul vostru ray tracer pentru un pixel al acestei scene (formatul din docs/grading.md; examples/student/tracer.py scrie unul) sau deschideți fișierul lui, apoi apăsați Verifică: pagina îl compară pas cu pas cu acest calcul și arată prima mărime care diferă."),
+    ("student", "Your document (JSON)", "Documentul vostru (JSON)"),
+    ("student_file", "Open a document file", "Deschideți un fișier document"),
+    ("check", "Check", "Verifică"),
+    ("grade_empty", "Paste or open a document first.", "Lipiți sau deschideți mai întâi un document."),
+    ("grade_errors", "The document has errors (each with its JSON path):",
+     "Documentul are erori (fiecare cu calea ei JSON):"),
+    ("grade_pixel", "The document is for pixel ({pixel}): the view now follows it.",
+     "Documentul este pentru pixelul ({pixel}): vizualizarea îl urmărește acum."),
+    ("grade_first", "First divergence: {chain}, {quantity}", "Prima divergență: {chain}, {quantity}"),
+    ("grade_step", "Step {k} of the computation (now the current step)",
+     "Pasul {k} al calculului (acum pasul curent)"),
+    ("grade_goto", "Go to step {k}", "Mergi la pasul {k}"),
+    ("expected", "expected (whitted)", "așteptat (whitted)"),
+    ("found", "found (yours)", "găsit (al vostru)"),
+    ("formula", "formula", "formula"),
+    ("inputs", "with", "cu"),
+    ("diagnosis", "diagnosis", "diagnostic"),
+    ("rule", "the rule", "regula"),
+    ("not_checked", "Not checked (absent from the document): {list}",
+     "Neverificate (lipsesc din document): {list}"),
+    ("grade_after", "What follows was not compared: the rays below start from a different point or direction.",
+     "Ce urmează nu a mai fost comparat: razele de dedesubt pleacă din alt punct sau pe altă direcție."),
+    ("exercise_mode", "Exercise mode: hide the step's numbers and compute them yourself",
+     "Mod exercițiu: numerele pasului sunt ascunse, iar voi le calculați"),
+    ("ex_hidden", "Exercise mode: the numbers of this step and of the ones after it are hidden.",
+     "Mod exercițiu: numerele acestui pas și ale celor următori sunt ascunse."),
+    ("ex_nothing", "Step {k} computes nothing to type: go on with Next →.",
+     "Pasul {k} nu cere niciun calcul de scris: continuați cu Înainte →."),
+    ("ask_window_point", "Step {k}: compute {name}, the pixel's centre on the view window.",
+     "Pasul {k}: calculați {name}, centrul pixelului pe fereastra vizuală."),
+    ("ask_direction", "Step {k}: compute the unit direction {name}.", "Pasul {k}: calculați direcția unitară {name}."),
+    ("ask_t", "Step {k}: compute the t this test accepts (the least root t > 0).",
+     "Pasul {k}: calculați t-ul acceptat de acest test (cea mai mică rădăcină t > 0)."),
+    ("ask_point", "Step {k}: compute the hit point {name} = O + t·D.",
+     "Pasul {k}: calculați punctul de intersecție {name} = O + t·D."),
+    ("ask_shadow", "Step {k}: compute the shadow factor {name} = Π kt.",
+     "Pasul {k}: calculați factorul de umbră {name} = Π kt."),
+    ("ask_local", "Step {k}: compute I_local with the lecture's local model.",
+     "Pasul {k}: calculați I_local cu modelul local din curs."),
+    ("ask_colour", "Step {k}: compute the colour {name} = I_local + ks·R + kt·T.",
+     "Pasul {k}: calculați culoarea {name} = I_local + ks·R + kt·T."),
+    ("ex_count_one", "Type one number, e.g. {example}.", "Scrieți un număr, de exemplu {example}."),
+    ("ex_count", "Type {count} numbers, e.g. {example}.", "Scrieți {count} numere, de exemplu {example}."),
+    ("answer", "Your answer", "Răspunsul vostru"),
+    ("ex_check", "Check the answer", "Verifică răspunsul"),
+    ("reveal", "Show the worked step", "Arată pasul rezolvat"),
+    ("ex_right", "Right: every component agrees (tolerance {tol}, relative; absolute below 1).",
+     "Corect: toate componentele coincid (toleranța {tol}, relativă; absolută sub 1)."),
+    ("ex_wrong", "{right} of {n} right (tolerance {tol}, relative; absolute below 1).",
+     "{right} din {n} corecte (toleranța {tol}, relativă; absolută sub 1)."),
+    ("component", "component", "componenta"),
+    ("yours", "yours", "al vostru"),
+    ("verdict", "verdict", "verdict"),
+    ("comp_right", "✓ right", "✓ corect"),
+    ("comp_off", "✗ off by {off}", "✗ diferă cu {off}"),
 ];
 
 /// The word `key` in `lang` (the key itself if there is none: a page never loses a label).
@@ -285,7 +345,7 @@ fn page(title: &str, body: &str, lang: Lang, nav: &Nav, module: bool) -> String 
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{title}</title>\n\
          <link rel=\"stylesheet\" href=\"../whitted.css\">\n\
          <script type=\"application/json\" id=\"whitted-words\">{words}</script>\n\
-         {module_script}<script src=\"../whitted.js\" defer></script>\n</head>\n<body class=\"{class}\">\n\
+         {module_script}<script src=\"../whitted.js\" defer></script>\n<script src=\"../grade.js\" defer></script>\n</head>\n<body class=\"{class}\">\n\
          <nav class=\"bar\">{links}</nav>\n<main>\n\
          <p class=\"module\" data-whitted=\"module\" role=\"status\">{status}</p>\n{body}</main>\n</body>\n</html>\n",
         code = code(lang),
@@ -389,7 +449,7 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
          <span data-whitted=\"position\"></span>\
          <button type=\"button\" data-whitted=\"next\">{next}</button></div>\n\
          <pre class=\"current\" data-whitted=\"current\" aria-live=\"polite\"></pre>\n\
-         <p class=\"undrawn\" data-whitted=\"undrawn\" hidden></p>\n</div>\n</div>\n\
+         <p class=\"undrawn\" data-whitted=\"undrawn\" hidden></p>\n{exercise}</div>\n</div>\n\
          <fieldset class=\"controls\"><legend>{controls}</legend>\
          <label>{depth} <input type=\"number\" data-whitted=\"depth\" min=\"0\" max=\"64\" step=\"1\"></label>\
          <label>{aa_label} {aa}</label>\
@@ -400,6 +460,7 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
          <details class=\"steps-box\" open><summary>{steps}</summary>\
          <p class=\"nopixel\" data-whitted=\"nopixel\" hidden></p><ol class=\"steps\" data-whitted=\"steps\" tabindex=\"0\"></ol>\
          <p class=\"stats\" data-whitted=\"cost\"></p></details>\n\
+         {student}\
          <details class=\"editor\"><summary>{scene}</summary>\
          <textarea data-whitted=\"scene\" aria-label=\"{scene}\" spellcheck=\"false\" rows=\"16\">{text}</textarea></details>\n\
          <ul class=\"errors\" data-whitted=\"errors\"></ul>\n</section>\n",
@@ -421,6 +482,44 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
         steps = w("steps"),
         scene = w("scene"),
         text = html_escape(view.text),
+        exercise = exercise_html(lang),
+        student = student_html(lang),
+    )
+}
+
+/// The exercise mode of a view (docs/course.md): its toggle, the question of the current step,
+/// the answer field and the worked step on request; `web/site/grade.js` drives it.
+fn exercise_html(lang: Lang) -> String {
+    let w = |key| html_escape(word(key, lang));
+    format!(
+        "<div class=\"exercise\" data-whitted=\"exercise\">\
+         <label class=\"toggle\"><input type=\"checkbox\" data-whitted=\"exercise-mode\"> {mode}</label>\
+         <div class=\"exercise-body\" hidden><p class=\"question\" data-whitted=\"question\"></p>\
+         <form class=\"answer-form\" data-whitted=\"answer-form\"><label>{answer} <input data-whitted=\"answer\" size=\"28\" autocomplete=\"off\" spellcheck=\"false\"></label> \
+         <button type=\"submit\">{check}</button> <button type=\"button\" data-whitted=\"reveal\">{reveal}</button></form>\
+         <div class=\"feedback\" data-whitted=\"feedback\" aria-live=\"polite\"></div></div></div>\n",
+        mode = w("exercise_mode"),
+        answer = w("answer"),
+        check = w("ex_check"),
+        reveal = w("reveal"),
+    )
+}
+
+/// A view's place for a student's own trace document and its verdict (docs/course.md);
+/// `web/site/grade.js` sends it to the module's `grade` and shows the answer.
+fn student_html(lang: Lang) -> String {
+    let w = |key| html_escape(word(key, lang));
+    format!(
+        "<details class=\"grade\"><summary>{title}</summary><p class=\"hint\">{intro}</p>\
+         <label class=\"block\">{student}<textarea data-whitted=\"student\" spellcheck=\"false\" rows=\"8\"></textarea></label>\
+         <p class=\"grade-actions\"><label>{file} <input type=\"file\" accept=\".json,application/json\" data-whitted=\"student-file\"></label> \
+         <button type=\"button\" data-whitted=\"check\">{check}</button></p>\
+         <div class=\"verdict\" data-whitted=\"verdict\" aria-live=\"polite\"></div></details>\n",
+        title = w("grade_box"),
+        intro = w("grade_intro"),
+        student = w("student"),
+        file = w("student_file"),
+        check = w("check"),
     )
 }
 

@@ -1,6 +1,7 @@
 //! `whitted exercises`: an exercise sheet and its worked answers for one pixel
 //! (`request::exercises`), written as `exercises.html` and `answers.html` in `--out`.
 
+use super::accel::AccelArgs;
 use super::figure::scene_name;
 use super::trace::LangArg;
 use super::{load_scene, output, print_out, write_file, Failure};
@@ -26,12 +27,22 @@ pub struct ExercisesArgs {
     /// The folder for exercises.html and answers.html.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    /// The structure the trace walks (`--accel grid` adds the next-voxel question).
+    #[command(flatten)]
+    accel: AccelArgs,
 }
 
 /// Runs `whitted exercises`.
 pub fn run(args: &ExercisesArgs) -> Result<(), Failure> {
     let scene = load_scene(&args.scene)?;
-    let made = sheets(&scene, &scene_name(&args.scene), args.pixel, args.lang.lang(), args.seed)?;
+    let made = sheets(
+        &scene,
+        &scene_name(&args.scene),
+        args.pixel,
+        args.lang.lang(),
+        args.seed,
+        &args.accel.choice(),
+    )?;
     output::create_folder(&args.out)?;
     write_file(&args.out.join("exercises.html"), made.exercises.as_bytes())?;
     write_file(&args.out.join("answers.html"), made.answers.as_bytes())?;

@@ -21,7 +21,7 @@ use whitted::lesson::claim::Verdict;
 use whitted::lesson::{self, FigureSpec, Lesson};
 use whitted::request::exercises::sheets;
 use whitted::request::figure::{figure_checked, Request};
-use whitted::request::options::canvas;
+use whitted::request::options::{canvas, AccelChoice};
 use whitted::request::parse;
 use whitted::sample::Sampling;
 use whitted::scene::load::MAX_SCENE_BYTES;
@@ -88,9 +88,11 @@ fn wasm_module(wasm: Option<&Path>) -> Result<std::borrow::Cow<'static, [u8]>, S
     })
 }
 
-/// The page script and style, written beside the pages (`out/whitted.js`, `out/whitted.css`).
-const SITE_FILES: [(&str, &str); 2] = [
+/// The page scripts and style, written beside the pages (`out/whitted.js`, `out/grade.js`,
+/// `out/whitted.css`).
+const SITE_FILES: [(&str, &str); 3] = [
     ("whitted.js", include_str!("../../web/site/whitted.js")),
+    ("grade.js", include_str!("../../web/site/grade.js")),
     ("whitted.css", include_str!("../../web/site/whitted.css")),
 ];
 
@@ -432,8 +434,11 @@ fn write_site(
                 let scene = from.load_scene(&path)?;
                 let signed = |n: usize| i64::try_from(n).unwrap_or(i64::MAX);
                 let pixel = (signed(spec.pixel.0), spec.pixel.1.map(signed));
-                let made = sheets(&scene, &scene_name(&path), pixel, *lang, spec.seed)
-                    .map_err(|f| Failure::input(format!("{} exercises[{k}]: {}", lesson.name, f.message)))?;
+                let made =
+                    sheets(&scene, &scene_name(&path), pixel, *lang, spec.seed, &AccelChoice::default())
+                        .map_err(|f| {
+                            Failure::input(format!("{} exercises[{k}]: {}", lesson.name, f.message))
+                        })?;
                 let (ex, ans) = lesson.exercise_files(k);
                 write_file(&dir.join(ex), made.exercises.as_bytes())?;
                 write_file(&dir.join(ans), made.answers.as_bytes())?;

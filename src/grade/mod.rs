@@ -4,7 +4,9 @@
 //! order with a relative tolerance ([`walk`]), and the first divergence is reported with its
 //! formula, its inputs from the student's own earlier values and, where a classic mistake
 //! explains it, that mistake and the lecture's rule ([`diagnose`]); [`report`] words it in
-//! English or Romanian, or as JSON.
+//! English or Romanian, or as JSON. [`exercise`] asks a student for the quantity one narration
+//! step computes and checks the typed answer with the same agreement rule (the page's exercise
+//! mode).
 //!
 //! Each student ray is traced by whitted from the student's own origin and direction, so the
 //! expected values of a ray depend only on what the student got right before it: another spawn
@@ -14,6 +16,7 @@
 //! and the page (`web/`) call [`grade`].
 
 pub mod diagnose;
+pub mod exercise;
 pub mod report;
 pub mod student;
 pub mod walk;

@@ -51,7 +51,8 @@ pub fn shown_json(s: &Shown) -> Value {
 }
 
 /// What a quantity is called in a sentence.
-fn quantity_text(q: Quantity, light: Option<usize>, lang: Lang) -> String {
+#[must_use]
+pub fn quantity_text(q: Quantity, light: Option<usize>, lang: Lang) -> String {
     let j = light.map_or(0, |j| j + 1);
     match (q, lang) {
         (Quantity::WindowPoint, Lang::En) => "the window point (u, v)".into(),
@@ -189,6 +190,27 @@ fn divergence(out: &mut String, d: &Divergence, lang: Lang) {
             "Ce urmează nu a mai fost comparat: razele de dedesubt pleacă din alt punct sau pe altă direcție."
         )
     );
+}
+
+/// The first divergence in the reader's words, for the page's verdict table: the ray chain
+/// (`P → R₁`), the quantity, the expected and found values, the formula and its inputs, and the
+/// diagnosis with the lecture's rule; null when everything agrees.
+#[must_use]
+pub fn words(g: &Grade, lang: Lang) -> Value {
+    g.first.as_ref().map_or(Value::Null, |d| {
+        let inputs: Vec<String> =
+            d.inputs.iter().map(|(name, v)| format!("{name} = {}", shown_text(v, lang))).collect();
+        json!({
+            "chain": d.chain.join(" → "),
+            "quantity": quantity_text(d.quantity, d.light, lang),
+            "expected": shown_text(&d.expected, lang),
+            "found": shown_text(&d.found, lang),
+            "formula": formula(d, lang),
+            "inputs": inputs.join(", "),
+            "diagnosis": d.diagnosis.map_or(Value::Null, |m| json!(m.what(lang))),
+            "rule": d.diagnosis.map_or(Value::Null, |m| json!(m.rule(lang))),
+        })
+    })
 }
 
 /// The grade as the JSON of docs/grading.md (the formula in `lang`).

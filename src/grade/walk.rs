@@ -752,16 +752,30 @@ impl<V: Dim> Walker<'_, V> {
 /// The step of `whitted trace SCENE --pixel I,J` that computes the diverging quantity: found in
 /// whitted's own trace of the pixel by the ray's path and the event that quantity comes from.
 fn step_of<V: Dim>(scene: &Scene<V>, pixel: &[usize], d: &Divergence) -> Option<usize> {
+    step_in(scene, pixel, d, &Accel::build(scene, AccelKind::Bvh), scene.max_depth)
+}
+
+/// The step that computes the diverging quantity in the narration traced with `accel` and depth
+/// limit `depth` (the page's narration, whose structure may add or remove steps: a BVH's node
+/// visits, every object's test without one); None when that trace has no such ray.
+#[must_use]
+pub fn step_in<V: Dim>(
+    scene: &Scene<V>,
+    pixel: &[usize],
+    d: &Divergence,
+    accel: &Accel<V>,
+    depth: u32,
+) -> Option<usize> {
     let cam = &scene.camera;
     let (i, j) = (pixel[0], pixel.get(1).copied().unwrap_or(0));
     let (u, v) = cam.pixel_center(i, j);
     let uv = if V::DIM == 2 { vec![u] } else { vec![u, v] };
-    let accel = Accel::build(scene, AccelKind::Bvh);
-    let mut tracer = Tracer::new(scene, &accel, EventLog::new());
+    let mut tracer = Tracer::new(scene, accel, EventLog::new());
+    tracer.max_depth = depth;
     tracer.trace_primary(&cam.primary_ray(u, v), &uv);
     let log = tracer.recorder;
     let target = TraceTarget { pixel: Some(pixel.to_vec()), uv: Some(uv) };
-    let told = narration(scene, &log, &tracer.stats, &target, scene.max_depth, Lang::En);
+    let told = narration(scene, &log, &tracer.stats, &target, depth, Lang::En);
     let first_with = |event: usize| told.events.iter().position(|s| s.contains(&event)).map(|k| k + 1);
     let last_with = |event: usize| told.events.iter().rposition(|s| s.contains(&event)).map(|k| k + 1);
     // The node of the path; a missing or extra ray stands at its parent.

@@ -1,16 +1,17 @@
 //! `whitted exercises`: an exercise sheet and its answers from one pixel's trace (issue 31 item
 //! 6). The questions follow the narration's steps in the lecture's order — (u, v), the primary
 //! ray, the nearest t, N and whether the ray enters, R, T or total internal reflection, the
-//! shadow factor, I_local, the pixel's colour — each stating the numbers it needs, read from the
-//! recorded trace; the answer to each is the narration's own step, worked as `whitted trace` works
+//! shadow factor, I_local, the pixel's colour, and with `--accel grid` the next voxel of the
+//! DDA — each stating the numbers it needs, read from the recorded trace; the answer to each is the narration's own step, worked as `whitted trace` works
 //! it. Both pages are printable HTML with the pixel's figures inline as SVG. `--seed` picks which
 //! ray a question asks about where several would do, and which questions stay when there are more
 //! than [`MAX_QUESTIONS`].
 
 use super::figure::{figure, Request};
+use super::options::AccelChoice;
 use super::target::Target;
 use super::Failure;
-use crate::accel::{Accel, AccelKind};
+use crate::accel::{Accel, AccelOptions};
 use crate::canvas::svg::to_svg;
 use crate::doc::narrate::{narration, Step};
 use crate::doc::TraceTarget;
@@ -42,10 +43,12 @@ pub struct Sheets {
     pub count: usize,
 }
 
-/// One question: its statement and the step of the narration that answers it.
+/// One question: its statement and the steps of the narration that answer it.
 struct Question {
     statement: String,
-    answer: Step,
+    answer: Vec<Step>,
+    /// Kept when a sheet has too many questions (what only this structure asks).
+    keep: bool,
 }
 
 /// A small deterministic generator for `--seed` (xorshift64*).
@@ -91,11 +94,12 @@ pub fn sheets(
     pixel: (i64, Option<i64>),
     lang: Lang,
     seed: u64,
+    accel: &AccelChoice,
 ) -> Result<Sheets, Failure> {
     let target = Target { pixel: Some(pixel), ray: None };
     let questions = match scene {
-        AnyScene::Flat(s) => questions(s, &target, lang, seed)?,
-        AnyScene::Space(s) => questions(s, &target, lang, seed)?,
+        AnyScene::Flat(s) => questions(s, &target, lang, seed, &accel.options(2)?)?,
+        AnyScene::Space(s) => questions(s, &target, lang, seed, &accel.options(3)?)?,
     };
     let mut figures = Vec::new();
     for kind in [FigureKind::Rays, FigureKind::RayTree] {
@@ -127,14 +131,17 @@ pub fn sheets(
     ans.push_str(&format!("<figure>{}</figure>\n<ol>\n", figures[1]));
     for q in &questions {
         ex.push_str(&format!("<li><p>{}</p><div class=\"space\"></div></li>\n", html_escape(&q.statement)));
-        ans.push_str(&format!(
-            "<li><p>{}</p><p class=\"place\">{} {} — {}</p><pre>{}</pre></li>\n",
-            html_escape(&q.statement),
-            t(lang, "Step", "Pasul"),
-            q.answer.number,
-            html_escape(&q.answer.place),
-            html_escape(q.answer.text.trim_end())
-        ));
+        ans.push_str(&format!("<li><p>{}</p>", html_escape(&q.statement)));
+        for step in &q.answer {
+            ans.push_str(&format!(
+                "<p class=\"place\">{} {} — {}</p><pre>{}</pre>",
+                t(lang, "Step", "Pasul"),
+                step.number,
+                html_escape(&step.place),
+                html_escape(step.text.trim_end())
+            ));
+        }
+        ans.push_str("</li>\n");
     }
     for p in [&mut ex, &mut ans] {
         p.push_str("</ol>\n</body>\n</html>\n");
@@ -164,9 +171,10 @@ fn questions<V: Dim>(
     target: &Target,
     lang: Lang,
     seed: u64,
+    structure: &AccelOptions,
 ) -> Result<Vec<Question>, Failure> {
     let (ray, traced) = target.primary(scene)?;
-    let accel = Accel::build(scene, AccelKind::Bvh);
+    let accel = Accel::build_with(scene, structure);
     let mut tracer = Tracer::new(scene, &accel, EventLog::new());
     let uv = traced.uv.clone().unwrap_or_default();
     tracer.trace_primary(&ray, &uv);
@@ -193,7 +201,7 @@ fn questions<V: Dim>(
     let mut out: Vec<Question> = Vec::new();
     let mut ask = |statement: String, step: Option<&Step>| {
         if let Some(step) = step {
-            out.push(Question { statement, answer: step.clone() });
+            out.push(Question { statement, answer: vec![step.clone()], keep: false });
         }
     };
     // (u, v) and the primary ray: the pixel's two steps.
@@ -386,10 +394,67 @@ fn questions<V: Dim>(
         .to_owned(),
         steps.last(),
     );
-    // Keep at most MAX_QUESTIONS, dropping by the seed, the first two and the last kept.
+    // With a grid, the next voxel of one cell the DDA leaves (the seed picks which), after the
+    // primary ray's questions.
+    if let Some(q) = next_voxel(&log, &names, &steps, &mut rng, lang) {
+        out.insert(2.min(out.len()), q);
+    }
+    // Keep at most MAX_QUESTIONS, dropping by the seed, the first two, the last and the kept ones
+    // kept.
     while out.len() > MAX_QUESTIONS {
-        let k = 2 + usize::try_from(rng.next() % (out.len() as u64 - 3)).unwrap_or(0);
+        let droppable: Vec<usize> = (2..out.len() - 1).filter(|&k| !out[k].keep).collect();
+        let Some(k) = rng.pick(&droppable) else { break };
         out.remove(k);
     }
     Ok(out)
+}
+
+/// "Which voxel does the ray enter next?" for one cell of the grid's walk that another follows
+/// on the same ray: the cell, D, and tMax and tDelta per axis (the next boundary of each axis);
+/// answered by the cell's step (its exit t = min tMax) and the next cell's. The DDA steps along
+/// the axis of the least tMax, by the sign of D on that axis (Amanatides–Woo).
+fn next_voxel<V: Dim>(
+    log: &EventLog<V>,
+    names: &Names,
+    steps: &[Step],
+    rng: &mut Seeded,
+    lang: Lang,
+) -> Option<Question> {
+    let cells: Vec<usize> =
+        (0..log.events.len()).filter(|&k| matches!(log.events[k].event, Event::VoxelStep { .. })).collect();
+    // A cell with a next one in the same walk (nothing but the cell's tests between them: a hit
+    // ends the walk, and a shadow ray's walk is another), each told by a step of its own.
+    let told = |e: usize| steps.iter().find(|s| s.events.contains(&e)).cloned();
+    let same_walk = |a: usize, b: usize| {
+        log.events[a].ray == log.events[b].ray
+            && log.events[a + 1..b].iter().all(|l| matches!(l.event, Event::ObjectTest { .. }))
+    };
+    let pairs: Vec<(usize, usize)> = cells
+        .windows(2)
+        .filter(|w| same_walk(w[0], w[1]))
+        .filter(|w| told(w[0]).zip(told(w[1])).is_some_and(|(a, b)| a.number != b.number))
+        .map(|w| (w[0], w[1]))
+        .collect();
+    let (here, next) = rng.pick(&pairs)?;
+    let Event::VoxelStep { cell, t_max, t_delta, .. } = &log.events[here].event else { return None };
+    let node = log.events[here].ray?;
+    let ints = |v: &[i64]| v.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ");
+    let nums = |v: &[f64]| v.iter().map(|x| narration_number(*x)).collect::<Vec<_>>().join(", ");
+    let statement = format!(
+        "{} {} {} [{}], D = {}; tMax = ({}) {}, tDelta = ({}). {}",
+        t(lang, "The ray", "Raza"),
+        names.ray_text(node),
+        t(lang, "walks the grid and is in cell", "parcurge grila și se află în celula"),
+        ints(cell),
+        vec_text(log.nodes[node].start.direction),
+        nums(t_max),
+        t(lang, "(the t of its next boundary on each axis)", "(t-ul următoarei frontiere pe fiecare axă)"),
+        nums(t_delta),
+        t(
+            lang,
+            "At which t does it leave this cell, and which voxel does it enter next?",
+            "La ce t părăsește celula și în ce voxel intră apoi?"
+        )
+    );
+    Some(Question { statement, answer: vec![told(here)?, told(next)?], keep: true })
 }

@@ -3,9 +3,11 @@
 //! and the report as text or JSON. Shared by the command line and the page.
 
 use super::Failure;
-use crate::grade::{self, report, Grade};
+use crate::accel::{Accel, AccelOptions};
+use crate::grade::{self, report, walk, Grade};
 use crate::lang::Lang;
-use crate::scene::AnyScene;
+use crate::scene::{AnyScene, Scene};
+use crate::shape::Dim;
 
 /// The largest student document read: a tree of depth 64 with every field is far smaller.
 pub const MAX_DOCUMENT_BYTES: u64 = 16 << 20;
@@ -34,6 +36,21 @@ pub fn grade(scene: &AnyScene, name: &str, text: &str, tolerance: f64) -> Result
         let lines: Vec<String> = errors.iter().map(|e| format!("{name}: {e}")).collect();
         Failure::input(lines.join("\n"))
     })
+}
+
+/// The step of the narration traced with `accel` and `depth` (the page's, which may narrate with
+/// another structure than `whitted trace`'s default) that computes the first divergence of `g`.
+#[must_use]
+pub fn page_step(scene: &AnyScene, g: &Grade, accel: &AccelOptions, depth: Option<u32>) -> Option<usize> {
+    fn step<V: Dim>(s: &Scene<V>, g: &Grade, accel: &AccelOptions, depth: Option<u32>) -> Option<usize> {
+        let d = g.first.as_ref()?;
+        let built = Accel::build_with(s, accel);
+        walk::step_in(s, &g.pixel, d, &built, depth.unwrap_or(s.max_depth))
+    }
+    match scene {
+        AnyScene::Flat(s) => step(s, g, accel, depth),
+        AnyScene::Space(s) => step(s, g, accel, depth),
+    }
 }
 
 /// The report: the text in `lang`, or the JSON (pretty, with a newline).

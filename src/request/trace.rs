@@ -9,6 +9,7 @@ use crate::accel::Accel;
 use crate::doc::narrate::{narration, Lang, Narration};
 use crate::doc::samples::{sample_narration, sampled_document};
 use crate::doc::{trace_document, TraceTarget};
+use crate::grade::exercise::{asked, Asked};
 use crate::memory::budget;
 use crate::record::stats::Stats;
 use crate::record::{EventLog, BYTES_PER_RECORD, DEFAULT_LIMIT};
@@ -141,6 +142,30 @@ impl Trace {
             }
         };
         Ok(Narrated { narration, target: done.target, stats: done.stats })
+    }
+
+    /// What step `step` (from 1) of this trace's narration computes, for the page's exercise
+    /// mode (`grade::exercise::asked`); None for a step that computes nothing to type, and for a
+    /// pixel's samples (`--aa corners|adaptive`), whose steps are samples, not a ray tree.
+    ///
+    /// # Errors
+    /// As [`Trace::document_in`].
+    pub fn asked_in<V: Dim>(&self, scene: &Scene<V>, step: usize) -> Result<Option<Asked>, Failure> {
+        let done = self.run(scene)?;
+        let Outcome::Center(_) = done.outcome else { return Ok(None) };
+        let told = narration(scene, &done.log, &done.stats, &done.target, done.max_depth, Lang::En);
+        Ok(asked(&done.log, &told.events, step))
+    }
+
+    /// [`Trace::asked_in`] of a scene of either dimension.
+    ///
+    /// # Errors
+    /// As [`Trace::document_in`].
+    pub fn asked(&self, scene: &AnyScene, step: usize) -> Result<Option<Asked>, Failure> {
+        match scene {
+            AnyScene::Flat(s) => self.asked_in(s, step),
+            AnyScene::Space(s) => self.asked_in(s, step),
+        }
     }
 
     /// Checks the target and the structure as the trace will, without tracing, and returns the

@@ -5,6 +5,7 @@
 
 use crate::support::{whitted, Scratch};
 use serde_json::Value;
+use std::path::Path;
 use std::process::Command;
 
 const TRACER: &str = "examples/student/tracer.py";
@@ -13,6 +14,8 @@ const WHITTED: &str = "lessons/scenes/whitted_small.json";
 const SHADOWS: &str = "lessons/scenes/shadows_2d.json";
 const PRISM: &str = "lessons/scenes/prism_2d.json";
 const MIRRORS: &str = "lessons/scenes/mirrors_2d.json";
+/// The grid lesson's scene.
+const GROUPS: &str = "lessons/scenes/groups_2d.json";
 /// Attenuated lights and an I_local above 1: what no lesson scene shows.
 const LAMP: &str = "tests/data/grade/lamp.json";
 
@@ -228,4 +231,101 @@ fn a_lessons_exercise_sheets_are_written_beside_its_pages_and_linked() {
         assert!(sheet.contains(&format!("lang=\"{lang}\"")) && sheet.contains("(100, 60)"));
         assert!(dir.join("ray-tree-answers-1.html").exists());
     }
+}
+
+/// The page's `grade` op (web/, called natively) answers `whitted grade --json` and prints its
+/// report, both languages, for a correct document and a mistaken one; the stored documents the
+/// page's tests paste are the student tracer's output.
+#[test]
+fn the_page_grades_with_the_same_library_code_as_the_command_line() {
+    let scratch = Scratch::new();
+    let scene = std::fs::read_to_string(scene_path(WHITTED)).unwrap();
+    for mistake in [None, Some("inverted-eta")] {
+        let doc = student(&scratch, WHITTED, "93,66", mistake);
+        let text = std::fs::read_to_string(&doc).unwrap();
+        for lang in ["en", "ro"] {
+            let request = serde_json::json!({"op": "grade", "scene": scene, "student": text, "lang": lang});
+            let answer = whitted_web::call(request.to_string().as_bytes());
+            assert_eq!(answer.code, 0, "{}", answer.json);
+            let mut page: Value = serde_json::from_str(&answer.json).unwrap();
+            let page = page.as_object_mut().unwrap();
+            let report = page.remove("text").unwrap();
+            page.remove("words");
+            page.remove("page_step");
+            let (code, cli, _) = whitted(&["grade", &scene_path(WHITTED), &doc, "--lang", lang]);
+            assert_eq!(code, i32::from(mistake.is_some()));
+            assert_eq!(report.as_str(), Some(cli.as_str()), "{lang}");
+            let (_, cli_json, _) = whitted(&["grade", &scene_path(WHITTED), &doc, "--lang", lang, "--json"]);
+            let cli_json: Value = serde_json::from_str(&cli_json).unwrap();
+            assert_eq!(Value::Object(page.clone()), cli_json, "{lang}");
+        }
+    }
+    for (stored, mistake) in [
+        ("tests/data/grade/whitted-422-292.json", None),
+        ("tests/data/grade/whitted-422-292-reflect-sign.json", Some("reflect-sign")),
+    ] {
+        let made = student(&scratch, "scenes/whitted.json", "422,292", mistake);
+        let stored = std::fs::read_to_string(scene_path(stored)).unwrap();
+        assert_eq!(
+            std::fs::read_to_string(made).unwrap(),
+            stored,
+            "regenerate it with examples/student/tracer.py"
+        );
+    }
+}
+
+/// The numbers inside the first `(…)` or `[…]` after `key` in `text`.
+fn numbers_after(text: &str, key: &str, open: char, close: char) -> Vec<f64> {
+    let at = text.find(key).unwrap_or_else(|| panic!("`{key}` in {text}")) + key.len();
+    let from = at + text[at..].find(open).unwrap() + open.len_utf8();
+    let to = from + text[from..].find(close).unwrap();
+    text[from..to].split(", ").map(|x| x.replace('−', "-").parse().unwrap()).collect()
+}
+
+/// Issue 31 item 6's grid question: with `--accel grid` a sheet asks which voxel the ray enters
+/// next, with the cell, D, tMax and tDelta; its answer is the cell's step (exit at min tMax) and
+/// the next cell's, which is the DDA's step along the axis of the least tMax by the sign of D.
+#[test]
+fn a_grid_sheet_asks_which_voxel_the_ray_enters_next_and_answers_with_the_walk() {
+    let scratch = Scratch::new();
+    for (scene, pixel, seed) in
+        [(GROUPS, "10", "1"), (GROUPS, "10", "2"), (GROUPS, "10", "5"), (WHITTED, "93,66", "1")]
+    {
+        let out = scratch.arg(&format!("{seed}-{}", pixel.replace(',', "-")));
+        let (code, _, err) = whitted(&[
+            "exercises",
+            &scene_path(scene),
+            "--pixel",
+            pixel,
+            "--accel",
+            "grid",
+            "--seed",
+            seed,
+            "--out",
+            &out,
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let exercises = std::fs::read_to_string(Path::new(&out).join("exercises.html")).unwrap();
+        assert_eq!(exercises.matches("which voxel does it enter next").count(), 1, "{scene} {seed}");
+        let answers = std::fs::read_to_string(Path::new(&out).join("answers.html")).unwrap();
+        let item = answers.split("<li>").find(|li| li.contains("which voxel does it enter next")).unwrap();
+        let cell = numbers_after(item, "is in cell", '[', ']');
+        let d = numbers_after(item, "D = ", '(', ')');
+        let t_max = numbers_after(item, "tMax = ", '(', ')');
+        let axis = (0..t_max.len()).min_by(|&a, &b| t_max[a].total_cmp(&t_max[b])).unwrap();
+        let mut next = cell.clone();
+        next[axis] += d[axis].signum();
+        let text = |v: &[f64]| v.iter().map(|x| format!("{x}")).collect::<Vec<_>>().join(", ");
+        let steps: Vec<&str> = item.split("<pre>").skip(1).collect();
+        assert_eq!(steps.len(), 2, "the cell's step and the next cell's: {item}");
+        assert!(steps[0].contains(&format!("Grid cell [{}]", text(&cell))), "{}", steps[0]);
+        let exit = whitted::format::narration_number(t_max[axis]);
+        assert!(steps[0].contains(&format!("leaves the cell at t = {exit}")), "{}", steps[0]);
+        assert!(steps[1].contains(&format!("Grid cell [{}]", text(&next))), "{} → {}", text(&cell), steps[1]);
+    }
+    // Without the grid, no such question.
+    let out = scratch.arg("bvh");
+    whitted(&["exercises", &scene_path(GROUPS), "--pixel", "10", "--out", &out]);
+    let exercises = std::fs::read_to_string(Path::new(&out).join("exercises.html")).unwrap();
+    assert!(!exercises.contains("voxel"));
 }

@@ -831,7 +831,8 @@
         if (Number(item.dataset.step) === current.step) {
           item.setAttribute('aria-current', 'step');
           // Scroll the list, not the page.
-          const top = item.offsetTop - list.offsetTop;
+          // The list is positioned, so its items' offsets are from its own top.
+          const top = item.offsetTop - (item.offsetParent === list ? 0 : list.offsetTop);
           if (top < list.scrollTop || top + item.offsetHeight > list.scrollTop + list.clientHeight) {
             list.scrollTop = top - list.clientHeight / 3;
           }
@@ -864,6 +865,8 @@
       this.part('back').disabled = k === 0;
       this.part('next').disabled = k === n - 1;
       this.saveState();
+      // The hook of grade.js (exercise mode asks the new step's quantity).
+      this.root.dispatchEvent(new CustomEvent('whitted:step', { detail: { step: current.step } }));
     }
 
     /** The chosen pixel's mark over the image. */

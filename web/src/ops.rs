@@ -1,5 +1,5 @@
 //! The requests (`web/README.md`): `check`, `info`, `render`, `trace`, `narrate`, `figure`,
-//! `kinds`. Each reads its fields, calls the library function the command line calls
+//! `kinds`, `grade`, `exercise`. Each reads its fields, calls the library function the command line calls
 //! (`whitted::request`), and answers JSON; a failure answers `{"errors": [...]}` with the command
 //! line's words, one line each, and its exit code (2 bad input, 1 anything else).
 
@@ -12,8 +12,10 @@ use whitted::doc::narrate::Lang;
 use whitted::doc::TraceTarget;
 use whitted::figure::source::TraceOptions;
 use whitted::figure::FigureKind;
+use whitted::grade::exercise;
 use whitted::record::DEFAULT_LIMIT;
 use whitted::request::figure::{default_aa, figure, structure, Request};
+use whitted::request::grade::{grade, page_step};
 use whitted::request::options::{canvas, resize, Aa};
 use whitted::request::render::{self as job, Job};
 use whitted::request::target::Target;
@@ -73,8 +75,22 @@ fn image_size<V: Dim>(scene: &Scene<V>, strip_rows: Option<usize>) -> (usize, us
 }
 
 /// The fields a request may have.
-const FIELDS: [&str; 10] =
-    ["op", "scene", "objs", "name", "options", "target", "lang", "kind", "rows", "columns"];
+const FIELDS: [&str; 14] = [
+    "op",
+    "scene",
+    "objs",
+    "name",
+    "options",
+    "target",
+    "lang",
+    "kind",
+    "rows",
+    "columns",
+    "student",
+    "tolerance",
+    "step",
+    "answer",
+];
 
 /// The name a request's scene goes by when it gives none (in `check`'s text, captions and
 /// commands).
@@ -102,8 +118,10 @@ fn run(request: &[u8]) -> Result<Answer, Failure> {
         "narrate" => narrate_op(&f),
         "figure" => figure_op(&f),
         "kinds" => Ok(kinds()),
+        "grade" => grade_op(&f),
+        "exercise" => exercise_op(&f),
         other => Err(Failure::input(format!(
-            "request.op: unknown `{other}`; the ops are: check, info, render, trace, narrate, figure, kinds"
+            "request.op: unknown `{other}`; the ops are: check, info, render, trace, narrate, figure, kinds, grade, exercise"
         ))),
     }
 }
@@ -350,6 +368,79 @@ fn narrate_op(f: &Fields<'_>) -> Result<Answer, Failure> {
     Ok(Answer::ok(answer.to_string()))
 }
 
+/// The name a student's document goes by in its errors (`student.json: PATH: PROBLEM`).
+pub const STUDENT_NAME: &str = "student.json";
+
+/// `tolerance`: a number in (0, 1), the grader's default when absent.
+fn tolerance(f: &Fields<'_>) -> Result<f64, Failure> {
+    let tol = match f.get("tolerance") {
+        None => return Ok(whitted::grade::DEFAULT_TOLERANCE),
+        Some(Value::Number(n)) => n.as_f64().unwrap_or(f64::NAN),
+        Some(other) => {
+            return Err(Failure::input(format!("request.tolerance: expected a number, got `{other}`")))
+        }
+    };
+    whitted::grade::tolerance_problem(tol).map_or(Ok(tol), |problem| Err(Failure::input(problem)))
+}
+
+/// `whitted grade --json` of the student's document (`student`, its text) against the scene,
+/// through the library function the command line calls (`request::grade::grade`), plus `text`,
+/// the report as `whitted grade --lang LANG` prints it, `words`, the divergence in the page's
+/// words, and `page_step`, the step of this page's narration (traced with `options`) that
+/// computes it. A divergence is an answer (code 0, `ok: false`); a bad document answers its
+/// errors, each with its JSON path (code 2).
+fn grade_op(f: &Fields<'_>) -> Result<Answer, Failure> {
+    let lang = ask::lang(f.get("lang"))?;
+    let options = ask::options(f.get("options"))?;
+    let tol = tolerance(f)?;
+    let student = f.string("request", "student")?;
+    let scene = scene(f)?;
+    let graded = grade(&scene, STUDENT_NAME, student, tol)?;
+    let accel = options.accel.options(dim(&scene))?;
+    let mut answer = whitted::grade::report::json(&graded, lang);
+    answer["text"] = json!(whitted::grade::report::text(&graded, lang));
+    answer["words"] = whitted::grade::report::words(&graded, lang);
+    answer["page_step"] = json!(page_step(&scene, &graded, &accel, options.depth));
+    Ok(Answer::ok(answer.to_string()))
+}
+
+/// Exercise mode: what step `step` of the pixel's narration (traced as `narrate` traces it)
+/// computes, `asked` (its quantity, name and how many numbers; null when the step computes
+/// nothing to type), and with `answer` (the typed text) each component right or wrong and how far
+/// off, by the grader's rule ‖f − e‖∞ ≤ tol·max(1, ‖e‖∞). The step's values are not answered:
+/// the page shows the worked step only when asked.
+fn exercise_op(f: &Fields<'_>) -> Result<Answer, Failure> {
+    let tol = tolerance(f)?;
+    let step = match f.get("step") {
+        Some(Value::Number(n)) => n.as_u64().and_then(|k| usize::try_from(k).ok()).filter(|&k| k >= 1),
+        _ => None,
+    }
+    .ok_or_else(|| Failure::input("request.step: expected a step number (1, 2, …)"))?;
+    let TraceAsked { scene, trace, .. } = trace_of(f, "exercise")?;
+    let asked = trace.asked(&scene, step)?;
+    let mut answer = json!({
+        "step": step,
+        "tolerance": tol,
+        "asked": asked.as_ref().map_or(Value::Null, |a| json!({
+            "quantity": a.quantity.name(), "name": a.name, "count": a.expected.len(),
+        })),
+    });
+    if let (Some(typed), Some(a)) = (f.get("answer"), &asked) {
+        let text = typed.as_str().ok_or_else(|| Failure::input("request.answer: expected the typed text"))?;
+        let found = exercise::parse(text).map_err(|e| Failure::input(format!("answer: {e}")))?;
+        let checked =
+            exercise::check(&a.expected, &found, tol).map_err(|e| Failure::input(format!("answer: {e}")))?;
+        let components: Vec<Value> = checked
+            .components
+            .iter()
+            .map(|c| json!({"found": c.found, "right": c.right, "off": c.off}))
+            .collect();
+        answer["ok"] = json!(checked.ok);
+        answer["components"] = Value::Array(components);
+    }
+    Ok(Answer::ok(answer.to_string()))
+}
+
 /// Adds the document's `pixel` and `uv` to an answer.
 fn traced(answer: &mut Value, target: &TraceTarget) {
     answer["pixel"] = target.pixel.as_ref().map_or(Value::Null, |p| json!(p));
@@ -436,4 +527,132 @@ fn kinds() -> Answer {
     let kinds: Vec<Value> =
         FigureKind::ALL.iter().map(|k| json!({"name": k.name(), "about": k.description()})).collect();
     Answer::ok(json!({ "kinds": kinds }).to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Whitted's scene and the pixel the secondary-rays lesson's first view follows.
+    const WHITTED: &str = include_str!("../../scenes/whitted.json");
+    const PIXEL: [usize; 2] = [422, 292];
+    /// `python3 examples/student/tracer.py scenes/whitted.json --pixel 422,292`, and with
+    /// `--mistake reflect-sign` (tests/integration/web.rs checks they are the tracer's output).
+    const CORRECT: &str = include_str!("../../tests/data/grade/whitted-422-292.json");
+    const REFLECT_SIGN: &str = include_str!("../../tests/data/grade/whitted-422-292-reflect-sign.json");
+
+    fn ask(request: &Value) -> (u8, Value) {
+        let answer = call(request.to_string().as_bytes());
+        (answer.code, serde_json::from_str(&answer.json).unwrap())
+    }
+
+    /// The view's narration (`--accel none`, as a figure without a structure narrates).
+    fn exercise(step: usize, answer: Option<&str>) -> (u8, Value) {
+        let mut r = json!({"op": "exercise", "scene": WHITTED, "target": {"pixel": PIXEL},
+            "options": {"accel": "none"}, "step": step});
+        if let Some(a) = answer {
+            r["answer"] = json!(a);
+        }
+        ask(&r)
+    }
+
+    #[test]
+    fn grade_passes_the_correct_document_and_names_the_first_divergence_in_the_pages_step() {
+        let (code, ok) = ask(&json!({"op": "grade", "scene": WHITTED, "student": CORRECT}));
+        assert_eq!(code, 0, "{ok}");
+        assert_eq!(ok["ok"], true);
+        assert_eq!(ok["pixel"], json!(PIXEL));
+        assert!(ok["checked"].as_u64().unwrap() >= 70, "{ok}");
+        assert!(ok["first"].is_null() && ok["words"].is_null() && ok["page_step"].is_null());
+        assert!(ok["text"].as_str().unwrap().contains("Everything agrees"));
+        // The mistake: R₁'s direction, step 11 of `whitted trace` (the BVH's node visit counts),
+        // step 10 of the page's narration without a structure ("Reflected ray R₁ at I₁").
+        let (code, bad) = ask(&json!({"op": "grade", "scene": WHITTED, "student": REFLECT_SIGN,
+            "options": {"accel": "none"}, "lang": "ro"}));
+        assert_eq!(code, 0, "a divergence is an answer: {bad}");
+        let first = &bad["first"];
+        assert_eq!(bad["ok"], false);
+        assert_eq!((first["ray"].as_str(), first["quantity"].as_str()), (Some("R₁"), Some("direction")));
+        assert_eq!(first["path"], json!(["reflected"]));
+        assert_eq!(first["diagnosis"], "reflect-sign");
+        assert_eq!(first["step"], 11);
+        assert_eq!(bad["page_step"], 10);
+        let words = &bad["words"];
+        assert_eq!(words["chain"], "P → R₁");
+        assert_eq!(words["quantity"], "direcția");
+        assert!(words["diagnosis"].as_str().unwrap().contains("semnul greșit"), "{words}");
+        assert!(words["expected"].as_str().unwrap().starts_with("(0.801716"), "{words}");
+        assert!(words["found"].as_str().unwrap().starts_with("(−0.801716"), "{words}");
+        assert!(bad["text"].as_str().unwrap().starts_with("whitted grade: pixelul (422, 292)"));
+    }
+
+    #[test]
+    fn grade_lists_every_error_of_a_bad_document_with_its_json_path() {
+        let doc =
+            r#"{"pixel": [422, 292], "ray": {"origin": [0, 0.8, 5], "direction": "up"}, "colour": [1, 2]}"#;
+        let (code, answer) = ask(&json!({"op": "grade", "scene": WHITTED, "student": doc}));
+        assert_eq!(code, 2, "{answer}");
+        let errors: Vec<&str> =
+            answer["errors"].as_array().unwrap().iter().filter_map(Value::as_str).collect();
+        assert!(errors.len() >= 2, "{errors:?}");
+        assert!(errors.iter().all(|e| e.starts_with("student.json: ")), "{errors:?}");
+        assert!(errors.iter().any(|e| e.contains("ray.direction")), "{errors:?}");
+        assert!(errors.iter().any(|e| e.contains("colour")), "{errors:?}");
+        let (code, answer) =
+            ask(&json!({"op": "grade", "scene": WHITTED, "student": CORRECT, "tolerance": 2}));
+        assert_eq!(code, 2);
+        assert!(answer["errors"][0].as_str().unwrap().contains("--tolerance must be in (0, 1)"));
+    }
+
+    #[test]
+    fn exercise_asks_what_each_step_computes() {
+        let asked = |k| exercise(k, None).1["asked"].clone();
+        let is = |k, quantity: &str, name: &str, count: usize| {
+            assert_eq!(asked(k), json!({"quantity": quantity, "name": name, "count": count}), "step {k}");
+        };
+        is(1, "window_point", "(u, v)", 2);
+        is(2, "direction", "D", 3);
+        is(4, "t", "t", 1);
+        is(7, "point", "I₁", 3);
+        is(8, "local", "I_local", 3);
+        is(9, "shadow", "s (L₁)", 1);
+        is(10, "direction", "R₁", 3);
+        is(16, "direction", "T₁", 3);
+        is(77, "colour", "I", 3);
+        is(78, "colour", "I (pixel)", 3);
+        // A test without a root, and a light behind the surface (N·L ≤ 0), compute nothing.
+        assert!(asked(5).is_null());
+        assert!(asked(39).is_null());
+    }
+
+    #[test]
+    fn exercise_says_which_components_are_right_and_how_far_off_the_others_are() {
+        // R₁ = (0.801716, 0.511449, 0.309308) as the narration prints it: 6 digits agree.
+        let (code, right) = exercise(10, Some("(0.801716, 0.511449, 0.309308)"));
+        assert_eq!(code, 0, "{right}");
+        assert_eq!(right["ok"], true);
+        assert_eq!(right["components"].as_array().unwrap().len(), 3);
+        assert!(right.get("expected").is_none(), "the value itself is not answered");
+        // The sign of V mistaken in x alone, and y rounded to 3 digits: z right.
+        let (_, wrong) = exercise(10, Some("−0.801716 0.511 0.309308"));
+        assert_eq!(wrong["ok"], false);
+        let c = &wrong["components"];
+        assert_eq!(
+            (c[0]["right"].as_bool(), c[1]["right"].as_bool(), c[2]["right"].as_bool()),
+            (Some(false), Some(false), Some(true))
+        );
+        assert!((c[0]["off"].as_f64().unwrap() - 1.603432).abs() < 1e-5, "{c}");
+        assert!((c[1]["off"].as_f64().unwrap() - 0.000449).abs() < 1e-5, "{c}");
+        // t at step 6 (the glass): 3.56438.
+        assert_eq!(exercise(6, Some("3.56438")).1["ok"], true);
+        // Typing mistakes and impossible steps are refused in words.
+        let (code, e) = exercise(10, Some("0.8, x, 0.3"));
+        assert_eq!(code, 2);
+        assert_eq!(e["errors"][0], "answer: `x` is not a number");
+        let (code, e) = exercise(10, Some("0.8 0.5"));
+        assert_eq!(code, 2);
+        assert!(e["errors"][0].as_str().unwrap().contains("expected 3 number"), "{e}");
+        assert_eq!(exercise(0, None).0, 2);
+        assert!(exercise(500, None).1["asked"].is_null());
+    }
 }
