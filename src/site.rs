@@ -59,8 +59,29 @@ const WORDS: &[(&str, &str, &str)] = &[
     ("accel_bounds", "a bounding volume per object", "câte un volum încadrator"),
     ("accel_bvh", "BVH", "ierarhie de volume (BVH)"),
     ("accel_grid", "regular grid", "grilă regulată"),
-    ("accel_octree", "octree", "arbore octal (octree)"),
+    ("accel_octree", "octree", "arbore octal"),
     ("kind", "Figure", "Figura"),
+    // The figure menu's options: in English the kind's own name (`whitted figure KIND`), in
+    // Romanian the lecture's words for what it draws.
+    ("kind_backward", "backward", "razele în sens invers"),
+    ("kind_camera-frame", "camera-frame", "sistemul camerei (lookAt)"),
+    ("kind_uv-map", "uv-map", "pixel → (u, v)"),
+    ("kind_projections", "projections", "proiecții"),
+    ("kind_rays", "rays", "raze"),
+    ("kind_refraction", "refraction", "refracție"),
+    ("kind_local-model", "local-model", "iluminare locală"),
+    ("kind_ray-tree", "ray-tree", "arborele de raze"),
+    ("kind_shadows", "shadows", "umbre"),
+    ("kind_jagged-edges", "jagged-edges", "margini zimțate"),
+    ("kind_complexity", "complexity", "complexitate"),
+    ("kind_discriminant", "discriminant", "discriminantul Δ"),
+    ("kind_slab-test", "slab-test", "testul cu plăci"),
+    ("kind_kay-kajiya", "kay-kajiya", "plăcile Kay–Kajiya"),
+    ("kind_bvh", "bvh", "ierarhie de volume (BVH)"),
+    ("kind_grid-dda", "grid-dda", "grilă regulată (DDA)"),
+    ("kind_octree", "octree", "arbore octal"),
+    ("kind_adaptive", "adaptive", "subdivizare adaptivă"),
+    ("kind_heat-map", "heat-map", "raze pe pixel"),
     ("steps", "The computation, step by step", "Calculul, pas cu pas"),
     ("command", "The same computation from the command line:", "Același calcul din linia de comandă:"),
     ("scene", "The scene (JSON): edit it and the page re-checks and re-renders it",
@@ -420,8 +441,10 @@ fn view_html(view: &View, lang: Lang, picker: Option<&str>) -> String {
     if kind == FigureKind::KayKajiya {
         attrs.push_str(&format!(" data-bounds=\"{}\"", VolumeKind::Kdop.name()));
     }
-    let kinds: Vec<(&str, String)> =
-        FigureKind::ALL.iter().map(|k| (k.name(), k.name().to_owned())).collect();
+    let kinds: Vec<(&str, String)> = FigureKind::ALL
+        .iter()
+        .map(|k| (k.name(), word(&format!("kind_{}", k.name()), lang).to_owned()))
+        .collect();
     let kinds = select("kind", &kinds, kind.name());
     let figure = view.png.as_ref().map_or(String::new(), |png| {
         format!("<img src=\"{}\" alt=\"{}\">", html_escape(png), html_escape(view.caption))

@@ -578,7 +578,7 @@ impl Label {
             Self::NodesSkipped => ("not opened (beyond the hit)", "nedeschise (dincolo de intersecție)"),
             Self::ObjectsTested => ("objects tested", "obiecte testate"),
             Self::NodeEntered => {
-                ("box met: opened (n: test order)", "volum intersectat: deschis (n: ordinea testului)")
+                ("box met: opened (n: order opened)", "volum intersectat: deschis (n: ordinea deschiderii)")
             }
             Self::NodeSkipped => {
                 ("box beyond the nearest hit: not opened", "volum dincolo de intersecția găsită: nedeschis")

@@ -620,21 +620,21 @@ fn the_3d_bvh_figure_chooses_the_plane_where_sibling_groups_lie_apart() {
     };
     let d = figure_in(&scene, "groups_3d", FigureKind::Bvh, &Aim::Auto, Lang::En, (1920, 1080));
     assert!(d.caption.as_deref().unwrap_or("").ends_with("drawn in the plane xz"), "{:?}", d.caption);
-    let rect = |name: &str| {
+    let rect = |node: usize| {
         d.items
             .iter()
-            .filter(|i| i.tag.starts_with("node-") && i.tag.ends_with(&format!(":{name}")))
+            .filter(|i| i.tag.starts_with("node-") && i.tag.ends_with(&format!(":{node}")))
             .find_map(|i| match i.mark {
                 Mark::Rect { min, max, .. } => Some((min, max)),
                 _ => None,
             })
-            .unwrap_or_else(|| panic!("node {name} drawn"))
+            .unwrap_or_else(|| panic!("node N{node} drawn"))
     };
     let apart = |(a0, a1): (DVec2, DVec2), (b0, b1): (DVec2, DVec2)| {
         a1.x < b0.x || b1.x < a0.x || a1.y < b0.y || b1.y < a0.y
     };
-    // B is the far group; C holds the two front groups D and E.
-    assert!(apart(rect("B"), rect("C")) && apart(rect("D"), rect("E")));
+    // N₁ is the far group; N₂ holds the two front groups N₃ and N₄.
+    assert!(apart(rect(1), rect(2)) && apart(rect(3), rect(4)));
 }
 
 /// On a 640 × 480 image the chosen pixel's square is under a pixel at slide size: the uv-map

@@ -20,6 +20,12 @@
     return (WORDS[key] || key).replace(/\{(\w+)\}/g, (m, name) => (values && name in values ? values[name] : m));
   }
 
+  /** A figure kind as the page's figure menu names it in its language (the kind's own name when
+   *  the words have none). */
+  function kindName(kind) {
+    return WORDS['kind_' + kind] || kind;
+  }
+
   // ---- The engine: the module's ABI, written once, run in a worker or in the page -------------
 
   /** Makes `call(request) → {status, text, bytes}` over an instance of the module. A trap (a
@@ -672,7 +678,7 @@
       if (!svg) return;
       svg.setAttribute('role', 'img');
       const pixel = this.shown ? pixelText(this.shown) : '–';
-      svg.setAttribute('aria-label', say('figure_name', { kind, pixel }));
+      svg.setAttribute('aria-label', say('figure_name', { kind: kindName(kind), pixel }));
       readable(svg);
     }
 
@@ -706,7 +712,7 @@
         const kind = fallback.kind;
         const what = say(KIND_WANTS[kind] || 'want_other');
         const span = document.createElement('span');
-        span.textContent = say('fallback', { pixel: pixelText(pixel), what, kind });
+        span.textContent = say('fallback', { pixel: pixelText(pixel), what, kind: kindName(kind) });
         line.append(span);
         const seeking = document.createElement('span');
         seeking.dataset.whitted = 'nearby';

@@ -1,17 +1,18 @@
 //! What `bvh` and `octree` share (lecture "Scena reprezentată printr-o ierarhie de volume
 //! încadratoare", "Scena divizată în volume încadratoare (3)", algorithm.md §9): the hierarchy's
 //! boxes over the scene, each drawn by what the recorded walk of one primary ray did with it and
-//! why — opened (numbered in the order of their tests), met but skipped because it starts beyond
+//! why — opened (numbered in the order opened), met but skipped because it starts beyond
 //! the nearest hit found (`node_skip`, the lecture's rule), missed (its whole subtree skipped), or
 //! never tested because an ancestor was missed or skipped — and the tree beside it with the same
-//! marks. Nodes are named A, B, C … in the structure's own numbering.
+//! marks. Nodes are named N₀, N₁, … by the structure's own numbering, the number the narration
+//! gives them ("visit node bvh 3" is N₃): never a letter, which the scene's objects may carry.
 
 use glam::DVec2;
 
 use super::Input;
 use crate::accel::{Layout, TreeNode};
 use crate::bounds::aabb::Aabb;
-use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Mark, Pen, Text, TextOpts, VAlign, View};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
 use crate::figure::plane::{Outline, PagePlane, Planar};
@@ -51,7 +52,7 @@ impl Fate {
         Fate::Untested,
     ];
 
-    /// The name a drawn node's tag carries (`node-skipped:G`), for pages and tests.
+    /// The name a drawn node's tag carries (`node-skipped:6`, by its number), for pages and tests.
     fn class(self) -> &'static str {
         match self {
             Fate::Entered(_) => "entered",
@@ -162,18 +163,11 @@ fn fates<V>(nodes: &[TreeNode<V>], search: &[&Event<V>]) -> Vec<Fate> {
     out
 }
 
-/// `A`, `B`, … `Z`, `AA`, … for node number `k`.
-fn letter(k: usize) -> String {
-    let mut n = k + 1;
-    let mut out = Vec::new();
-    while n > 0 {
-        n -= 1;
-        // n % 26 < 26, so the cast is exact.
-        #[allow(clippy::cast_possible_truncation)]
-        out.push(char::from(b'A' + (n % 26) as u8));
-        n /= 26;
-    }
-    out.iter().rev().collect()
+/// The name of node `k`, `N_{k}` (N with k as subscript): the structure's own number, as the
+/// narration and the trace's `node_visit` events give it, so that a node's name never reuses
+/// the letter of an object (`a` … `h`) or of the lecture's points (I, E).
+fn node_name(k: usize) -> String {
+    format!("N_{{{k}}}")
 }
 
 /// How much of the ray's length a 3D page plane must keep: a plane the ray crosses more steeply
@@ -413,7 +407,7 @@ pub fn draw<V: Planar>(
             }
             let (lo, hi) = drawn(n);
             d.with_events(visits[k].iter().copied(), |d| {
-                d.rect(&format!("node-{}:{}", f.class(), letter(k)), lo, hi, fate_style(f), None);
+                d.rect(&format!("node-{}:{k}", f.class()), lo, hi, fate_style(f), None);
             });
         }
     }
@@ -434,6 +428,8 @@ pub fn draw<V: Planar>(
     let crowded = structure == "octree" || nodes.len() > DENSE_NODES;
     let was_tested = |k: usize| !fate[k].untested();
     let named = |k: usize| !crowded || (was_tested(k) && !nodes[k].children.iter().any(|c| was_tested(*c)));
+    // Each name's item and its box's upper right corner.
+    let mut names: Vec<(usize, DVec2)> = Vec::new();
     for (k, n) in nodes.iter().enumerate() {
         if !named(k) {
             continue;
@@ -445,8 +441,9 @@ pub fn draw<V: Planar>(
             .offset(6.0, -4.0)
             .color(fate_colour(fate[k]))
             .stack_down(lo.y);
+        names.push((d.items.len(), DVec2::new(hi.x, hi.y)));
         d.with_events(visits[k].iter().copied(), |d| {
-            d.text("node-name", DVec2::new(lo.x, hi.y), &letter(k), opts);
+            d.text("node-name", DVec2::new(lo.x, hi.y), &node_name(k), opts);
         });
     }
     // A crowded scene's objects are named where the walk reached their leaf (and the hit's): the
@@ -481,6 +478,37 @@ pub fn draw<V: Planar>(
     }
     label_objects(d, scene, &beside, input.lang);
     tree(d, &nodes, &fate, &visits, input, column, &view);
+    // With the page laid out, a box's name that the ray crosses (an octree's small cells along
+    // it) moves to the box's upper right corner, inside it too, on the same line.
+    // (The ray's own events are the names' too: the layout check would let them lie there.)
+    let tf = d.transform();
+    let mut rays: Vec<(DVec2, DVec2)> = Vec::new();
+    for item in d.items.iter().filter(|i| i.tag.starts_with(style::RAY_TAG)) {
+        match &item.mark {
+            Mark::Line { points } => rays.extend(points.windows(2).map(|w| (tf.to_px(w[0]), tf.to_px(w[1])))),
+            Mark::Arrow { from, to, .. } => rays.push((tf.to_px(*from), tf.to_px(*to))),
+            _ => {}
+        }
+    }
+    let crosses = |t: &Text| {
+        let ink = Drawing::place_text(t, &tf).bbox;
+        rays.iter().any(|(p, q)| ink.length_inside(*p, *q) > 0.0)
+    };
+    // A box narrower than its name with the ray near both corners keeps it at the upper left
+    // (the layout test lists the octree lesson's two such names as open).
+    for &(at, corner) in &names {
+        let Mark::Text(t) = &mut d.items[at].mark else { continue };
+        if !crosses(t) {
+            continue;
+        }
+        let left = t.clone();
+        t.anchor = corner;
+        t.align = Align { h: HAlign::Right, v: VAlign::Top };
+        t.offset.x = -t.offset.x;
+        if crosses(t) {
+            *t = left;
+        }
+    }
     Ok(())
 }
 
@@ -628,7 +656,7 @@ fn tree<V: Planar>(
             let ring = fate_style(f).with_width(style::CONSTRUCTION_WIDTH);
             parts::node_disc(d, &format!("tree-node-{}", f.class()), at(k), TREE_NODE, fill, ring);
             let name = TextOpts::NOTE.size(TextSize::Small).align(Align::CENTER).no_halo();
-            d.text("tree-name", at(k), &letter(k), name);
+            d.text("tree-name", at(k), &node_name(k), name);
             if let Fate::Entered(order) = f {
                 let o = TextOpts::NOTE
                     .size(TextSize::Small)
