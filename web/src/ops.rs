@@ -255,7 +255,7 @@ fn band_op(
     if first >= h {
         return Err(Failure::input(format!("request.rows: the image has {h} rows, got first row {first}")));
     }
-    let accel = whitted::accel::Accel::build_with(&s, &options.accel.options(3)?);
+    let accel = whitted::accel::Accel::build_with(&s, &options.accel.options(3)?).for_render();
     // File row f is image row j = Ny − 1 − f: the band's rows from the bottom.
     let top = h - first;
     let bottom = top.saturating_sub(count);
