@@ -53,7 +53,10 @@ pub(crate) struct WideNode {
     min: [[f32; WIDTH]; 3],
     /// `max[axis][lane]`, rounded up to `f32`.
     max: [[f32; WIDTH]; 3],
-    children: [Child; WIDTH],
+    /// Each lane's [`Child::start`].
+    start: [u32; WIDTH],
+    /// Each lane's [`Child::count`]: a leaf holds at most `bvh::MAX_LEAF` primitives.
+    count: [u16; WIDTH],
     /// Lanes in use (the rest hold the empty box).
     len: u32,
 }
@@ -139,7 +142,8 @@ impl WideBvh {
         let mut wide = WideNode {
             min: [[f32::INFINITY; WIDTH]; 3],
             max: [[f32::NEG_INFINITY; WIDTH]; 3],
-            children: [Child::default(); WIDTH],
+            start: [0; WIDTH],
+            count: [0; WIDTH],
             len: u32::try_from(kids.len()).unwrap_or(0),
         };
         for (lane, kid) in kids.iter().enumerate() {
@@ -147,13 +151,15 @@ impl WideBvh {
                 wide.min[axis][lane] = f32_down(kid.min[axis]);
                 wide.max[axis][lane] = f32_up(kid.max[axis]);
             }
-            wide.children[lane] = kid.link;
+            wide.start[lane] = kid.link.start;
+            wide.count[lane] =
+                u16::try_from(kid.link.count).expect("a leaf holds at most MAX_LEAF primitives");
         }
         nodes.push(wide);
         for (lane, kid) in kids.iter().enumerate() {
             if kid.link.count == 0 {
                 let at = Self::collapse_into(nodes, kid.link.start, children);
-                nodes[index].children[lane].start = at;
+                nodes[index].start[lane] = at;
             }
         }
         u32::try_from(index).expect("fewer than 2^32 nodes")
@@ -244,7 +250,7 @@ impl WideBvh {
                             at -= 1;
                         }
                         hit_t[at] = t;
-                        hit_c[at] = node.children[lane];
+                        hit_c[at] = Child { start: node.start[lane], count: u32::from(node.count[lane]) };
                         n += 1;
                     }
                 }
@@ -275,6 +281,11 @@ impl WideBvh {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_wide_node_is_two_cache_lines() {
+        assert_eq!(std::mem::size_of::<WideNode>(), 128);
+    }
 
     #[test]
     fn rounding_to_f32_is_outward_and_exact_when_it_can_be() {
