@@ -78,9 +78,9 @@ pub(crate) struct Binary<V> {
     pub(crate) link: Child,
 }
 
-/// `x` rounded down to an `f32` (`x` itself when exact): the smallest `f32` not above it.
+/// `x` rounded down to an `f32` (`x` itself when exact): the largest `f32` not above it.
 #[must_use]
-pub fn f32_down(x: f64) -> f32 {
+pub fn down_to_f32(x: f64) -> f32 {
     // Rounding to nearest, then one step down when that went above.
     #[allow(clippy::cast_possible_truncation)]
     let f = x as f32;
@@ -91,9 +91,9 @@ pub fn f32_down(x: f64) -> f32 {
     }
 }
 
-/// `x` rounded up to an `f32`: the largest `f32` not below it.
+/// `x` rounded up to an `f32`: the smallest `f32` not below it.
 #[must_use]
-pub fn f32_up(x: f64) -> f32 {
+pub fn up_to_f32(x: f64) -> f32 {
     #[allow(clippy::cast_possible_truncation)]
     let f = x as f32;
     if f64::from(f) < x {
@@ -148,8 +148,8 @@ impl WideBvh {
         };
         for (lane, kid) in kids.iter().enumerate() {
             for axis in 0..V::DIM {
-                wide.min[axis][lane] = f32_down(kid.min[axis]);
-                wide.max[axis][lane] = f32_up(kid.max[axis]);
+                wide.min[axis][lane] = down_to_f32(kid.min[axis]);
+                wide.max[axis][lane] = up_to_f32(kid.max[axis]);
             }
             wide.start[lane] = kid.link.start;
             wide.count[lane] =
@@ -290,16 +290,16 @@ mod tests {
     #[test]
     fn rounding_to_f32_is_outward_and_exact_when_it_can_be() {
         for x in [0.1, -0.1, 1.0 / 3.0, -2.5, 1e30, -1e-30, 0.0, 16_777_217.0] {
-            let (lo, hi) = (f32_down(x), f32_up(x));
+            let (lo, hi) = (down_to_f32(x), up_to_f32(x));
             assert!(f64::from(lo) <= x && x <= f64::from(hi), "{x}");
             assert!(hi == lo || hi == lo.next_up(), "{x}: adjacent f32s");
         }
-        assert_eq!(f32_down(0.5), 0.5);
-        assert_eq!(f32_up(0.5), 0.5);
-        assert_eq!(f32_down(f64::INFINITY), f32::INFINITY);
-        assert_eq!(f32_up(f64::NEG_INFINITY), f32::NEG_INFINITY);
+        assert_eq!(down_to_f32(0.5), 0.5);
+        assert_eq!(up_to_f32(0.5), 0.5);
+        assert_eq!(down_to_f32(f64::INFINITY), f32::INFINITY);
+        assert_eq!(up_to_f32(f64::NEG_INFINITY), f32::NEG_INFINITY);
         // Beyond f32's range: down to the largest finite, up to infinity.
-        assert_eq!(f32_down(1e300), f32::MAX);
-        assert_eq!(f32_up(1e300), f32::INFINITY);
+        assert_eq!(down_to_f32(1e300), f32::MAX);
+        assert_eq!(up_to_f32(1e300), f32::INFINITY);
     }
 }
