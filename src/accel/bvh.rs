@@ -20,6 +20,7 @@
 //!
 //! A tree that is one leaf (a small scene) is visited without the stack.
 
+use super::wide::{Binary, Child, WideBvh};
 use super::{beyond, node_skip, node_visit, prim_bounds, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
 use crate::geom::ray::Ray;
@@ -76,6 +77,9 @@ pub struct Bvh<V> {
     root: Link,
     nodes: Vec<Node<V>>,
     prims: Vec<Prim>,
+    /// The render's wide copy of the inner nodes ([`Bvh::widen`]), walked when no recorder
+    /// listens.
+    wide: Option<WideBvh>,
 }
 
 /// A primitive as the builder sees it: its box, its index and the cost of testing it. The
@@ -184,7 +188,7 @@ impl<V: Dim> Bvh<V> {
         let n = prims.len();
         let empty = Link { start: 0, count: 0, id: 0 };
         if n == 0 {
-            return Self { root_box: Aabb::empty(), root: empty, nodes: Vec::new(), prims };
+            return Self { root_box: Aabb::empty(), root: empty, nodes: Vec::new(), prims, wide: None };
         }
         let (order, built) = {
             let mut built = Vec::with_capacity(n);
@@ -215,7 +219,36 @@ impl<V: Dim> Bvh<V> {
                 Node { boxes: [built[l].bounds, built[r].bounds], links: [link(l), link(r)] }
             })
             .collect();
-        Self { root_box: built[0].bounds, root: link(0), nodes, prims }
+        Self { root_box: built[0].bounds, root: link(0), nodes, prims, wide: None }
+    }
+
+    /// Adds the wide copy of the inner nodes that the walk takes when no recorder listens
+    /// ([`WideBvh`]); the binary tree, its numbers and its recorded walk stay as they are. A
+    /// tree that is one leaf has no inner node to widen.
+    pub fn widen(&mut self) {
+        if self.root.count > 0 || self.prims.is_empty() {
+            return;
+        }
+        let nodes = &self.nodes;
+        let children = |i: u32| {
+            let node = &nodes[i as usize];
+            [0, 1].map(|k| {
+                let (b, l) = (node.boxes[k], node.links[k]);
+                Binary {
+                    min: b.min,
+                    max: b.max,
+                    area: b.surface(),
+                    link: Child { start: l.start, count: l.count },
+                }
+            })
+        };
+        self.wide = Some(WideBvh::collapse(self.root.start, children));
+    }
+
+    /// The wide copy, once [`Bvh::widen`] has made it.
+    #[must_use]
+    pub fn wide(&self) -> Option<&WideBvh> {
+        self.wide.as_ref()
     }
 
     /// Number of nodes (leaves and inner nodes).
@@ -303,6 +336,12 @@ impl<V: Dim> Bvh<V> {
             return;
         }
         let r = recip.unwrap_or_else(|| RecipRay::new(ray));
+        if !R::ENABLED {
+            if let Some(wide) = &self.wide {
+                wide.walk(&self.prims, &r, visitor, stats, rec);
+                return;
+            }
+        }
         // On the walk's own stack, never initialised: a walk neither allocates nor clears.
         let mut stack: ArrayVec<(Link, u32, f64), STACK_SIZE> = ArrayVec::new();
         stack.push((self.root, 0, root_t_in));

@@ -23,6 +23,7 @@ pub mod list;
 pub mod octree;
 pub mod volumes;
 pub mod walk;
+pub mod wide;
 
 pub use layout::{Layout, TreeNode};
 pub use walk::{
@@ -171,6 +172,25 @@ impl<V: Dim> Accel<V> {
             AccelKind::Octree => Structure::Octree(octree::Octree::build(scene, &prims)),
         };
         Self { kind: options.kind, unbounded, structure }
+    }
+    /// This structure as a render walks it: a BVH gains its wide copy ([`wide::WideBvh`]), which
+    /// the walk takes when no recorder listens; every answer is the same, bit for bit, and the
+    /// recorded walk (the traces' `node_visit` events, the figures) keeps the binary tree. Only
+    /// the count of node tests differs (one per child box of a wide node).
+    #[must_use]
+    pub fn for_render(mut self) -> Self {
+        if let Structure::Bvh(b) = &mut self.structure {
+            b.widen();
+        }
+        self
+    }
+    /// The wide nodes of a BVH made for a render ([`Accel::for_render`]), if it has them.
+    #[must_use]
+    pub fn wide_nodes(&self) -> Option<usize> {
+        match &self.structure {
+            Structure::Bvh(b) => b.wide().map(wide::WideBvh::node_count),
+            _ => None,
+        }
     }
     /// Which structure this is.
     #[must_use]

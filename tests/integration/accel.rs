@@ -78,6 +78,13 @@ fn assert_agree<V: Dim>(scene: &Scene<V>, rays: &[Ray<V>]) {
         let other = render_centers(scene, &accel, scene.max_depth, None).image;
         assert!(other.pixels == image.pixels, "{options:?}: the image differs");
     }
+    // The render's wide BVH, walked when no recorder listens.
+    let wide = Accel::build(scene, AccelKind::Bvh).for_render();
+    for (ray, want) in rays.iter().zip(&expected) {
+        assert_eq!(&answers(scene, &wide, ray), want, "the wide BVH on {ray:?}");
+    }
+    let other = render_centers(scene, &wide, scene.max_depth, None).image;
+    assert!(other.pixels == image.pixels, "the wide BVH: the image differs");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -252,6 +259,53 @@ proptest! {
         let scene: Scene<DVec2> = load(&scene_text(&objects, 2, plane));
         let mut all = float_rays;
         all.extend(exact_rays);
+        assert_agree(&scene, &all);
+    }
+}
+
+/// A crowd of `n` small objects (triangles, spheres, boxes; some glass) in `[-3, 3]³`, from
+/// `seeds`: enough primitives for a wide BVH of several levels.
+fn crowd(seeds: &[(u8, [f64; 3], f64, bool)]) -> Vec<Value> {
+    seeds
+        .iter()
+        .map(|&(kind, [x, y, z], size, glass)| {
+            let mut o = match kind % 3 {
+                0 => json!({"type": "triangle", "vertices": [[x, y, z], [x + size, y, z - size], [x, y + size, z + size]]}),
+                1 => json!({"type": "sphere", "center": [x, y, z], "radius": size}),
+                _ => json!({"type": "box", "min": [x, y, z], "max": [x + size, y + size, z + size]}),
+            };
+            if glass {
+                o["material"] = json!({"kt": 0.5});
+            }
+            o
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// The render's wide BVH (4 children, boxes in f32 rounded outward) gives brute force's
+    /// nearest hit bit for bit (object, triangle, t) and the same occluders, on crowds large
+    /// enough for many wide nodes, and the same image.
+    #[test]
+    fn the_wide_bvh_equals_brute_force_bit_for_bit(
+        seeds in proptest::collection::vec(
+            (any::<u8>(), [-3.0f64..3.0, -3.0f64..3.0, -3.0f64..3.0], 0.05f64..0.6, any::<bool>()),
+            40..200,
+        ),
+        float_rays in rays::<DVec3>(false),
+        exact_rays in rays::<DVec3>(true),
+    ) {
+        let scene: Scene<DVec3> = load(&scene_text(&crowd(&seeds), 3, true));
+        let wide = Accel::build(&scene, AccelKind::Bvh).for_render();
+        prop_assert!(wide.wide_nodes().is_some_and(|n| n > 1), "a wide tree of several nodes");
+        let mut all = float_rays;
+        all.extend(exact_rays);
+        // Rays from inside the crowd too, as secondary and shadow rays start.
+        all.extend(seeds.iter().take(12).map(|(_, c, _, _)| {
+            Ray::new(DVec3::from(*c) * 0.5, DVec3::new(c[1], -c[2], c[0] + 0.1).normalize())
+        }));
         assert_agree(&scene, &all);
     }
 }

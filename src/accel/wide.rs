@@ -1,0 +1,305 @@
+//! The render's BVH: the lesson's binary tree ([`super::bvh`]) collapsed into a tree of up to
+//! [`WIDTH`] children a node, walked only when no recorder listens (the recording walk, its
+//! `node_visit` events and the figures keep the binary tree, node for node).
+//!
+//! **Collapse**: a wide node starts from a binary inner node's two children and, while it has
+//! fewer than [`WIDTH`], replaces its inner child of largest surface by that child's two
+//! children. A leaf is a leaf of the binary tree: a range of the binary tree's primitives, which
+//! are already in leaf order (no copy).
+//!
+//! **Boxes in `f32`, rounded outward**: each child box's `min` is rounded down and its `max` up
+//! (`f32::next_down`, `f32::next_up` where the nearest `f32` falls inside), so the stored box
+//! holds the binary tree's `f64` box. The slab test converts them back to `f64` (exactly) and
+//! takes the binary walk's very formula `t = (x − O)·(1/D)` with its widened exit
+//! ([`crate::geom::slab::culling_hit`]) and its prune ([`super::beyond`]): a larger box gives an
+//! earlier entry and a later exit, so every primitive the binary walk reaches is reached here
+//! too, and the exact `f64` primitive test still decides every hit. Since [`super::Nearest`]
+//! keeps the least `(t, object, part)` whatever the order of visits, and [`super::Shadow`]
+//! reports its occluders sorted, the answers are those of the binary walk, bit for bit.
+//!
+//! **Layout**: per node, per axis, the [`WIDTH`] children's bounds side by side (`[f32; 4]`), so
+//! the test of all children is one loop over lanes that the compiler vectorises; a node is two
+//! cache lines. An unused lane holds the empty box `[+∞, −∞]`, which no ray meets.
+//!
+//! **Walk**: the hit children are visited nearest entry first: the nearest next, the others
+//! pushed farthest first on a stack of `(child, t_in)`; a child whose entry lies beyond the
+//! visitor's bound is never pushed, and one popped is dropped when the bound has come nearer
+//! since. Every child box tested counts as one node test. The ray's reciprocals are the binary
+//! walk's, computed once per ray.
+
+use super::{beyond, Prim, Visitor};
+use crate::geom::slab::{culling_hit, RecipRay};
+use crate::record::stats::Stats;
+use crate::record::Recorder;
+use crate::shape::Dim;
+use arrayvec::ArrayVec;
+
+/// Children per node.
+pub const WIDTH: usize = 4;
+
+/// A child reference: an inner node `nodes[start]` (count 0) or a leaf over
+/// `prims[start .. start + count]` of the binary tree's primitives.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Child {
+    pub(crate) start: u32,
+    pub(crate) count: u32,
+}
+
+/// A wide node: its children's boxes, axis by axis and lane by lane, and their references.
+#[derive(Clone, Debug, PartialEq)]
+#[repr(align(64))]
+pub(crate) struct WideNode {
+    /// `min[axis][lane]`, rounded down to `f32`.
+    min: [[f32; WIDTH]; 3],
+    /// `max[axis][lane]`, rounded up to `f32`.
+    max: [[f32; WIDTH]; 3],
+    /// Each lane's [`Child::start`].
+    start: [u32; WIDTH],
+    /// Each lane's [`Child::count`]: a leaf holds at most `bvh::MAX_LEAF` primitives.
+    count: [u16; WIDTH],
+    /// Lanes in use (the rest hold the empty box).
+    len: u32,
+}
+
+/// The collapsed tree: node 0 is the root (the binary root's box is tested by the caller).
+#[derive(Clone, Debug, Default)]
+pub struct WideBvh {
+    nodes: Vec<WideNode>,
+}
+
+/// A child of a node being collapsed, as the binary tree gives it: its box (in `f64`), and
+/// either a leaf range or a binary inner node to open or to collapse into a wide node.
+pub(crate) struct Binary<V> {
+    pub(crate) min: V,
+    pub(crate) max: V,
+    /// The surface area (perimeter in 2D) that decides which child opens first.
+    pub(crate) area: f64,
+    /// A leaf's range (count > 0), or a binary inner node's index (count 0).
+    pub(crate) link: Child,
+}
+
+/// `x` rounded down to an `f32` (`x` itself when exact): the largest `f32` not above it.
+#[must_use]
+pub fn down_to_f32(x: f64) -> f32 {
+    // Rounding to nearest, then one step down when that went above.
+    #[allow(clippy::cast_possible_truncation)]
+    let f = x as f32;
+    if f64::from(f) > x {
+        f.next_down()
+    } else {
+        f
+    }
+}
+
+/// `x` rounded up to an `f32`: the smallest `f32` not below it.
+#[must_use]
+pub fn up_to_f32(x: f64) -> f32 {
+    #[allow(clippy::cast_possible_truncation)]
+    let f = x as f32;
+    if f64::from(f) < x {
+        f.next_up()
+    } else {
+        f
+    }
+}
+
+/// Room on the walk's stack: at most `WIDTH − 1` pending children per level, and the binary
+/// tree's depth (at most `BALANCE_DEPTH + 33`) bounds the wide tree's.
+const STACK_SIZE: usize = (WIDTH - 1) * (super::bvh::BALANCE_DEPTH as usize + 40);
+
+impl WideBvh {
+    /// Collapses a binary tree, given as `children(node)` (the two children of binary inner node
+    /// `node`), from the binary root's inner node `root`.
+    pub(crate) fn collapse<V: Dim>(root: u32, children: impl Fn(u32) -> [Binary<V>; 2]) -> Self {
+        let mut nodes = Vec::new();
+        Self::collapse_into(&mut nodes, root, &children);
+        Self { nodes }
+    }
+
+    /// Appends the wide node of binary inner node `node` (and, after it, its subtrees); returns
+    /// its index.
+    fn collapse_into<V: Dim>(
+        nodes: &mut Vec<WideNode>,
+        node: u32,
+        children: &impl Fn(u32) -> [Binary<V>; 2],
+    ) -> u32 {
+        let mut kids: ArrayVec<Binary<V>, WIDTH> = children(node).into_iter().collect();
+        while kids.len() < WIDTH {
+            // Open the inner child of largest surface (the first on a tie).
+            let Some(open) = (0..kids.len()).filter(|&k| kids[k].link.count == 0).reduce(|a, b| {
+                if kids[b].area > kids[a].area {
+                    b
+                } else {
+                    a
+                }
+            }) else {
+                break;
+            };
+            let opened = kids.remove(open);
+            kids.extend(children(opened.link.start));
+        }
+        let index = nodes.len();
+        let mut wide = WideNode {
+            min: [[f32::INFINITY; WIDTH]; 3],
+            max: [[f32::NEG_INFINITY; WIDTH]; 3],
+            start: [0; WIDTH],
+            count: [0; WIDTH],
+            len: u32::try_from(kids.len()).unwrap_or(0),
+        };
+        for (lane, kid) in kids.iter().enumerate() {
+            for axis in 0..V::DIM {
+                wide.min[axis][lane] = down_to_f32(kid.min[axis]);
+                wide.max[axis][lane] = up_to_f32(kid.max[axis]);
+            }
+            wide.start[lane] = kid.link.start;
+            wide.count[lane] =
+                u16::try_from(kid.link.count).expect("a leaf holds at most MAX_LEAF primitives");
+        }
+        nodes.push(wide);
+        for (lane, kid) in kids.iter().enumerate() {
+            if kid.link.count == 0 {
+                let at = Self::collapse_into(nodes, kid.link.start, children);
+                nodes[index].start[lane] = at;
+            }
+        }
+        u32::try_from(index).expect("fewer than 2^32 nodes")
+    }
+
+    /// Number of wide nodes.
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Bytes the nodes take.
+    #[must_use]
+    pub fn bytes(&self) -> usize {
+        self.nodes.len() * std::mem::size_of::<WideNode>()
+    }
+
+    /// `[t_in, t_out]` of every lane's box, by the binary walk's formula in `f64`.
+    #[inline(always)]
+    fn intervals<V: Dim>(node: &WideNode, r: &RecipRay<V>) -> ([f64; WIDTH], [f64; WIDTH]) {
+        let mut t_in = [f64::NEG_INFINITY; WIDTH];
+        let mut t_out = [f64::INFINITY; WIDTH];
+        if r.oblique {
+            for axis in 0..V::DIM {
+                let (o, inv) = (r.origin[axis], r.inv_dir[axis]);
+                // The near plane of the slab by the sign of 1/d, as `box_pair_interval` does.
+                let (near, far) = if inv >= 0.0 {
+                    (&node.min[axis], &node.max[axis])
+                } else {
+                    (&node.max[axis], &node.min[axis])
+                };
+                for lane in 0..WIDTH {
+                    let tn = (f64::from(near[lane]) - o) * inv;
+                    let tf = (f64::from(far[lane]) - o) * inv;
+                    t_in[lane] = if tn > t_in[lane] { tn } else { t_in[lane] };
+                    t_out[lane] = if tf < t_out[lane] { tf } else { t_out[lane] };
+                }
+            }
+        } else {
+            for lane in 0..WIDTH {
+                let (mut lo, mut hi) = (r.origin, r.origin);
+                for axis in 0..V::DIM {
+                    lo[axis] = f64::from(node.min[axis][lane]);
+                    hi[axis] = f64::from(node.max[axis][lane]);
+                }
+                (t_in[lane], t_out[lane]) = r.box_interval(lo, hi);
+            }
+        }
+        (t_in, t_out)
+    }
+
+    /// Front-to-back walk from the root, whose box the ray met at `root_t_in` (not beyond the
+    /// visitor's bound), handing every leaf's primitives (of `prims`, the binary tree's) to the
+    /// visitor; `r` is the ray. The nearest hit child of a node is walked next without going
+    /// through the stack.
+    pub(crate) fn walk<V: Dim, R: Recorder<V>, W: Visitor<V>>(
+        &self,
+        prims: &[Prim],
+        r: &RecipRay<V>,
+        visitor: &mut W,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) {
+        let mut stack: ArrayVec<(Child, f64), STACK_SIZE> = ArrayVec::new();
+        let mut child = Child { start: 0, count: 0 };
+        loop {
+            if child.count > 0 {
+                let start = child.start as usize;
+                if prims[start..start + child.count as usize].iter().any(|p| visitor.visit(*p, stats, rec)) {
+                    return;
+                }
+            } else {
+                let node = &self.nodes[child.start as usize];
+                stats.tests.node += u64::from(node.len);
+                let (t_in, t_out) = Self::intervals(node, r);
+                let bound = visitor.bound();
+                // The hit lanes, farthest entry first (an insertion sort of at most WIDTH).
+                let mut hit_t = [0.0; WIDTH];
+                let mut hit_c = [Child::default(); WIDTH];
+                let mut n = 0;
+                for lane in 0..WIDTH {
+                    let t = t_in[lane];
+                    if culling_hit(t, t_out[lane]) && !beyond(t, bound) {
+                        let mut at = n;
+                        while at > 0 && hit_t[at - 1] < t {
+                            hit_t[at] = hit_t[at - 1];
+                            hit_c[at] = hit_c[at - 1];
+                            at -= 1;
+                        }
+                        hit_t[at] = t;
+                        hit_c[at] = Child { start: node.start[lane], count: u32::from(node.count[lane]) };
+                        n += 1;
+                    }
+                }
+                if n > 0 {
+                    for k in 0..n - 1 {
+                        stack.push((hit_c[k], hit_t[k]));
+                    }
+                    child = hit_c[n - 1];
+                    continue;
+                }
+            }
+            // The next pending child whose entry the bound has not passed since it was pushed.
+            loop {
+                let Some((next, t_in)) = stack.pop() else {
+                    return;
+                };
+                if !beyond(t_in, visitor.bound()) {
+                    child = next;
+                    break;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+// Rounding is exact by nature: these tests pin the very f32s.
+#[allow(clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_wide_node_is_two_cache_lines() {
+        assert_eq!(std::mem::size_of::<WideNode>(), 128);
+    }
+
+    #[test]
+    fn rounding_to_f32_is_outward_and_exact_when_it_can_be() {
+        for x in [0.1, -0.1, 1.0 / 3.0, -2.5, 1e30, -1e-30, 0.0, 16_777_217.0] {
+            let (lo, hi) = (down_to_f32(x), up_to_f32(x));
+            assert!(f64::from(lo) <= x && x <= f64::from(hi), "{x}");
+            assert!(hi == lo || hi == lo.next_up(), "{x}: adjacent f32s");
+        }
+        assert_eq!(down_to_f32(0.5), 0.5);
+        assert_eq!(up_to_f32(0.5), 0.5);
+        assert_eq!(down_to_f32(f64::INFINITY), f32::INFINITY);
+        assert_eq!(up_to_f32(f64::NEG_INFINITY), f32::NEG_INFINITY);
+        // Beyond f32's range: down to the largest finite, up to infinity.
+        assert_eq!(down_to_f32(1e300), f32::MAX);
+        assert_eq!(up_to_f32(1e300), f32::INFINITY);
+    }
+}
