@@ -62,6 +62,10 @@ pub enum Label {
     HitPoint,
     /// Where a shadow ray meets an occluder.
     OccluderPoint,
+    /// A transparent occluder's outline (shadows).
+    TransparentOccluder,
+    /// An opaque occluder's outline (shadows).
+    OpaqueOccluder,
     /// A light source.
     LightSource,
     /// The observer O.
@@ -98,6 +102,12 @@ pub enum Label {
     DepthLimit,
     /// A node stopped by the depth limit.
     StoppedByDepth,
+    /// What the level under the depth limit does (after "n = k").
+    SpawnsNoRt,
+    /// The reflection weight on an R edge of a ray tree (the lecture's Ks).
+    WeightKs,
+    /// The transmission weight on a T edge of a ray tree (the lecture's Kt).
+    WeightKt,
     /// A ray-tree node: its colour.
     NodeColour,
     /// Total internal reflection.
@@ -184,6 +194,8 @@ pub enum Label {
     HeatMapCounts,
     /// "samples" after a count in the heat map's legend.
     SamplesUnit,
+    /// The heat maps' shared scale (in their legend).
+    OneScale,
     /// "mean per pixel".
     MeanPerPixel,
     /// "rays" after a count in the legend.
@@ -461,6 +473,8 @@ impl Label {
             Self::OpaqueShadowRay => ("L, opaque occluder (s = 0)", "L, obstacol opac (s = 0)"),
             Self::HitPoint => ("hit point I", "punct de intersecție I"),
             Self::OccluderPoint => ("L meets an object", "L întâlnește un obiect"),
+            Self::TransparentOccluder => ("transparent occluder (kt > 0)", "obstacol transparent (Kt > 0)"),
+            Self::OpaqueOccluder => ("opaque occluder (kt = 0)", "obstacol opac (Kt = 0)"),
             Self::LightSource => ("light source S", "sursă de lumină S"),
             Self::Observer => ("observer O", "observatorul O"),
             Self::Normal => ("normal N", "normala N"),
@@ -479,6 +493,9 @@ impl Label {
             Self::Surface => ("surface", "suprafața"),
             Self::DepthLimit => ("depth limit", "adâncimea maximă"),
             Self::StoppedByDepth => ("stopped by the depth limit", "oprit de adâncimea maximă"),
+            Self::SpawnsNoRt => ("spawns no R or T", "nu mai generează R sau T"),
+            Self::WeightKs => ("ks", "Ks"),
+            Self::WeightKt => ("kt", "Kt"),
             Self::NodeColour => ("node: the colour it returns", "nod: culoarea întoarsă"),
             Self::Tir => ("total internal reflection", "reflexie totală internă"),
             Self::NoT => ("no transmitted ray T", "nicio rază transmisă T"),
@@ -528,6 +545,7 @@ impl Label {
             Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
             Self::RaysPerPixel => ("rays", "raze"),
             Self::SamplesUnit => ("samples", "eșantioane"),
+            Self::OneScale => ("every map on one logarithmic scale", "toate hărțile pe aceeași scară logaritmică"),
             Self::TitleTradeoffSampling => (
                 "What sampling costs: error against rays traced",
                 "Cât costă eșantionarea: eroarea față de razele trasate",
@@ -908,6 +926,9 @@ mod tests {
         Label::TitleUniform,
         Label::HeatMapCounts,
         Label::SamplesUnit,
+        Label::OneScale,
+        Label::TransparentOccluder,
+        Label::OpaqueOccluder,
         Label::LeafUnderThreshold,
         Label::LeafAtMaxLevel,
         Label::UniformMean,

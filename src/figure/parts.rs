@@ -121,26 +121,27 @@ pub fn exit_point(from: DVec2, dir: DVec2, view: &View) -> DVec2 {
     }
 }
 
+/// The stroke of an emphasised object's outline (an occluder, the sphere a figure is about).
+pub const EMPHASIS_WIDTH: f64 = style::OBJECT_WIDTH * 1.6;
+
 /// Draws every object of `scene` on `plane` (sections solid and filled, projection outlines faint
 /// and dashed), unbounded lines clipped to `clip`; objects in `emphasis` get a thick outline in
-/// `emphasis_color`. Returns where each visible object's name goes, for [`label_objects`] once
+/// the colour given with them. Returns where each visible object's name goes, for [`label_objects`] once
 /// the rays are drawn.
 pub fn draw_objects<V: Planar>(
     d: &mut Drawing,
     scene: &Scene<V>,
     plane: &PagePlane<V>,
     clip: &View,
-    emphasis: &[usize],
-    emphasis_color: Rgba,
+    emphasis: &[(usize, Rgba)],
 ) -> Vec<(usize, DVec2)> {
     let mut anchors = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
         let tag = format!("object:{index}");
-        let strong = emphasis.contains(&index);
-        let section_style = if strong {
-            style::outline(emphasis_color).with_width(style::OBJECT_WIDTH * 1.6)
-        } else {
-            style::object()
+        let strong = emphasis.iter().find(|(k, _)| *k == index);
+        let section_style = match strong {
+            Some((_, colour)) => style::outline(*colour).with_width(EMPHASIS_WIDTH),
+            None => style::object(),
         };
         let faint =
             Pen::solid(style::DARK_GREY.with_alpha(0.7), style::GRID_WIDTH).dashed(style::CONSTRUCTION_DASH);

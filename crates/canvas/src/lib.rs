@@ -22,7 +22,8 @@
 //!   with the layout checks.
 //! - `legend`: `legend_entry` and the legend's box (`placed_legend`).
 //! - `page`: `frame`, the page laid out once for both back ends (reads `legend`).
-//! - `listing`: `to_text`; `skia` and `svg`: the two back ends (read everything above).
+//! - `listing`: `to_text`; `skia` and `svg`: the two back ends (read everything above); `subset`:
+//!   the fonts cut to what an SVG prints, which `svg` embeds (reads nothing of `Drawing`).
 #![forbid(unsafe_code)]
 
 pub mod drawing;
@@ -33,6 +34,7 @@ pub mod listing;
 pub mod page;
 pub mod skia;
 pub mod style;
+pub mod subset;
 pub mod svg;
 pub mod text;
 pub mod view;

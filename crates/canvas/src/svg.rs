@@ -4,18 +4,23 @@
 //! caption, legend) as the raster back end, so the two agree. Each display-list item becomes
 //! exactly one `<g data-tag="…" data-events="…">` group (`data-events`: the indices of the trace
 //! events the item draws, space-separated, possibly empty); the title, caption and legend are
-//! groups with a `class` and no `data-tag`. Text stays text: `<text>` in the embedded font's family (the reader's copy of
-//! Noto Sans, or a sans-serif fallback), with sub- and superscripts as
-//! `<tspan baseline-shift="sub" font-size="…">` and the halo as a white stroke painted first; each
-//! `<text>` has the `textLength` it was laid out with, so a substitute font keeps every line's
-//! width (nothing runs past the picture or onto a neighbour).
+//! groups with a `class` and no `data-tag`. Text stays text: `<text>` in the embedded fonts, whose
+//! subsets (cut to the characters the SVG prints, [`subset`]) the `<defs>` carry as `@font-face`
+//! rules with base64 `data:` URLs under a family of the SVG's own (then the reader's Noto Sans,
+//! then any sans-serif), with sub- and superscripts as `<tspan baseline-shift="sub" font-size="…">`
+//! and the halo as a white stroke painted first. Each `<text>` has the `textLength` it was laid
+//! out with, so a reader that falls back to another font keeps every line's width.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
+
+use ab_glyph::Font as _;
 
 use glam::DVec2;
 
 use super::style::{self, Pen, Rgba};
-use super::text::{self, Script, Weight};
+use super::subset;
+use super::text::{self, Face, Script, Weight};
 use super::{
     ArrowPx, Drawing, HAlign, LegendBox, LegendIcon, Mark, PageLayout, PlacedLine, PxRect, Text, Transform,
 };
@@ -31,23 +36,10 @@ pub fn to_svg(drawing: &Drawing) -> String {
     let mut out = String::new();
     out.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     // Writing into a String cannot fail, so the results of write! are ignored throughout.
-    let _ = writeln!(
-        out,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
-         viewBox=\"0 0 {w} {h}\" font-family=\"{}, sans-serif\">",
-        xml_escape(text::FAMILY)
-    );
     let plot = frame.plot;
-    let _ = writeln!(
-        out,
-        "<defs><clipPath id=\"{CLIP_ID}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\
-         </clipPath></defs>",
-        svg_coordinate(plot.min.x),
-        svg_coordinate(plot.min.y),
-        svg_coordinate(plot.width()),
-        svg_coordinate(plot.height())
-    );
-    out.push_str("<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
+    // The body first: the fonts embedded in the head are cut to the characters it prints.
+    let mut body = String::new();
+    body.push_str("<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
     let tf = frame.transform;
     for item in &drawing.items {
         let clip = if matches!(item.mark, Mark::Text(_)) {
@@ -57,17 +49,130 @@ pub fn to_svg(drawing: &Drawing) -> String {
         };
         let events: Vec<String> = item.events.iter().map(ToString::to_string).collect();
         let _ = write!(
-            out,
+            body,
             "<g data-tag=\"{}\" data-events=\"{}\"{clip}>",
             xml_escape(&item.tag),
             events.join(" ")
         );
-        shape(&mut out, &tf, &item.pen, &item.mark);
-        out.push_str("</g>\n");
+        shape(&mut body, &tf, &item.pen, &item.mark);
+        body.push_str("</g>\n");
     }
-    chrome(&mut out, drawing, &frame);
+    chrome(&mut body, drawing, &frame);
+    let (faces, families) = font_faces(&printed_text(&body));
+    // The embedded faces first, then the reader's own copies, then any sans-serif.
+    let mut family: Vec<String> = families;
+    family.extend([text::FAMILY, text::MATH_FAMILY, "sans-serif"].map(str::to_owned));
+    let _ = writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
+         viewBox=\"0 0 {w} {h}\" font-family=\"{}\">",
+        xml_escape(&family.join(", "))
+    );
+    let _ = writeln!(
+        out,
+        "<defs>{faces}<clipPath id=\"{CLIP_ID}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\
+         </clipPath></defs>",
+        svg_coordinate(plot.min.x),
+        svg_coordinate(plot.min.y),
+        svg_coordinate(plot.width()),
+        svg_coordinate(plot.height())
+    );
+    out.push_str(&body);
     out.push_str("</svg>\n");
     out
+}
+
+/// The characters the `<text>` elements of an SVG `body` print, by weight: the content between
+/// each `<text …>` and its `</text>`, tags taken out and XML's entities read back (the body is
+/// this module's own writing, so this small reading of it is exact).
+fn printed_text(body: &str) -> BTreeMap<Weight, BTreeSet<char>> {
+    let mut out: BTreeMap<Weight, BTreeSet<char>> = BTreeMap::new();
+    let mut rest = body;
+    while let Some(start) = rest.find("<text ") {
+        let Some(open_end) = rest[start..].find('>') else { break };
+        let open = &rest[start..start + open_end];
+        let weight = if open.contains("font-weight=\"bold\"") { Weight::Bold } else { Weight::Regular };
+        let content_start = start + open_end + 1;
+        let Some(len) = rest[content_start..].find("</text>") else { break };
+        let content = &rest[content_start..content_start + len];
+        let mut plain = String::new();
+        let mut in_tag = false;
+        for c in content.chars() {
+            match c {
+                '<' => in_tag = true,
+                '>' => in_tag = false,
+                c if !in_tag => plain.push(c),
+                _ => {}
+            }
+        }
+        let plain = plain
+            .replace("&lt;", "<")
+            .replace("&gt;", ">")
+            .replace("&quot;", "\"")
+            .replace("&apos;", "'")
+            .replace("&amp;", "&");
+        out.entry(weight).or_default().extend(plain.chars());
+        rest = &rest[content_start + len..];
+    }
+    out
+}
+
+/// The `<style>` with an `@font-face` per face that draws some of `printed` (its characters by
+/// weight): a subset of the embedded file ([`subset`]) as a base64 `data:` URL, so that the SVG
+/// prints with the PNG's glyphs and advances on a machine without Noto Sans (issue 32 item 6);
+/// and the families it defines, for the root's `font-family`. Each family is named after a hash
+/// of its subsets (`whitted-…`): an SVG set inline in a page, beside others, styles the whole
+/// page, and a shared name would let one figure's subset draw another's text. Empty when
+/// nothing is printed.
+fn font_faces(printed: &BTreeMap<Weight, BTreeSet<char>>) -> (String, Vec<String>) {
+    let mut by_face: BTreeMap<Face, BTreeSet<char>> = BTreeMap::new();
+    for (weight, chars) in printed {
+        for c in chars {
+            by_face.entry(text::face_of(*c, *weight)).or_default().insert(*c);
+        }
+    }
+    let subsets: Vec<(Face, Vec<u8>)> = by_face
+        .into_iter()
+        .filter_map(|(face, chars)| {
+            let font = face.font();
+            Some((face, subset::subset(text::face_file(face), chars, |c| font.glyph_id(c).0)?))
+        })
+        .collect();
+    // The main family (regular and bold) and the math family, each named by its bytes' hash.
+    let name = |math: bool| {
+        let bytes = subsets.iter().filter(|(f, _)| (*f == Face::Math) == math).flat_map(|(_, b)| b.iter());
+        format!("whitted-{:016x}", fnv1a(bytes.copied()))
+    };
+    let (main, math) = (name(false), name(true));
+    let mut css = String::new();
+    let mut families = Vec::new();
+    for (face, bytes) in &subsets {
+        let (family, weight) = match face {
+            Face::Regular => (&main, "normal"),
+            Face::Bold => (&main, "bold"),
+            Face::Math => (&math, "normal"),
+        };
+        if !families.contains(family) {
+            families.push(family.clone());
+        }
+        let _ = write!(
+            css,
+            "@font-face{{font-family:\"{family}\";font-weight:{weight};\
+             src:url(data:font/ttf;base64,{})format(\"truetype\")}}",
+            subset::base64(bytes)
+        );
+    }
+    families.sort_by_key(|f| *f != main);
+    let style = if css.is_empty() { css } else { format!("<style>{css}</style>") };
+    (style, families)
+}
+
+/// The 64-bit FNV-1a hash of `bytes`: a name for a subset that two different subsets do not
+/// share in practice.
+fn fnv1a(bytes: impl IntoIterator<Item = u8>) -> u64 {
+    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+    bytes.into_iter().fold(OFFSET, |h, b| (h ^ u64::from(b)).wrapping_mul(PRIME))
 }
 
 /// A coordinate or length in an SVG attribute, in pixels: two decimals, no trailing zeros, no `-0`.
@@ -385,6 +490,7 @@ fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &Le
 mod tests {
     use super::*;
     use crate::{TextOpts, View};
+    use ab_glyph::FontRef;
 
     use crate::style::test_strokes::{BLUE_LINE, DASHED, FILL, GREEN_LINE, OUTLINE};
 
@@ -406,6 +512,65 @@ mod tests {
             .legend_entry("hit", Pen::NONE, LegendIcon::Dot(style::BLACK))
             .legend_entry("object", OUTLINE, LegendIcon::Swatch(FILL));
         d
+    }
+
+    /// The bytes of base64 `text` (RFC 4648, padded).
+    fn unbase64(text: &str) -> Vec<u8> {
+        let value = |c: u8| match c {
+            b'A'..=b'Z' => u32::from(c - b'A'),
+            b'a'..=b'z' => u32::from(c - b'a') + 26,
+            b'0'..=b'9' => u32::from(c - b'0') + 52,
+            b'+' => 62,
+            b'/' => 63,
+            _ => panic!("not base64: {c}"),
+        };
+        let mut out = Vec::new();
+        for quad in text.as_bytes().chunks(4) {
+            let pad = quad.iter().filter(|c| **c == b'=').count();
+            let n = quad.iter().filter(|c| **c != b'=').fold(0u32, |n, c| (n << 6) | value(*c)) << (6 * pad);
+            out.extend(&n.to_be_bytes()[1..4 - pad]);
+        }
+        out
+    }
+
+    /// Issue 32 item 6: the SVG embeds, under a family of its own that the root names first, a
+    /// subset of each face it prints with, and each subset draws every character printed in it
+    /// with the embedded font's glyph and advance.
+    #[test]
+    #[allow(clippy::float_cmp)] // advances read from the same font units must be the very same
+    fn the_svg_embeds_the_subset_of_the_fonts_it_prints_with() {
+        let d = demo();
+        let svg = to_svg(&d);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let family = doc.root_element().attribute("font-family").unwrap();
+        assert!(family.starts_with("whitted-"), "{family}");
+        assert!(family.ends_with("Noto Sans, Noto Sans Math, sans-serif"), "{family}");
+        let css = doc.descendants().find(|n| n.has_tag_name("style")).unwrap().text().unwrap().to_owned();
+        let printed = printed_text(&svg[svg.find("</defs>").unwrap()..]);
+        assert!(printed[&Weight::Bold].contains(&'ț') && printed[&Weight::Regular].contains(&'θ'));
+        let mut faces = 0;
+        for rule in css.split("@font-face").skip(1) {
+            faces += 1;
+            let weight = if rule.contains("font-weight:bold") { Weight::Bold } else { Weight::Regular };
+            let start = rule.find("base64,").unwrap() + "base64,".len();
+            let bytes = unbase64(&rule[start..start + rule[start..].find(')').unwrap()]);
+            let part = FontRef::try_from_slice(&bytes).unwrap();
+            let whole = text::font(weight);
+            // The first family is regular and bold; another is the math face's.
+            let math = !rule.contains(family.split(", ").next().unwrap());
+            for c in printed[&weight].iter().filter(|c| !c.is_whitespace()) {
+                if (text::face_of(*c, weight) == Face::Math) != math {
+                    continue;
+                }
+                let source = if math { text::math_font() } else { whole };
+                let (a, b) = (source.glyph_id(*c), part.glyph_id(*c));
+                assert_ne!(b.0, 0, "{c:?} missing from the {weight:?} subset");
+                assert_eq!(source.h_advance_unscaled(a), part.h_advance_unscaled(b), "{c:?}");
+            }
+            assert!(bytes.len() < 40_000, "a subset of {} bytes", bytes.len());
+        }
+        // Regular and bold (the title); the demo prints nothing of the math face.
+        assert_eq!(faces, 2, "{css}");
     }
 
     #[test]

@@ -30,6 +30,8 @@ use glam::DVec2;
 
 /// The family name of the embedded font, as SVG's `font-family` names it.
 pub const FAMILY: &str = "Noto Sans";
+/// The family name of the embedded fallback face for arrows and operators.
+pub const MATH_FAMILY: &str = "Noto Sans Math";
 
 /// A text line placed in canvas pixels.
 #[derive(Clone, Debug, PartialEq)]
@@ -53,7 +55,7 @@ static BOLD_TTF: &[u8] = include_bytes!("../../../assets/fonts/NotoSans-Bold-sub
 static MATH_TTF: &[u8] = include_bytes!("../../../assets/fonts/NotoSansMath-Regular-subset.ttf");
 
 /// The weight of a piece of text.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Weight {
     /// Labels, legend and captions.
     Regular,
@@ -136,7 +138,7 @@ pub fn math_font() -> &'static FontRef<'static> {
 }
 
 /// Which embedded face a glyph comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Face {
     /// Noto Sans Regular.
     Regular,
@@ -179,6 +181,34 @@ fn resolve(c: char, weight: Weight) -> (Face, GlyphId) {
         return (Face::Math, id);
     }
     (main, GlyphId(0))
+}
+
+/// The face whose glyph draws `c` at `weight` (the main face for a character no face has).
+#[must_use]
+pub fn face_of(c: char, weight: Weight) -> Face {
+    resolve(c, weight).0
+}
+
+/// The embedded file of a face (the SVG back end embeds a subset of it).
+#[must_use]
+pub fn face_file(face: Face) -> &'static [u8] {
+    match face {
+        Face::Regular => REGULAR_TTF,
+        Face::Bold => BOLD_TTF,
+        Face::Math => MATH_TTF,
+    }
+}
+
+/// The file of Noto Sans Regular, embedded.
+#[cfg(test)]
+pub(crate) fn regular_ttf() -> &'static [u8] {
+    REGULAR_TTF
+}
+
+/// The file of Noto Sans Math, embedded.
+#[cfg(test)]
+pub(crate) fn math_ttf() -> &'static [u8] {
+    MATH_TTF
 }
 
 /// Whether the embedded fonts draw `c` with a real glyph (not the missing-glyph box), directly or

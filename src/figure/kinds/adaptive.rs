@@ -67,7 +67,14 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             LegendIcon::Swatch(shade(level)),
         );
     }
-    d.legend_entry(input.t(Label::SampleTraced), Pen::NONE, LegendIcon::Dot(style::BLACK));
+    // A uniform pixel's four corners are drawn in their colours (the mean is theirs); the adaptive
+    // figure's many samples stay black dots, their colours in the leaves.
+    let sample_icon = if pixel.uniform {
+        (style::outline(style::BLACK), LegendIcon::Dot(style::LIGHT_GREY))
+    } else {
+        (Pen::NONE, LegendIcon::Dot(style::BLACK))
+    };
+    d.legend_entry(input.t(Label::SampleTraced), sample_icon.0, sample_icon.1);
     // A pixel no square split (threshold ∞, or K = 0) reads nothing again: no ring to explain.
     if pixel.samples.iter().any(|s| s.reused) {
         d.legend_entry(input.t(Label::SampleReused), reused_ring(), LegendIcon::Dot(style::WHITE));
@@ -156,7 +163,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             if sample.reused {
                 d.marker("sample:reused", at, RING_RADIUS, style::WHITE.with_alpha(0.0), reused_ring());
             }
-            d.marker("sample", at, 8.0, style::BLACK, Pen::NONE);
+            if pixel.uniform {
+                d.marker("sample", at, CORNER_RADIUS, swatch(sample.color), style::outline(style::BLACK));
+            } else {
+                d.marker("sample", at, 8.0, style::BLACK, Pen::NONE);
+            }
         });
     }
     for (sample, events) in pixel.samples.iter().zip(&sample_events) {
@@ -176,7 +187,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 // Up and to the right of its point, as the lecture's figure writes them; a ringed
                 // one's corner outside its ring (|(14, 12)| = 18.4 > RING_RADIUS).
                 let up_right = Align { h: HAlign::Left, v: VAlign::Bottom };
-                let (dx, dy) = if sample.reused { (14.0, 12.0) } else { (8.0, 6.0) };
+                let (dx, dy) = if sample.reused || pixel.uniform { (14.0, 12.0) } else { (8.0, 6.0) };
                 d.text("sample-name", at, &sample.label, small.align(up_right).offset(dx, dy));
             }
         });
@@ -244,6 +255,9 @@ fn reused_ring() -> Pen {
     Pen::solid(style::ORANGE, style::CONSTRUCTION_WIDTH)
 }
 
+/// The radius, in reference pixels, of a uniform pixel's corner, filled with its colour.
+const CORNER_RADIUS: f64 = 14.0;
+
 /// The text beside the pixel: the rule, the samples, a deepest leaf's mean and the pixel's.
 fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
     let k = pixel.max_level;
@@ -276,6 +290,10 @@ fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
             input.t(Label::SamplesTraced),
             input.t(Label::Reused)
         ));
+    }
+    // A uniform pixel's corners, each as traced: the mean below is theirs.
+    if pixel.uniform {
+        lines.extend(pixel.samples.iter().map(|s| format!("{} = {}", s.label, rgb_text(s.color))));
     }
     // The deepest leaf's colour, the lecture's (CN + CL + CG + CM)/4.
     if let Some(leaf) = pixel.squares.iter().filter(|s| !s.split).max_by_key(|s| s.level) {

@@ -102,7 +102,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let offset = shift * panel;
         let on = plane.shifted(offset);
         let clip = View::new(lo.x + offset.x, hi.x + offset.x, lo.y, hi.y).unwrap_or(d.view);
-        anchors.extend(draw_objects(d, scene, &on, &clip, &[], style::BLACK));
+        anchors.extend(draw_objects(d, scene, &on, &clip, &[]));
         if let Some((a, b)) = window {
             d.segment("window", a + offset, b + offset, style::view_window());
         }

@@ -98,7 +98,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.fit_view(&points, 0.1);
     let view = d.view;
 
-    let anchors = draw_objects(d, scene, &plane, &view, &[focus], style::BLACK);
+    let anchors = draw_objects(d, scene, &plane, &view, &[(focus, style::BLACK)]);
     d.dot("center", c, style::DARK_GREY);
     let rim = c + DVec2::new(-radius, 0.0);
     d.segment("radius", c, rim, Pen::solid(style::DARK_GREY, style::CONSTRUCTION_WIDTH));

@@ -167,7 +167,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         d.segment("grid", DVec2::new(lo.x, y), DVec2::new(hi.x, y), style::grid());
     }
     d.rect("grid-box", lo, hi, style::outline(style::DARK_GREY), None);
-    let anchors = draw_objects(d, scene, &plane, &scene_part, &[], style::BLACK);
+    let anchors = draw_objects(d, scene, &plane, &scene_part, &[]);
     // An object listed only through its box: that box, dashed, lit with the cells that list it.
     let mut outlined: Vec<usize> = Vec::new();
     for &o in box_only.iter().flatten() {
@@ -189,10 +189,11 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let end =
         hit.map_or_else(|| parts::exit_point(start, plane.dir(dir), &scene_part), |h| plane.point(h.point));
     d.with_events(log.ray_events(0), |d| draw_ray(d, RayRole::Primary, start, end));
-    // Where the ray leaves each visited cell: its smallest tMax.
+    // Where the ray leaves each visited cell: its smallest tMax; none past the accepted hit
+    // (the ray ends there: the hit's cell is left by no ray).
     for s in &steps {
         let exit = s.t_max.iter().copied().fold(f64::INFINITY, f64::min);
-        if exit.is_finite() {
+        if exit.is_finite() && hit.is_none_or(|h| exit <= h.t) {
             d.with_events([s.event], |d| {
                 d.marker("cell-exit", ray_at(exit), style::DOT_RADIUS * 0.8, style::ORANGE, Pen::NONE);
             });

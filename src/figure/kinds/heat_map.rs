@@ -2,7 +2,8 @@
 //! number of samples (primary rays) whose colour entered each pixel of a whole render — a corner
 //! shared by neighbours counted in each of them, while the caption counts the rays traced, each
 //! shared corner once — for one sampling
-//! mode, on a colour scale (viridis, readable with any common colour-vision deficiency): 1 with
+//! mode, on a colour scale (viridis, readable with any common colour-vision deficiency) that
+//! every heat map shares, logarithmic from 1 to 81 samples, so that two maps compare: 1 with
 //! `center`, 4 with `corners`, 4 to (2^K + 1)² with `adaptive`, where the image changes. The counts
 //! are the render's own (`Rendered::rays_per_pixel`); rows count from the bottom.
 
@@ -49,6 +50,16 @@ fn scale_colour(f: f64) -> Rgba {
     Rgba::rgb(mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b))
 }
 
+/// The count at the light end of the one scale every heat map shares: (2^K + 1)² samples, the
+/// most a pixel reads when adaptive sampling splits to K = 3, the deepest the lessons go; larger
+/// counts take the light end too.
+const SCALE_TOP: f64 = 81.0;
+
+/// Where `n` samples fall on the shared scale, in [0, 1]: `log n / log SCALE_TOP`.
+fn scale_place(n: f64) -> f64 {
+    (n.max(1.0).ln() / SCALE_TOP.ln()).clamp(0.0, 1.0)
+}
+
 /// Draws the figure.
 ///
 /// # Errors
@@ -73,12 +84,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             .filter(|(a, _)| *a <= hi)
             .collect()
     };
+    // Every map on one scale (issue 32 item 3: maps a caption compares read alike): a count's
+    // place on it is log n / log SCALE_TOP, so 1 sample is the darkest and 81 the lightest in
+    // every figure; a bin of counts takes its middle's.
     let shade = |k: usize| {
-        if bins.len() > 1 {
-            scale_colour(k as f64 / (bins.len() - 1) as f64)
-        } else {
-            scale_colour(0.5)
-        }
+        let (a, b) = bins[k];
+        scale_colour(scale_place(f64::from(a + b) / 2.0))
     };
     let colour = |n: u32| shade(bins.iter().position(|(a, b)| (*a..=*b).contains(&n)).unwrap_or(0));
 
@@ -122,6 +133,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let range = if a == b { a.to_string() } else { format!("{a}–{b}") };
         d.legend_entry(&format!("{range} {unit}"), Pen::NONE, LegendIcon::Swatch(shade(k)));
     }
+    d.legend_entry(
+        &format!("{}: 1 … {}", input.t(Label::OneScale), slide_number(SCALE_TOP)),
+        // No icon: the line of no stroke leaves its place blank.
+        Pen::NONE,
+        LegendIcon::Line,
+    );
     d.legend_place = crate::canvas::LegendPlace::Outside;
 
     // One cell per pixel, y up so that row j = 0 is the bottom; a 2D image is one row, drawn as

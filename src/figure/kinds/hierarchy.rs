@@ -390,7 +390,7 @@ pub fn draw<V: Planar>(
         (lo - DVec2::splat(o), hi + DVec2::splat(o))
     };
     // Boxes: untested first (faint), then missed, skipped, then entered, so the walk reads on top.
-    let anchors = draw_objects(d, scene, &plane, &scene_part, &[], style::BLACK);
+    let anchors = draw_objects(d, scene, &plane, &scene_part, &[]);
     let passes = [
         Fate::UnderMissed,
         Fate::UnderSkipped,

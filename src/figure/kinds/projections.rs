@@ -152,7 +152,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     for ((traced, offset), plane) in [(ortho, DVec2::ZERO), (persp, shift)].into_iter().zip(&planes) {
         let panel = plane.shifted(offset);
         let clip = View::new(lo.x + offset.x, hi.x + offset.x, lo.y, hi.y).unwrap_or(d.view);
-        anchors.push((draw_objects(d, scene, &panel, &clip, &[], style::BLACK), offset));
+        anchors.push((draw_objects(d, scene, &panel, &clip, &[]), offset));
         let (a, b) = window(&panel);
         d.segment("window", a, b, style::view_window());
         for p in primaries(traced, &panel) {

@@ -4,23 +4,28 @@
 //! the object it hit (or the background) below it; the shadow rays L_k of each hit are leaves with
 //! their factor s: free, through
 //! transparent objects (0 < s < 1), stopped by an opaque one (s = 0), or not cast at all because
-//! the light is behind the surface (lum = 0). Rows are the levels n (P is level 1); the depth
-//! limit `max_depth` is drawn under the last level's nodes and their shadow leaves (shadow rays
-//! are cast at every level), and nodes it stopped are marked.
+//! the light is behind the surface (lum = 0). Each R and T edge carries its weight as the lecture
+//! writes it (`ks = 0.8`, `kt = 0.9`: I = I_local + ks·R + kt·T), and a node whose colour
+//! saturates its disc's fill has the colour printed as computed (`I = 1.37`). Rows are the levels
+//! n (P is level 1); the depth limit is a line between level `max_depth`, the last whose nodes
+//! spawn R and T (§6: a node at level n spawns iff n ≤ max_depth), and the level under it, which
+//! it says spawns nothing; nodes it stopped are marked. Every word takes the first of its
+//! candidate spots clear of the edges it does not name, the discs and the words before it.
 
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Mark, Pen, PxRect, TextOpts, Transform, VAlign};
 use crate::figure::labels::Label;
 use crate::figure::parts::{self, legend_role, swatch, Names};
 use crate::figure::plane::Planar;
-use crate::figure::style::{self, RayRole, TextSize};
+use crate::figure::style::{self, RayRole};
 use crate::figure::FigureError;
 use crate::format::markup_escape;
 use crate::format::slide_number;
-use crate::record::event::Event;
+use crate::record::event::{Event, RayKind};
 use crate::record::EventLog;
+use crate::scene::material::Rgb;
 
 /// Above this many leaves the shadow-ray leaves are left out.
 const MAX_LEAVES: usize = 18;
@@ -192,10 +197,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         LegendIcon::Swatch(style::LIGHT_GREY),
     );
     let mut roles = vec![RayRole::Primary];
-    if log.nodes.iter().any(|n| n.start.kind == crate::record::event::RayKind::Reflected) {
+    if log.nodes.iter().any(|n| n.start.kind == RayKind::Reflected) {
         roles.push(RayRole::Reflected);
     }
-    if log.nodes.iter().any(|n| n.start.kind == crate::record::event::RayKind::Transmitted) {
+    if log.nodes.iter().any(|n| n.start.kind == RayKind::Transmitted) {
         roles.push(RayRole::Transmitted);
     }
     if shadows {
@@ -227,30 +232,40 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let bottom = points.iter().map(|p| p.y).fold(0.0, f64::min) - 0.5 * row_h;
     points.extend([DVec2::new(left, 0.4 * row_h), DVec2::new(right, bottom)]);
     d.fit_view(&points, 0.03);
-    // The limit line lies below level max_depth + 1, the deepest that a ray may reach: under the
-    // words of that level's nodes (which are px below them) and over the next level's nodes.
-    // Where it lies depends on the view's scale and the view on where it lies: refit until they
-    // agree (three fits move it by well under a pixel).
-    let mut limit_y = -(f64::from(traced.max_depth) + 0.5) * row_h;
-    if !stopped.is_empty() {
-        for _ in 0..3 {
-            let px = d.px_scale() / d.picture_scale();
-            // Every vertex lies above the line, the last level's shadow leaves too (a shadow ray
-            // is cast at every level, the limit stops only R and T): the line
-            // runs under the lowest one's word. A deep tree writes its words beside the nodes:
-            // then only a stopped node's ring (or a leaf's disc) reaches down.
-            let reach = |v: &Vertex| match (v, deep) {
-                (Vertex::Ray(_), true) => STOP_RADIUS + STOP_CLEAR,
-                (Vertex::Ray(_), false) => UNDER_WORD,
-                (Vertex::Shadow { .. }, true) => SHADOW_NODE + STOP_CLEAR,
-                (Vertex::Shadow { .. }, false) => SHADOW_WORD_BELOW + WORD_BOX + STOP_CLEAR,
-            };
-            limit_y = graph.iter().map(|(v, p, _)| p.y - reach(v) * px).fold(f64::INFINITY, f64::min);
-            let mut with_limit = points.clone();
-            with_limit.push(DVec2::new(left, limit_y - LIMIT_TEXT * px));
-            d.fit_view(&with_limit, 0.03);
-        }
+    // How far below its centre a vertex's words reach, in reference pixels.
+    let reach = |v: &Vertex| match (v, deep) {
+        (Vertex::Ray(_), true) => STOP_RADIUS + STOP_CLEAR,
+        (Vertex::Ray(_), false) => UNDER_WORD,
+        (Vertex::Shadow { .. }, true) => SHADOW_NODE + STOP_CLEAR,
+        (Vertex::Shadow { .. }, false) => SHADOW_WORD_BELOW + WORD_BOX + STOP_CLEAR,
+    };
+    // The lowest words must fit too; where they reach depends on the view's scale and the view
+    // on where they reach: refit until they agree (three fits move it by well under a pixel).
+    for _ in 0..3 {
+        let px = d.px_scale() / d.picture_scale();
+        let lowest = graph.iter().map(|(v, p, _)| p.y - reach(v) * px).fold(bottom, f64::min);
+        let mut with_words = points.clone();
+        with_words.push(DVec2::new(left, lowest));
+        d.fit_view(&with_words, 0.03);
     }
+    // The limit line lies between level max_depth, the last whose nodes spawn R and T, and level
+    // max_depth + 1, whose nodes spawn nothing (§6: a node at level n spawns iff
+    // n ≤ max_depth): under the words of the upper level's vertices (its ray nodes, and the
+    // shadow leaves of the level above, drawn on its row) and over the lower level's rings.
+    let px = d.px_scale() / d.picture_scale();
+    let upper_y = -f64::from(traced.max_depth.saturating_sub(1)) * row_h;
+    let lower_y = upper_y - row_h;
+    #[allow(clippy::float_cmp)] // rows are whole multiples of row_h, computed alike
+    let under_upper = graph
+        .iter()
+        .filter(|(_, p, _)| p.y == upper_y)
+        .map(|(v, p, _)| p.y - reach(v) * px)
+        .fold(upper_y, f64::min);
+    let over_lower = lower_y + (STOP_RADIUS + STOP_CLEAR) * px;
+    // Rows too close for the line to pass between them clear of both: under the whole tree,
+    // below its lowest words, as the view was fitted for.
+    let lowest = graph.iter().map(|(v, p, _)| p.y - reach(v) * px).fold(bottom, f64::min);
+    let limit_y = if under_upper >= over_lower { under_upper } else { lowest };
 
     for level in 1..=deepest {
         let y = -f64::from(level - 1) * row_h;
@@ -268,24 +283,12 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let limits: Vec<usize> = limits.collect();
     if !stopped.is_empty() {
         let line = Pen::solid(style::VERMILLION, style::CONSTRUCTION_WIDTH).dashed(style::CONSTRUCTION_DASH);
-        let opts = TextOpts::NOTE
-            .align(Align { h: HAlign::Left, v: VAlign::Top })
-            .offset(0.0, -8.0)
-            .color(style::VERMILLION);
-        let text = format!(
-            "{}: {} = {}",
-            input.t(Label::DepthLimit),
-            markup_escape(input.t(Label::MaxDepth)),
-            traced.max_depth
-        );
         d.with_events(limits.iter().copied(), |d| {
             d.segment("depth-limit", DVec2::new(left, limit_y), DVec2::new(right, limit_y), line);
-            d.text("label", DVec2::new(left, limit_y), &text, opts);
         });
     }
     // Edges first, then the nodes over them, then the words. An edge straight down from a node
     // with its word under it starts below the word, not through it.
-    let px = d.px_scale() / d.picture_scale();
     for (v, p, parent) in &graph {
         let Some(from) = parent else { continue };
         let (role, stroke) = match v {
@@ -296,13 +299,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             Vertex::Shadow { s: None, .. } => (RayRole::Shadow, uncast_style()),
             Vertex::Shadow { role, .. } => (*role, role.style()),
         };
-        let under_word = from.y - UNDER_WORD * px;
-        #[allow(clippy::float_cmp)] // a child straight below has its parent's very x
-        let start = if !deep && p.x == from.x && under_word > p.y + (RAY_NODE + 6.0) * px {
-            DVec2::new(from.x, under_word)
-        } else {
-            *from
-        };
+        let start = edge_start(v, *from, *p, deep, px);
         d.with_events(events_of(v), |d| {
             let tag = if v.uncast() { "ray:shadow-not-cast" } else { role.tag() };
             d.segment(tag, start, *p, stroke);
@@ -332,47 +329,331 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             }
         });
     }
-    for (v, p, _) in &graph {
-        let beside = TextOpts::LABEL.align(Align::LEFT_OF).offset(-36.0, 0.0);
-        // Under the node, or beside it when the rows are too close (a deep, narrow tree).
-        let below = if deep {
-            TextOpts::NOTE.align(Align::RIGHT_OF).offset(38.0, 0.0).size(TextSize::Small)
+    // The words, each at the first of its candidate spots that is clear of the edges it does
+    // not name, of the discs and of the words already placed: the shadow leaves' first (short,
+    // under their leaf), then the ray nodes' names, object words, colours and edge weights.
+    let tf = d.transform();
+    let edges: Vec<(usize, DVec2, DVec2)> = graph
+        .iter()
+        .enumerate()
+        .filter_map(|(j, (v, p, parent))| {
+            let from = (*parent)?;
+            let start = edge_start(v, from, *p, deep, px);
+            Some((j, tf.to_px(start), tf.to_px(*p)))
+        })
+        .collect();
+    let discs: Vec<PxRect> = graph
+        .iter()
+        .map(|(v, p, _)| {
+            let r = match v {
+                Vertex::Ray(k) if stopped.contains(k) => STOP_RADIUS,
+                Vertex::Ray(_) => RAY_NODE,
+                Vertex::Shadow { .. } => SHADOW_NODE,
+            };
+            let (c, r) = (tf.to_px(*p), tf.ref_px(r + 2.0));
+            PxRect { min: c - DVec2::splat(r), max: c + DVec2::splat(r) }
+        })
+        .collect();
+    let below_at = |dy: f64| {
+        if deep {
+            TextOpts::NOTE.align(Align::RIGHT_OF).offset(38.0, 0.0)
         } else {
-            TextOpts::NOTE.align(Align::BELOW).offset(0.0, -WORD_BELOW).size(TextSize::Small)
-        };
-        d.with_events(events_of(v), |d| match v {
-            Vertex::Ray(k) => {
-                // A stopped node's name stands outside its ring.
-                let beside = if stopped.contains(k) {
-                    beside.offset(-(STOP_RADIUS + STOP_CLEAR), 0.0)
-                } else {
-                    beside
-                };
-                d.text("name", *p, &names.ray[*k], beside);
-                let what = match log.nodes[*k].end.as_ref().and_then(|e| e.hit) {
-                    Some(h) => markup_escape(&scene.object_label(h.object.index, input.lang)),
-                    None => input.t(Label::Background).to_owned(),
-                };
-                // Fixed under the node: the halo keeps it readable over an edge.
-                d.text("object", *p, &what, below);
+            TextOpts::NOTE.align(Align::BELOW).offset(0.0, -dy)
+        }
+    };
+    let anchors = graph.iter().map(|(_, p, _)| tf.to_px(*p)).collect();
+    let mut spot = Spots { tf, plot: d.frame().plot, edges, discs, anchors };
+    if !stopped.is_empty() {
+        // The words keep off the depth-limit line.
+        let (a, b) = (DVec2::new(left, limit_y), DVec2::new(right, limit_y));
+        spot.edges.push((usize::MAX, tf.to_px(a), tf.to_px(b)));
+    }
+    for (v, p, _) in &graph {
+        let Vertex::Shadow { parent, light, s, .. } = v else { continue };
+        d.with_events(events_of(v), |d| {
+            let beside = TextOpts::LABEL.align(Align::LEFT_OF).offset(-22.0, 0.0);
+            d.text("name", *p, &names.shadow_name(*parent, *light), beside);
+            let s_text = match s {
+                Some(s) => format!("s = {}", slide_number(*s)),
+                None => "lum = 0".to_owned(),
+            };
+            d.text("object", *p, &s_text, below_at(SHADOW_WORD_BELOW));
+        });
+    }
+    for (j, (v, p, parent)) in graph.iter().enumerate() {
+        let Vertex::Ray(k) = v else { continue };
+        // A stopped node's words stand outside its ring.
+        let ring = if stopped.contains(k) { STOP_RADIUS + STOP_CLEAR } else { RAY_NODE };
+        let side = ring + 8.0;
+        let slant = ring * 0.8;
+        d.with_events(events_of(v), |d| {
+            let name = [
+                TextOpts::LABEL.align(Align::LEFT_OF).offset(-side, 0.0),
+                TextOpts::LABEL.align(Align { h: HAlign::Right, v: VAlign::Bottom }).offset(-slant, slant),
+                TextOpts::LABEL.align(Align { h: HAlign::Left, v: VAlign::Bottom }).offset(slant, slant),
+                TextOpts::LABEL.align(Align::RIGHT_OF).offset(side, 0.0),
+            ];
+            spot.place(d, j, "name", *p, &names.ray[*k], &name);
+            let what = match log.nodes[*k].end.as_ref().and_then(|e| e.hit) {
+                Some(h) => markup_escape(&scene.object_label(h.object.index, input.lang)),
+                None => input.t(Label::Background).to_owned(),
+            };
+            let under = WORD_BELOW;
+            let word = [
+                below_at(under),
+                TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Top }).offset(slant, -slant),
+                TextOpts::NOTE.align(Align { h: HAlign::Right, v: VAlign::Top }).offset(-slant, -slant),
+                TextOpts::NOTE.align(Align::RIGHT_OF).offset(side, 0.0),
+                TextOpts::NOTE.align(Align::LEFT_OF).offset(-side, 0.0),
+                TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Bottom }).offset(slant, slant),
+                TextOpts::NOTE.align(Align { h: HAlign::Right, v: VAlign::Bottom }).offset(-slant, slant),
+                below_at(under + 30.0),
+            ];
+            spot.place(d, j, "object", *p, &what, &word);
+            if let Some(colour) = log.nodes[*k].end.as_ref().map(|e| e.color).filter(|c| beyond_white(*c)) {
+                // A colour above 1 fills the disc white: its value is printed as computed.
+                let text = format!("I = {}", parts::rgb_text(colour));
+                let far = side + 24.0;
+                let mut spots = word.to_vec();
+                spots.extend([
+                    TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Bottom }).offset(far, slant),
+                    TextOpts::NOTE.align(Align { h: HAlign::Right, v: VAlign::Bottom }).offset(-far, slant),
+                    TextOpts::NOTE.align(Align::ABOVE).offset(0.0, side),
+                    below_at(under + 60.0),
+                ]);
+                spot.place(d, j, "colour", *p, &text, &spots);
             }
-            Vertex::Shadow { parent, light, s, .. } => {
-                let name = names.shadow_name(*parent, *light);
-                d.text("name", *p, &name, beside.offset(-22.0, 0.0));
-                let s_text = match s {
-                    Some(s) => format!("s = {}", slide_number(*s)),
-                    None => "lum = 0".to_owned(),
-                };
-                d.text(
-                    "object",
-                    *p,
-                    &s_text,
-                    if below.align == Align::BELOW { below.offset(0.0, -SHADOW_WORD_BELOW) } else { below },
-                );
+        });
+        if let (Some(from), Some((weight, role))) = (parent, edge_weight(input, log, *k)) {
+            // The weight the child's colour is multiplied by (I = I_local + ks·R + kt·T), beside
+            // the edge it weighs, in its colour.
+            let a = tf.to_px(edge_start(v, *from, *p, deep, px));
+            let b = tf.to_px(*p);
+            let along = (b - a).normalize_or_zero();
+            // The two normals of the edge in reference pixels, y up (the page's y runs down); a
+            // label whose corner stands on a normal, its box on the normal's side, keeps clear
+            // of the edge's whole line.
+            let normal = DVec2::new(-along.y, -along.x);
+            let weight_opts = TextOpts::NOTE.color(role.color());
+            let mut spots = Vec::new();
+            for share in WEIGHT_AT {
+                let at = tf.to_world(a + (b - a) * share);
+                let corners: Vec<TextOpts> =
+                    [normal * WEIGHT_GAP, -normal * WEIGHT_GAP, normal * WEIGHT_FAR, -normal * WEIGHT_FAR]
+                        .into_iter()
+                        .map(|n| {
+                            let h = if n.x >= 0.0 { HAlign::Left } else { HAlign::Right };
+                            let v = if n.y >= 0.0 { VAlign::Bottom } else { VAlign::Top };
+                            weight_opts.align(Align { h, v }).offset(n.x, n.y)
+                        })
+                        .collect();
+                spots.push((at, corners));
+            }
+            let spots: Vec<(DVec2, &[TextOpts])> = spots.iter().map(|(at, c)| (*at, &c[..])).collect();
+            d.with_events(events_of(v), |d| spot.place_any(d, j, "weight", &spots, &weight));
+        }
+    }
+    if !stopped.is_empty() {
+        // The limit's words, last, where the others left room: under or over the line.
+        let (a, b) = (DVec2::new(left, limit_y), DVec2::new(right, limit_y));
+        // In full where there is room, else only what the level below does.
+        let full = format!(
+            "{} = {}: n = {} {}",
+            markup_escape(input.t(Label::MaxDepth)),
+            traced.max_depth,
+            traced.max_depth + 1,
+            input.t(Label::SpawnsNoRt)
+        );
+        let short = format!("n = {} {}", traced.max_depth + 1, input.t(Label::SpawnsNoRt));
+        let opts = TextOpts::NOTE.color(style::VERMILLION);
+        let gap = LIMIT_GAP;
+        let under = opts.align(Align { h: HAlign::Left, v: VAlign::Top }).offset(0.0, -gap);
+        let over = opts.align(Align { h: HAlign::Left, v: VAlign::Bottom }).offset(0.0, gap);
+        let sides = [under, over];
+        // Along the line from its left end, under it first.
+        let anchors: Vec<(DVec2, &[TextOpts])> = (0..LIMIT_SPOTS)
+            .map(|k| (a.lerp(b, f64::from(k) / f64::from(LIMIT_SPOTS)), &sides[..]))
+            .collect();
+        d.with_events(limits.iter().copied(), |d| {
+            let clear = |text: &str| {
+                spot.best(d, usize::MAX, "label", &anchors, text).is_some_and(|(c, _, _)| c <= 0.0)
+            };
+            let text = if clear(&full) { full } else { short };
+            spot.place_any(d, usize::MAX, "label", &anchors, &text);
+            // Words that end past the line's right end: the line runs on under them.
+            let words_end = match d.items.last().map(|i| &i.mark) {
+                Some(Mark::Text(t)) => tf.to_world(Drawing::ink_box(t, &tf).max).x,
+                _ => right,
+            };
+            if let Some(Mark::Line { points }) =
+                d.items.iter_mut().find(|i| i.tag == "depth-limit").map(|i| &mut i.mark)
+            {
+                if let Some(end) = points.last_mut() {
+                    end.x = end.x.max(words_end);
+                }
             }
         });
     }
     Ok(())
+}
+
+/// Where the edge from `from` down to a vertex at `p` starts: an edge straight down from a node
+/// with its word under it starts below the word, not through it.
+fn edge_start(v: &Vertex, from: DVec2, p: DVec2, deep: bool, px: f64) -> DVec2 {
+    let _ = v;
+    let under_word = from.y - UNDER_WORD * px;
+    #[allow(clippy::float_cmp)] // a child straight below has its parent's very x
+    if !deep && p.x == from.x && under_word > p.y + (RAY_NODE + 6.0) * px {
+        DVec2::new(from.x, under_word)
+    } else {
+        from
+    }
+}
+
+/// What a tree's words keep clear of, in pixels: the edges (with the index of the vertex each
+/// leads to) and the discs of the vertices; and the plot area they keep within.
+struct Spots {
+    tf: Transform,
+    plot: PxRect,
+    /// The vertices, in pixels: a node's words must lie nearer their own than any other.
+    anchors: Vec<DVec2>,
+    edges: Vec<(usize, DVec2, DVec2)>,
+    discs: Vec<PxRect>,
+}
+
+/// Reference pixels between an edge and its weight.
+const WEIGHT_GAP: f64 = 6.0;
+/// The farther gap a weight takes where the near one is taken.
+const WEIGHT_FAR: f64 = 20.0;
+/// Where along its edge a weight may stand, tried in this order (shares of the edge).
+const WEIGHT_AT: [f64; 9] = [0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8, 0.15, 0.85];
+/// How many spots along the depth-limit line its words may start at.
+const LIMIT_SPOTS: u32 = 8;
+/// Reference pixels between the depth-limit line and its words.
+const LIMIT_GAP: f64 = 8.0;
+
+/// How much a word may cross before it is not clear: nothing, in pixels.
+const WORD_GAP: f64 = 3.0;
+
+impl Spots {
+    /// Draws `markup` for vertex `owner` at `anchor` in the first of `candidates` whose ink is
+    /// clear (by [`WORD_GAP`]) of the edges but the one into `owner`, of the other vertices'
+    /// discs and of the words already drawn; when none is, in the least covered.
+    fn place(
+        &mut self,
+        d: &mut Drawing,
+        owner: usize,
+        tag: &str,
+        anchor: DVec2,
+        markup: &str,
+        candidates: &[TextOpts],
+    ) {
+        self.place_any(d, owner, tag, &[(anchor, candidates)], markup);
+    }
+
+    /// As [`Spots::place`], with candidates around several anchors, tried in order.
+    fn place_any(
+        &mut self,
+        d: &mut Drawing,
+        owner: usize,
+        tag: &str,
+        anchors: &[(DVec2, &[TextOpts])],
+        markup: &str,
+    ) {
+        if let Some((_, anchor, opts)) = self.best(d, owner, tag, anchors, markup) {
+            d.text(tag, anchor, markup, opts);
+        }
+    }
+
+    /// The first spot among `anchors`' candidates that is clear, else the least bad: its cost
+    /// (0 when clear), anchor and options.
+    fn best(
+        &self,
+        d: &Drawing,
+        owner: usize,
+        tag: &str,
+        anchors: &[(DVec2, &[TextOpts])],
+        markup: &str,
+    ) -> Option<(f64, DVec2, TextOpts)> {
+        let words: Vec<PxRect> = d
+            .items
+            .iter()
+            .filter_map(|i| match &i.mark {
+                Mark::Text(t) => Some(Drawing::ink_box(t, &self.tf)),
+                _ => None,
+            })
+            .collect();
+        let mut best: Option<(f64, DVec2, TextOpts)> = None;
+        for (anchor, candidates) in anchors {
+            for opts in *candidates {
+                let ink = Drawing::ink_box(&opts.label(markup, *anchor), &self.tf).inflate(WORD_GAP);
+                let crossed: f64 = self
+                    .edges
+                    .iter()
+                    // A weight may cross the depth-limit line (its edge does), nothing else.
+                    .filter(|(to, _, _)| *to != owner && !(tag == "weight" && *to == usize::MAX))
+                    .map(|(_, a, b)| ink.length_inside(*a, *b))
+                    .sum();
+                // Its own disc too, but for the words beside it, which stand clear of it by their
+                // offsets (a stopped node's ring reaches past the word under it).
+                let discs = self.discs.iter().enumerate().filter(|(j, _)| *j != owner || tag == "weight");
+                let covered: f64 = words.iter().chain(discs.map(|(_, r)| r)).map(|r| ink.overlap(r)).sum();
+                let outside = ink.width() * ink.height() - ink.overlap(&self.plot);
+                // A node's word as near another vertex as its own reads as that one's.
+                let own = self.tf.to_px(*anchor);
+                let own_gap = gap_to(&ink, own);
+                let rival = tag != "weight"
+                    && self.anchors.iter().any(|at| at.distance(own) > 1.0 && gap_to(&ink, *at) <= own_gap);
+                let cost = crossed * CROSSING_COST
+                    + covered
+                    + outside * OUTSIDE_COST
+                    + if rival { RIVAL_COST } else { 0.0 };
+                if best.as_ref().is_none_or(|(c, _, _)| cost < *c) {
+                    best = Some((cost, *anchor, *opts));
+                }
+                if cost <= 0.0 {
+                    return best;
+                }
+            }
+        }
+        best
+    }
+}
+
+/// What a word nearer another vertex than its own costs: more than any overlap.
+const RIVAL_COST: f64 = 1e6;
+
+/// The distance from `p` to the rectangle `r` (0 inside).
+fn gap_to(r: &PxRect, p: DVec2) -> f64 {
+    p.distance(p.clamp(r.min, r.max))
+}
+
+/// What a square pixel of word outside the plot area costs (against one over another word).
+const OUTSIDE_COST: f64 = 10.0;
+
+/// What a pixel of edge inside a word costs against a square pixel of word over a word or a
+/// disc: a word across a line is harder to read than one touching another's corner.
+const CROSSING_COST: f64 = 10.0;
+
+/// Whether a node's colour has a channel above 1: its swatch clips to white.
+fn beyond_white(c: Rgb) -> bool {
+    c.0.iter().any(|x| *x > 1.0)
+}
+
+/// The weight on the edge into ray node `k` from its parent, as the lecture writes it
+/// (`ks = 0.8` on an R edge, `kt = 0.9` on a T edge: `I = I_local + ks·R + kt·T`), with the
+/// edge's colour role; none for the primary ray.
+fn edge_weight<V: Planar>(input: &Input<'_, V>, log: &EventLog<V>, k: usize) -> Option<(String, RayRole)> {
+    let parent = log.nodes[k].parent?;
+    let object = log.nodes[parent].end.as_ref()?.hit?.object.index;
+    let material = input.scene.material_of(object);
+    let kind = log.nodes[k].start.kind;
+    let (symbol, weight) = match kind {
+        RayKind::Reflected => (Label::WeightKs, material.ks),
+        RayKind::Transmitted => (Label::WeightKt, material.kt),
+        RayKind::Primary => return None,
+    };
+    Some((format!("{} = {}", input.t(symbol), slide_number(weight)), parts::role(kind)))
 }
 
 /// The radii, in reference pixels, of a ray's node and of a shadow leaf.
@@ -384,8 +665,6 @@ const WORD_BELOW: f64 = 34.0;
 const SHADOW_WORD_BELOW: f64 = 20.0;
 /// The height of the box of a word under a node (small text), in reference pixels.
 const WORD_BOX: f64 = 41.0;
-/// The reference pixels that the limit's words take under its line.
-const LIMIT_TEXT: f64 = 52.0;
 
 /// Reference pixels from a ray node's centre down to below the word under it, with a gap: where
 /// an edge straight down starts, and the least depth of the limit line under the last row.

@@ -135,7 +135,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     d.fit_view(&points, 0.06);
     let view = d.view;
 
-    let anchors = draw_objects(d, scene, &plane, &view, &[], style::BLACK);
+    let anchors = draw_objects(d, scene, &plane, &view, &[]);
     for s in &segments {
         let role = parts::role(log.nodes[s.node].start.kind);
         let to = s.to.unwrap_or_else(|| exit_point(s.from, s.dir, &view));

@@ -1,7 +1,8 @@
 //! `shadows` (lecture "Ray tracing – calculul culorii unui pixel (2)", algorithm.md §5, §11
 //! "Shadow rays are segments"): at one recorded hit I, the shadow ray L towards every light — a
-//! segment from the offset origin to the light — with the objects it meets marked where it meets
-//! them, and the shadow factor s: 1 when nothing is in between, 0 behind an opaque object, the
+//! segment from the offset origin to the light — with the objects it meets outlined by kind (a
+//! transparent one in the attenuated L's pink, an opaque one in the stopped L's black, both named
+//! in the legend) and marked where it meets them, and the shadow factor s: 1 when nothing is in between, 0 behind an opaque object, the
 //! product of the kt of the transparent ones otherwise. A 3D trace is drawn in the plane of N and
 //! the first blocked L, turned so that the scene's up (the camera's v) is drawn upwards.
 
@@ -95,12 +96,24 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             legend_role(d, role, lang);
         }
     }
+    // Occluders outlined by kind, as their shadow rays are drawn: a transparent one (kt > 0) in
+    // the attenuated L's pink, an opaque one in the stopped L's black; the legend says which.
+    let occluder_kinds: Vec<(usize, bool)> =
+        shadows.iter().flat_map(|s| s.occluders.iter().map(|o| (o.object.index, o.kt > 0.0))).collect();
+    let kind_colour =
+        |transparent: bool| if transparent { RayRole::BlockedShadow } else { RayRole::OpaqueShadow }.color();
     if shadows.iter().any(|s| !s.occluders.is_empty()) {
         d.legend_entry(
             input.t(Label::OccluderPoint),
             Pen::NONE,
-            crate::canvas::LegendIcon::Dot(RayRole::BlockedShadow.color()),
+            crate::canvas::LegendIcon::Dot(style::DARK_GREY),
         );
+    }
+    for (transparent, word) in [(true, Label::TransparentOccluder), (false, Label::OpaqueOccluder)] {
+        if occluder_kinds.iter().any(|(_, t)| *t == transparent) {
+            let outline = style::outline(kind_colour(transparent)).with_width(parts::EMPHASIS_WIDTH);
+            d.legend_entry(input.t(word), outline, crate::canvas::LegendIcon::Swatch(style::OBJECT_FILL));
+        }
     }
     // The view: I, the occluders, the near lights, and where the incoming ray came from
     // (clipped); a far light is left out, its L drawn leaving the picture towards it.
@@ -125,7 +138,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let scene_part =
         crate::canvas::View::new(view.xmin(), column.x, view.ymin(), view.ymax()).unwrap_or(view);
 
-    let anchors = draw_objects(d, scene, &plane, &scene_part, &occluding, RayRole::BlockedShadow.color());
+    // An object both kinds of L meet (never: kt is the object's) takes the first.
+    let emphasis: Vec<(usize, crate::canvas::style::Rgba)> =
+        occluder_kinds.iter().map(|(k, transparent)| (*k, kind_colour(*transparent))).collect();
+    let anchors = draw_objects(d, scene, &plane, &scene_part, &emphasis);
     let hit_ev: Vec<usize> = log.ended_by(node_index).into_iter().collect();
     d.with_events(log.ray_events(node_index), |d| draw_ray(d, parts::role(node.start.kind), incoming, i));
     let light_name = |k: usize| if scene.lights.len() == 1 { "S".to_owned() } else { sub("S", k + 1) };
@@ -153,7 +169,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         if let Some(t) = s.block {
             let at = plane.point(s.origin + s.direction * t);
             d.with_events([s.event], |d| {
-                d.marker("occluder-point", at, style::DOT_RADIUS, RayRole::BlockedShadow.color(), Pen::NONE);
+                // In its ray's colour: pink where every occluder lets light through, else black.
+                let colour = kind_colour(s.occluders.iter().all(|o| o.kt > 0.0));
+                d.marker("occluder-point", at, style::DOT_RADIUS, colour, Pen::NONE);
             });
         }
     }

@@ -3,8 +3,9 @@
 //! parallel planes `lo_k ≤ n_k·x ≤ hi_k` (the axes for a box, the lecture's 0°, 45°, 90°, 135° for
 //! Kay–Kajiya), drawn with its planes dashed; a ray that meets it and one that misses it by the
 //! least, each with the points where it crosses every plane (I_k, E_k at the recorded `t`); and
-//! beside them each ray's recorded per-slab intervals [t_i, t_e] on a t axis, with max t_i and
-//! min t_e — the test itself, as the trace recorded it.
+//! beside them each ray's recorded per-slab intervals [t_i, t_e] on a t axis (from 0, ticked and
+//! numbered), with the lines max t_i and min t_e named where they stand — the test itself, as
+//! the trace recorded it.
 
 use glam::DVec2;
 
@@ -249,7 +250,7 @@ pub fn draw<V: Planar>(
     }
     let one = only(scene, focus);
     let first_item = d.items.len();
-    let anchors = parts::draw_objects(d, &one, &plane, &scene_part, &[], style::BLACK);
+    let anchors = parts::draw_objects(d, &one, &plane, &scene_part, &[]);
     // The object keeps its scene index in its tag (`object:K`), as in every other figure.
     for item in &mut d.items[first_item..] {
         item.tag = format!("object:{focus}");
@@ -295,7 +296,8 @@ pub fn draw<V: Planar>(
     let width = view.xmax() - column.x;
     let left = column.x + 0.1 * width;
     let right = view.xmax() - 0.04 * width;
-    let t_lo = tested.iter().flat_map(finite).fold(f64::INFINITY, f64::min);
+    // The axis starts at t = 0, the ray's origin, or before it when an interval does.
+    let t_lo = tested.iter().flat_map(finite).fold(0.0, f64::min);
     let t_hi = tested.iter().flat_map(finite).fold(f64::NEG_INFINITY, f64::max);
     let (t_lo, t_hi) = if t_lo < t_hi {
         (t_lo - 0.08 * (t_hi - t_lo), t_hi + 0.08 * (t_hi - t_lo))
@@ -303,7 +305,10 @@ pub fn draw<V: Planar>(
         (t_lo - 1.0, t_hi + 1.0)
     };
     let x_of = |t: f64| left + (t.clamp(t_lo, t_hi) - t_lo) / (t_hi - t_lo) * (right - left);
-    let rows = slabs.len() as f64 + 3.0;
+    // A block: its title, a row per slab, the t axis under them (two rows: ticks and numbers),
+    // the verdict.
+    let rows = slabs.len() as f64 + 5.0;
+    let step = tick_step(t_hi - t_lo);
     let row_h = view.height() / (rows * tested.len() as f64 + 0.5);
     for (k, t) in tested.iter().enumerate() {
         d.with_events(t.events.iter().copied(), |d| {
@@ -342,6 +347,39 @@ pub fn draw<V: Planar>(
                     d.segment(tag, DVec2::new(x_of(value), y_top), DVec2::new(x_of(value), y_bot), line);
                 }
             }
+            // The two lines named at their feet, under the rows: the left one's name to its left,
+            // the right one's to its right, so that close lines keep their names apart.
+            let names = [(t.t_in, "max t_i"), (t.t_out, "min t_e")];
+            let (first, second) = if t.t_in <= t.t_out { (names[0], names[1]) } else { (names[1], names[0]) };
+            for ((value, name), h) in [(first, HAlign::Right), (second, HAlign::Left)] {
+                if value.is_finite() {
+                    let opts = TextOpts::NOTE.align(Align { h, v: VAlign::Top }).color(colour).no_halo();
+                    let dx = if h == HAlign::Right { -4.0 } else { 4.0 };
+                    d.text("line-name", DVec2::new(x_of(value), y_bot), name, opts.offset(dx, -2.0));
+                }
+            }
+            // The t axis: ticks every `step`, zero among them, numbered, and its name.
+            let y_axis = y_bot - row_h * 1.1;
+            d.segment("t-scale", DVec2::new(left, y_axis), DVec2::new(right, y_axis), style::object());
+            let tick = row_h * 0.15;
+            // Whole numbers of steps, counted in f64 (exact at these sizes).
+            let (mut k, last_tick) = ((t_lo / step).ceil(), (t_hi / step).floor());
+            while k <= last_tick {
+                let value = k * step;
+                k += 1.0;
+                let x = x_of(value);
+                d.segment(
+                    "t-tick",
+                    DVec2::new(x, y_axis + tick),
+                    DVec2::new(x, y_axis - tick),
+                    style::object(),
+                );
+                let opts = TextOpts::NOTE.align(Align::BELOW).offset(0.0, -4.0).no_halo();
+                d.text("t-tick-value", DVec2::new(x, y_axis - tick), &slide_number(value), opts);
+            }
+            let opts = TextOpts::LABEL.align(Align::RIGHT_OF).offset(8.0, 0.0).no_halo();
+            d.text("t-axis-name", DVec2::new(right, y_axis), "t", opts);
+            let y_bot = y_axis - row_h * 1.4;
             let relation = if t.t_in <= t.t_out { "≤" } else { ">" };
             let verdict = if t.hit { Label::MeetsVolume } else { Label::MissesVolume };
             let text = format!(
@@ -355,6 +393,17 @@ pub fn draw<V: Planar>(
         });
     }
     Ok(())
+}
+
+/// The most ticks a t axis carries.
+const MAX_TICKS: f64 = 8.0;
+
+/// The step between the ticks of a t axis `span` long: the least of 1, 2 or 5 × 10^k that puts
+/// at most [`MAX_TICKS`] ticks on it.
+fn tick_step(span: f64) -> f64 {
+    let raw = (span / MAX_TICKS).max(1e-9);
+    let unit = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0].into_iter().map(|m| m * unit).find(|s| *s >= raw).unwrap_or(10.0 * unit)
 }
 
 /// A scene with only object `index` (for drawing the object the volume bounds).
