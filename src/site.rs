@@ -550,25 +550,7 @@ fn student_html(lang: Lang) -> String {
 /// may not use): `self.WHITTED_WASM = "<the module in base64>";`, read by `whitted.js`.
 #[must_use]
 pub fn module_script(wasm: &[u8]) -> String {
-    format!("self.WHITTED_WASM = \"{}\";\n", base64(wasm))
-}
-
-/// Standard base64 (RFC 4648 §4, with `=` padding): every 3 bytes become 4 symbols of 6 bits.
-fn base64(bytes: &[u8]) -> String {
-    const SYMBOLS: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for chunk in bytes.chunks(3) {
-        let b = [chunk[0], chunk.get(1).copied().unwrap_or(0), chunk.get(2).copied().unwrap_or(0)];
-        let n = u32::from(b[0]) << 16 | u32::from(b[1]) << 8 | u32::from(b[2]);
-        for k in 0..4 {
-            if k <= chunk.len() {
-                out.push(char::from(SYMBOLS[(n >> (18 - 6 * k) & 63) as usize]));
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
+    format!("self.WHITTED_WASM = \"{}\";\n", crate::canvas::subset::base64(wasm))
 }
 
 /// What the index page shows for one written figure.
@@ -738,19 +720,7 @@ mod tests {
     }
 
     #[test]
-    fn base64_is_rfc_4648() {
-        // RFC 4648 §10's test vectors.
-        for (plain, coded) in [
-            ("", ""),
-            ("f", "Zg=="),
-            ("fo", "Zm8="),
-            ("foo", "Zm9v"),
-            ("foob", "Zm9vYg=="),
-            ("foobar", "Zm9vYmFy"),
-        ] {
-            assert_eq!(base64(plain.as_bytes()), coded);
-        }
-        assert_eq!(base64(&[0xff, 0xfe, 0x00]), "//4A");
+    fn the_module_script_carries_the_module_in_base64() {
         assert_eq!(module_script(b"f"), "self.WHITTED_WASM = \"Zg==\";\n");
     }
 

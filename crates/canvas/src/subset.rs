@@ -255,7 +255,7 @@ fn assemble(tables: &BTreeMap<[u8; 4], Vec<u8>>) -> Vec<u8> {
     out
 }
 
-/// `bytes` in base64 (RFC 4648, with padding), for a `data:` URL.
+/// `bytes` in base64 (RFC 4648, with padding): a font in a `data:` URL, the module in a page.
 #[must_use]
 pub fn base64(bytes: &[u8]) -> String {
     const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -293,6 +293,7 @@ mod tests {
         ] {
             assert_eq!(base64(plain.as_bytes()), coded);
         }
+        assert_eq!(base64(&[0xff, 0xfe, 0x00]), "//4A");
     }
 
     #[test]
