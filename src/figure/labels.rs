@@ -254,6 +254,8 @@ pub enum Label {
     NodesEntered,
     /// Caption: objects tested.
     ObjectsTested,
+    /// Caption: "k of n", out of.
+    OutOf,
     /// Legend: a node whose box the ray met.
     NodeEntered,
     /// Legend: a node whose box it missed.
@@ -595,6 +597,7 @@ impl Label {
             Self::NodesEntered => ("opened", "deschise"),
             Self::NodesSkipped => ("not opened (beyond the hit)", "nedeschise (dincolo de intersecție)"),
             Self::ObjectsTested => ("objects tested", "obiecte testate"),
+            Self::OutOf => ("of", "din"),
             Self::NodeEntered => {
                 ("box met: opened (n: order opened)", "volum intersectat: deschis (n: ordinea deschiderii)")
             }
@@ -859,6 +862,13 @@ pub fn scene_lead(scene_name: &str, lang: Lang) -> String {
         Lang::En => format!("{} {} · ", Label::Scene.text(lang), markup_escape(scene_name)),
         Lang::Ro => String::new(),
     }
+}
+
+/// `objects tested: k of n`: a ray's object tests against the scene's n objects, all of which
+/// brute force would test; the cost lesson compares the structures by it.
+#[must_use]
+pub fn objects_tested(tested: usize, objects: usize, lang: Lang) -> String {
+    format!("{}: {tested} {} {objects}", Label::ObjectsTested.text(lang), Label::OutOf.text(lang))
 }
 
 /// `scene NAME · pixel (i, j) (picked: …)`: the caption's first part ([`scene_lead`]).

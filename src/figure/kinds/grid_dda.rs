@@ -10,7 +10,7 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::Layout;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
-use crate::figure::labels::Label;
+use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects, text_column};
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{first_hit, grid_pitfall, search_indexed, GridPitfall};
@@ -102,13 +102,15 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
 
     d.set_title(input.t(Label::TitleGridDda));
     let resolution: Vec<String> = cells.iter().map(ToString::to_string).collect();
+    let object_tests = search_indexed(log, 0).filter(|(_, e)| matches!(e, Event::ObjectTest { .. })).count();
     let mut caption = format!(
-        "{} · {} {} · {}: {}",
+        "{} · {} {} · {}: {} · {}",
         input.traced(traced),
         input.t(Label::Grid),
         resolution.join(" × "),
         input.t(Label::CellsVisited),
-        steps.len()
+        steps.len(),
+        labels::objects_tested(object_tests, scene.objects.len(), input.lang)
     );
     if V::DIM == 3 {
         caption.push_str(&format!(" · {} {}{}", input.t(Label::AxisPlane), names[axes[0]], names[axes[1]]));

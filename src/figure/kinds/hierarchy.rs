@@ -13,7 +13,7 @@ use super::Input;
 use crate::accel::{Layout, TreeNode};
 use crate::bounds::aabb::Aabb;
 use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Mark, Pen, Text, TextOpts, VAlign, View};
-use crate::figure::labels::Label;
+use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
 use crate::figure::plane::{Outline, PagePlane, Planar};
 use crate::figure::source::{first_hit, met, search_events, search_indexed};
@@ -352,7 +352,7 @@ pub fn draw<V: Planar>(
     if skipped > 0 {
         caption.push_str(&format!("{}: {skipped}, ", input.t(Label::NodesSkipped)));
     }
-    caption.push_str(&format!("{}: {object_tests}", input.t(Label::ObjectsTested)));
+    caption.push_str(&labels::objects_tested(object_tests, scene.objects.len(), input.lang));
     if let Some([a, b]) = axes {
         let names = ["x", "y", "z"];
         caption.push_str(&format!(" · {} {}{}", input.t(Label::AxisPlane), names[a], names[b]));
