@@ -421,14 +421,15 @@ pub fn layout(markup: &str, size: f64, weight: Weight) -> TextLayout {
     }
     LAID.with(|cache| {
         let mut cache = cache.borrow_mut();
-        if let Some(laid) = cache.get(&(markup.to_owned(), size.to_bits(), weight)) {
+        let key = (markup.to_owned(), size.to_bits(), weight);
+        if let Some(laid) = cache.get(&key) {
             return laid.clone();
         }
         if cache.len() >= LAYOUT_CACHE_ENTRIES {
             cache.clear();
         }
         let laid = lay_out(markup, size, weight);
-        cache.insert((markup.to_owned(), size.to_bits(), weight), laid.clone());
+        cache.insert(key, laid.clone());
         laid
     })
 }
