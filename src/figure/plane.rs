@@ -167,10 +167,11 @@ fn point_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
 }
 
 /// The distance between segments `a`–`b` and `c`–`d`: 0 when they cross, else the least distance
-/// from an end of one to the other.
-fn segment_gap(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> f64 {
+/// from an end of one to the other (0 too when they touch or overlap).
+#[must_use]
+pub fn segment_gap(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> f64 {
     let side = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
-    if side(a, b, c) * side(a, b, d) <= 0.0 && side(c, d, a) * side(c, d, b) <= 0.0 {
+    if side(a, b, c) * side(a, b, d) < 0.0 && side(c, d, a) * side(c, d, b) < 0.0 {
         return 0.0;
     }
     [
@@ -423,6 +424,9 @@ mod tests {
         let line = Outline::Line { point: v(0.0, -1.0), dir: v(1.0, 0.0) };
         assert!((line.gap(v(0.0, 0.0), v(3.0, 2.0)) - 1.0).abs() < 1e-12);
         assert_eq!(line.gap(v(0.0, 0.0), v(0.0, -2.0)), 0.0);
+        // Collinear segments apart are apart; touching ones meet.
+        assert!((segment_gap(v(0.0, 0.0), v(1.0, 0.0), v(2.0, 0.0), v(3.0, 0.0)) - 1.0).abs() < 1e-12);
+        assert_eq!(segment_gap(v(0.0, 0.0), v(1.0, 0.0), v(1.0, 0.0), v(1.0, 1.0)), 0.0);
     }
 
     #[test]
