@@ -256,6 +256,10 @@ pub enum Label {
     ObjectsTested,
     /// Caption: "k of n", out of.
     OutOf,
+    /// A note on a ray that passes near an object: "misses" (EN, before the object's name).
+    Misses,
+    /// The same note: "by" (EN, before the distance).
+    MissesBy,
     /// Legend: a node whose box the ray met.
     NodeEntered,
     /// Legend: a node whose box it missed.
@@ -598,6 +602,8 @@ impl Label {
             Self::NodesSkipped => ("not opened (beyond the hit)", "nedeschise (dincolo de intersecție)"),
             Self::ObjectsTested => ("objects tested", "obiecte testate"),
             Self::OutOf => ("of", "din"),
+            Self::Misses => ("misses", "trece la"),
+            Self::MissesBy => ("by", "de"),
             Self::NodeEntered => {
                 ("box met: opened (n: order opened)", "volum intersectat: deschis (n: ordinea deschiderii)")
             }
@@ -632,8 +638,8 @@ impl Label {
             Self::LeafSymbol => ("leaf", "frunză"),
             Self::SamplingIs => ("--aa", "eșantionare:"),
             Self::PlaneOfRow => (
-                "each panel drawn in the plane of its row of rays (u and the row's direction)",
-                "fiecare panou desenat în planul rândului său de raze (u și direcția rândului)",
+                "each panel drawn in the plane of its row of rays (u to the right, the row's direction up)",
+                "fiecare panou desenat în planul rândului său de raze (u spre dreapta, direcția rândului în sus)",
             ),
             Self::TitleBackward => (
                 "Rays are traced backwards, against the light",
@@ -931,6 +937,8 @@ mod tests {
         Label::Observer,
         Label::Normal,
         Label::ViewWindow,
+        Label::Misses,
+        Label::MissesBy,
         Label::Tir,
         Label::SectionsNote,
         Label::TitleUniform,

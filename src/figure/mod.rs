@@ -8,6 +8,7 @@
 //! make one; `Lang` is the narration's. The items of a `Drawing` carry the main trace's event
 //! indices (`Drawing::with_events`), so a page can light up what a narration step explains.
 
+pub mod clearance;
 pub mod kinds;
 pub mod labels;
 pub mod lighting;

@@ -126,8 +126,9 @@ pub const EMPHASIS_WIDTH: f64 = style::OBJECT_WIDTH * 1.6;
 
 /// Draws every object of `scene` on `plane` (sections solid and filled, projection outlines faint
 /// and dashed), unbounded lines clipped to `clip`; objects in `emphasis` get a thick outline in
-/// the colour given with them. Returns where each visible object's name goes, for [`label_objects`] once
-/// the rays are drawn.
+/// the colour given with them. Records on the drawing how `plane` maps the scene's axes
+/// ([`Drawing::record_axes`]: a 2D scene keeps its own, x right and y up). Returns where each
+/// visible object's name goes, for [`label_objects`] once the rays are drawn.
 pub fn draw_objects<V: Planar>(
     d: &mut Drawing,
     scene: &Scene<V>,
@@ -135,6 +136,7 @@ pub fn draw_objects<V: Planar>(
     clip: &View,
     emphasis: &[(usize, Rgba)],
 ) -> Vec<(usize, DVec2)> {
+    d.record_axes(plane.point(V::ZERO), (0..V::DIM).map(|k| plane.dir(V::axis(k))));
     let mut anchors = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
         let tag = format!("object:{index}");

@@ -118,6 +118,70 @@ impl Outline {
             Self::Line { .. } => Vec::new(),
         }
     }
+
+    /// The distance on the page between segment `a`–`b` and the outline: 0 when they meet (the
+    /// segment crosses or touches it), else the least distance between their points (for a
+    /// circle `|c − ab| − r` outside it, `r − max |c − a|, |c − b|` inside).
+    #[must_use]
+    pub fn gap(&self, a: DVec2, b: DVec2) -> f64 {
+        let edges = |points: &[DVec2], closed: bool| {
+            let mut edges: Vec<(DVec2, DVec2)> = points.windows(2).map(|w| (w[0], w[1])).collect();
+            if closed && points.len() > 2 {
+                edges.push((points[points.len() - 1], points[0]));
+            }
+            edges.iter().map(|(c, d)| segment_gap(a, b, *c, *d)).fold(f64::INFINITY, f64::min)
+        };
+        match self {
+            Self::Circle { center, radius } => {
+                let (near, far) =
+                    (point_to_segment(*center, a, b), a.distance(*center).max(b.distance(*center)));
+                if near >= *radius {
+                    near - radius
+                } else if far <= *radius {
+                    radius - far
+                } else {
+                    0.0
+                }
+            }
+            Self::Polygon(points) => edges(points, true),
+            Self::Path(points) => edges(points, false),
+            Self::Line { point, dir } => {
+                let normal = dir.perp();
+                let (da, db) = ((a - *point).dot(normal), (b - *point).dot(normal));
+                if da * db <= 0.0 {
+                    0.0
+                } else {
+                    da.abs().min(db.abs())
+                }
+            }
+        }
+    }
+}
+
+/// The distance from `p` to the segment `a`–`b`.
+fn point_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let t =
+        if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+    p.distance(a + ab * t)
+}
+
+/// The distance between segments `a`–`b` and `c`–`d`: 0 when they cross, else the least distance
+/// from an end of one to the other (0 too when they touch or overlap).
+#[must_use]
+pub fn segment_gap(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> f64 {
+    let side = |p: DVec2, q: DVec2, r: DVec2| (q - p).perp_dot(r - p);
+    if side(a, b, c) * side(a, b, d) < 0.0 && side(c, d, a) * side(c, d, b) < 0.0 {
+        return 0.0;
+    }
+    [
+        point_to_segment(a, c, d),
+        point_to_segment(b, c, d),
+        point_to_segment(c, a, b),
+        point_to_segment(d, a, b),
+    ]
+    .into_iter()
+    .fold(f64::INFINITY, f64::min)
 }
 
 /// An object's outline and what it is.
@@ -343,6 +407,26 @@ mod tests {
         let Outline::Circle { radius, .. } = outlines[0].outline else { panic!() };
         assert!((radius - 0.8).abs() < 1e-12);
         assert!(outlines[0].section && !outlines[1].section);
+    }
+
+    #[test]
+    // A segment that meets an outline has a gap of exactly 0.
+    #[allow(clippy::float_cmp)]
+    fn gaps_between_a_segment_and_outlines() {
+        let v = DVec2::new;
+        let circle = Outline::Circle { center: v(0.0, 0.0), radius: 1.0 };
+        assert!((circle.gap(v(-2.0, 1.5), v(2.0, 1.5)) - 0.5).abs() < 1e-12);
+        assert_eq!(circle.gap(v(-2.0, 0.5), v(2.0, 0.5)), 0.0);
+        assert!((circle.gap(v(-0.2, 0.0), v(0.2, 0.0)) - 0.8).abs() < 1e-12);
+        let square = Outline::Polygon(vec![v(0.0, 0.0), v(1.0, 0.0), v(1.0, 1.0), v(0.0, 1.0)]);
+        assert!((square.gap(v(-1.0, 1.25), v(2.0, 1.25)) - 0.25).abs() < 1e-12);
+        assert_eq!(square.gap(v(-1.0, 0.5), v(2.0, 0.5)), 0.0);
+        let line = Outline::Line { point: v(0.0, -1.0), dir: v(1.0, 0.0) };
+        assert!((line.gap(v(0.0, 0.0), v(3.0, 2.0)) - 1.0).abs() < 1e-12);
+        assert_eq!(line.gap(v(0.0, 0.0), v(0.0, -2.0)), 0.0);
+        // Collinear segments apart are apart; touching ones meet.
+        assert!((segment_gap(v(0.0, 0.0), v(1.0, 0.0), v(2.0, 0.0), v(3.0, 0.0)) - 1.0).abs() < 1e-12);
+        assert_eq!(segment_gap(v(0.0, 0.0), v(1.0, 0.0), v(1.0, 0.0), v(1.0, 1.0)), 0.0);
     }
 
     #[test]

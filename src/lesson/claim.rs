@@ -16,7 +16,7 @@ use super::unknown;
 use crate::accel::{AccelKind, Layout};
 use crate::canvas::{Drawing, Item, Mark};
 use crate::complexity::Cost;
-use crate::figure::plane::Planar;
+use crate::figure::plane::{segment_gap, Planar};
 use crate::figure::source::{
     first_hit, grid_pitfall, incidence_deg, met, refraction_node, search_events, tir_node, vectors_apart_deg,
     FigureInput, GridPitfall,
@@ -608,23 +608,6 @@ fn length_inside(a: DVec2, b: DVec2, edges: &[(DVec2, DVec2)]) -> f64 {
         .filter(|w| inside(a + (b - a) * (0.5 * (w[0] + w[1])), edges))
         .map(|w| (w[1] - w[0]) * (b - a).length())
         .sum()
-}
-
-/// The distance between segments `a → b` and `c → d` (0 when they cross).
-fn segment_gap(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> f64 {
-    if crossing(a, b, c, d).is_some() {
-        return 0.0;
-    }
-    let to_segment = |p: DVec2, s: DVec2, e: DVec2| {
-        let v = e - s;
-        let k = if v.length_squared() > 0.0 {
-            ((p - s).dot(v) / v.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (p - (s + v * k)).length()
-    };
-    to_segment(a, c, d).min(to_segment(b, c, d)).min(to_segment(c, a, b)).min(to_segment(d, a, b))
 }
 
 /// [`Measure::MissMargin`].

@@ -8,6 +8,7 @@ use glam::DVec2;
 use std::path::Path;
 use std::sync::OnceLock;
 use whitted::canvas::{Drawing, Item, Mark};
+use whitted::figure::clearance::{MIN_CLEARANCE_WIDTHS, NOTE_TAG, TOUCH_PX};
 use whitted::figure::style::{MIN_NODE_CONTRAST, OBJECT_TAG, RAY_TAG};
 use whitted::figure::{Lang, Options};
 use whitted::lesson;
@@ -1018,4 +1019,258 @@ fn a_uniform_pixel_s_corners_are_filled_and_their_values_printed() {
         }
     }
     assert_eq!(checked, 2);
+}
+
+/// Whether `a` and `b` agree to within `1e-9` of their size.
+fn same_vector(a: DVec2, b: DVec2) -> bool {
+    (a - b).length() <= 1e-9 * (1.0 + a.length().max(b.length()))
+}
+
+/// Issue 32 item 3: a 2D lesson figure draws its scene as every 2D figure does: in the scene's
+/// own axes at one unit scale (world x to the drawing's +x, world y to its +y), and the drawing's
+/// +x is the page's right and its +y the page's up; read on the axes each panel records when it
+/// draws the scene (`Drawing::scene_axes`), not on pixels. Before: the 2D projections panels
+/// (primary-rays 2, aliasing 1) drew the camera's frame, rays running up the page under a
+/// printed `D = [0, −1]`: 4 figures (2 × EN/RO).
+#[test]
+fn every_2d_lesson_figure_draws_its_scene_in_the_scene_s_own_axes() {
+    let (mut found, mut checked) = (Vec::new(), 0);
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            let tf = d.transform();
+            let (o, right, up) = (tf.to_px(DVec2::ZERO), tf.to_px(DVec2::X), tf.to_px(DVec2::Y));
+            // Pixels run down the page: +y up means a smaller pixel y.
+            let (x, y) = (right - o, up - o);
+            assert!(x.x > 0.0 && x.y.abs() < 1e-6 && y.y < 0.0 && y.x.abs() < 1e-6, "{name}: {x} {y}");
+            let flat: Vec<_> = d.scene_axes.iter().filter(|a| a.axes.len() == 2).collect();
+            if flat.is_empty() {
+                continue;
+            }
+            checked += 1;
+            for panel in flat {
+                if !(same_vector(panel.axes[0], DVec2::X) && same_vector(panel.axes[1], DVec2::Y)) {
+                    found.push(format!("{name}: scene x → {}, y → {}", panel.axes[0], panel.axes[1]));
+                }
+            }
+        }
+    }
+    // The 2D lesson figures that draw their scene: rays, backward, projections, shadows,
+    // slab-test, kay-kajiya, bvh, grid-dda, octree.
+    assert!(checked >= 2 * 14, "only {checked} 2D figures record their axes");
+    assert!(found.is_empty(), "{} panels not in the scene's axes:\n{}", found.len(), found.join("\n"));
+}
+
+/// The components of a printed direction `D = [a, b]` (2D; the true minus read as `-`), or `None`
+/// when the text is not one (`D = S − O`, a 3D camera-space `D = [0, 0, −1]`).
+fn printed_direction(text: &str) -> Option<DVec2> {
+    let inside = text.strip_prefix("D = [")?.strip_suffix(']')?.replace('−', "-");
+    let parts: Vec<f64> = inside.split(", ").map(str::parse).collect::<Result<_, _>>().ok()?;
+    match parts.as_slice() {
+        [x, y] => Some(DVec2::new(*x, *y)),
+        _ => None,
+    }
+}
+
+/// Issue 32 item 3: a direction a 2D lesson figure prints, `D = [a, b]`, is the direction of the
+/// ray it is printed on, as drawn: the arrows of the ray whose line passes through the label's
+/// anchor point along D (with the drawing's +y up the page, the test above). Before: the 2D
+/// projections printed `D = [0, −1]` on rays drawn along +y: 4 figures (2 × EN/RO).
+#[test]
+fn every_direction_a_2d_lesson_figure_prints_is_the_one_its_arrows_point() {
+    let (mut found, mut checked) = (Vec::new(), 0);
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            for (anchor, text) in d.items.iter().filter_map(|i| match &i.mark {
+                Mark::Text(t) => Some((t.anchor, t.text.as_str())),
+                _ => None,
+            }) {
+                let Some(printed) = printed_direction(text) else { continue };
+                checked += 1;
+                // The arrows whose line passes through the anchor: the ray the label is on.
+                let on: Vec<DVec2> = d
+                    .items
+                    .iter()
+                    .filter(|i| i.tag.starts_with(RAY_TAG))
+                    .filter_map(|i| match i.mark {
+                        Mark::Arrow { from, to, .. } => Some((from, to)),
+                        _ => None,
+                    })
+                    .filter(|(from, to)| {
+                        let along = (*to - *from).normalize();
+                        (anchor - *from).perp_dot(along).abs() <= 1e-9 * (1.0 + anchor.distance(*from))
+                    })
+                    .map(|(from, to)| (to - from).normalize())
+                    .collect();
+                if on.is_empty() {
+                    found.push(format!("{name}: {text} is on no drawn ray"));
+                }
+                for drawn in on {
+                    if !same_vector(drawn, printed.normalize()) {
+                        found.push(format!("{name}: {text} printed, the ray drawn along {drawn}"));
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked >= 4, "only {checked} printed directions");
+    assert!(found.is_empty(), "{} directions:\n{}", found.len(), found.join("\n"));
+}
+
+/// The rays of a drawing, in pixels: each the polyline of its pieces joined end to start (an
+/// arrow to its first half, the line after it), with its tag and its stroke width in pixels.
+fn drawn_rays(d: &Drawing) -> Vec<(String, Vec<DVec2>, f64)> {
+    let tf = d.transform();
+    let mut rays: Vec<(String, Vec<DVec2>, f64)> = Vec::new();
+    for item in d.items.iter().filter(|i| i.tag.starts_with(RAY_TAG)) {
+        let points: Vec<DVec2> = match &item.mark {
+            Mark::Arrow { from, to, .. } => vec![*from, *to],
+            Mark::Line { points } => points.clone(),
+            _ => continue,
+        };
+        let points: Vec<DVec2> = points.into_iter().map(|p| tf.to_px(p)).collect();
+        match rays.last_mut() {
+            Some((tag, line, _)) if *tag == item.tag && line.last() == points.first() => {
+                line.extend(&points[1..]);
+            }
+            _ => rays.push((item.tag.clone(), points, tf.ref_px(item.pen.width))),
+        }
+    }
+    rays
+}
+
+/// An object's outline in pixels: a circle, or the edges of a polygon or a polyline.
+enum Outline {
+    Circle(DVec2, f64),
+    Edges(Vec<(DVec2, DVec2)>),
+}
+
+impl Outline {
+    /// The distance from `p` to the outline.
+    fn to_point(&self, p: DVec2) -> f64 {
+        match self {
+            Self::Circle(c, r) => (p.distance(*c) - r).abs(),
+            Self::Edges(edges) => {
+                edges.iter().map(|(a, b)| to_segment(p, *a, *b)).fold(f64::INFINITY, f64::min)
+            }
+        }
+    }
+
+    /// The distance from segment `a`–`b` to the outline (0 when it crosses it).
+    fn to_segment(&self, a: DVec2, b: DVec2) -> f64 {
+        match self {
+            Self::Circle(c, r) => {
+                let (near, far) = (to_segment(*c, a, b), a.distance(*c).max(b.distance(*c)));
+                if near >= *r {
+                    near - r
+                } else if far <= *r {
+                    r - far
+                } else {
+                    0.0
+                }
+            }
+            Self::Edges(edges) => edges
+                .iter()
+                .map(|(c, e)| {
+                    if cross(a, b, *c, *e) {
+                        0.0
+                    } else {
+                        [
+                            to_segment(a, *c, *e),
+                            to_segment(b, *c, *e),
+                            to_segment(*c, a, b),
+                            to_segment(*e, a, b),
+                        ]
+                        .into_iter()
+                        .fold(f64::INFINITY, f64::min)
+                    }
+                })
+                .fold(f64::INFINITY, f64::min),
+        }
+    }
+}
+
+/// The objects' outlines of a drawing, in pixels, with their tags.
+fn drawn_outlines(d: &Drawing) -> Vec<(String, Outline)> {
+    let tf = d.transform();
+    let ring = |points: &[DVec2], closed: bool| {
+        let px: Vec<DVec2> = points.iter().map(|p| tf.to_px(*p)).collect();
+        let mut edges: Vec<(DVec2, DVec2)> = px.windows(2).map(|w| (w[0], w[1])).collect();
+        if closed && px.len() > 2 {
+            edges.push((px[px.len() - 1], px[0]));
+        }
+        Outline::Edges(edges)
+    };
+    d.items
+        .iter()
+        .filter(|i| i.tag.starts_with(OBJECT_TAG))
+        .filter_map(|i| {
+            let outline = match &i.mark {
+                Mark::Circle { center, radius, .. } => Outline::Circle(tf.to_px(*center), tf.len_px(*radius)),
+                Mark::Polygon { points, .. } => ring(points, true),
+                Mark::Line { points } => ring(points, false),
+                Mark::Rect { min, max, .. } => {
+                    ring(&[*min, DVec2::new(max.x, min.y), *max, DVec2::new(min.x, max.y)], true)
+                }
+                _ => return None,
+            };
+            Some((i.tag.clone(), outline))
+        })
+        .collect()
+}
+
+/// Issue 32 item 3: a ray does not graze what it misses. In every lesson figure, in both
+/// languages, a drawn ray keeps at least `MIN_CLEARANCE_WIDTHS` of its stroke widths (centre line
+/// to outline, on the page) from every object outline it passes, unless it starts or ends on
+/// that outline (its hit, the surface it leaves), touches or crosses it (the discriminant's
+/// tangent ray, a shadow ray through the glass that attenuates it) — or the figure says by how
+/// much it misses: a note (`NOTE_TAG`) at the ray's spot nearest the outline,
+/// printing the gap in scene units. Read on the display list. Before: 40 rays in 10 figures
+/// (ray-casting 2, primary-rays 1 and 2, aliasing 1, grid 1, × EN/RO).
+#[test]
+fn no_ray_of_a_lesson_figure_grazes_an_object_it_misses() {
+    let (mut found, mut noted) = (Vec::new(), 0);
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            let tf = d.transform();
+            let outlines = drawn_outlines(d);
+            let notes: Vec<(DVec2, &str)> = d
+                .tagged(NOTE_TAG)
+                .filter_map(|i| match &i.mark {
+                    Mark::Text(t) => Some((tf.to_px(t.anchor), t.text.as_str())),
+                    _ => None,
+                })
+                .collect();
+            for (tag, line, width) in drawn_rays(d) {
+                let ends = [line[0], line[line.len() - 1]];
+                for (object, outline) in &outlines {
+                    if ends.iter().any(|p| outline.to_point(*p) <= TOUCH_PX) {
+                        continue;
+                    }
+                    let gap =
+                        line.windows(2).map(|w| outline.to_segment(w[0], w[1])).fold(f64::INFINITY, f64::min);
+                    // Within TOUCH_PX it touches (the tangent ray of the discriminant figure).
+                    if !(gap > TOUCH_PX && gap < MIN_CLEARANCE_WIDTHS * width) {
+                        continue;
+                    }
+                    let printed = whitted::format::slide_number(gap / tf.len_px(1.0));
+                    let said = notes.iter().any(|(at, text)| {
+                        line.windows(2).any(|w| to_segment(*at, w[0], w[1]) <= TOUCH_PX)
+                            && outline.to_point(*at) <= gap + 2.0
+                            && text.contains(&printed)
+                    });
+                    if said {
+                        noted += 1;
+                    } else {
+                        found.push(format!(
+                            "{name}: {tag} from {:.0} passes {gap:.1} px ({printed}) from {object} (width {width})",
+                            ends[0]
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "{} rays graze an object:\n{}", found.len(), found.join("\n"));
+    // ray-casting 2's shadow ray by the block and grid 1's ray by e, in both languages.
+    assert!(noted >= 4, "only {noted} near misses noted");
 }

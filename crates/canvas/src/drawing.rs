@@ -9,6 +9,18 @@ use super::items::{Item, LegendEntry, LegendPlace, Mark};
 use super::style::{self, Pen, Rgba};
 use super::view::View;
 
+/// How one panel of a drawing shows a scene: the drawing's world position of the scene's origin
+/// and, for each of the scene's axes in order (x, y, and z in 3D), the drawing's components of
+/// its unit vector. A scene drawn in its own axes, x to the right and y up at one scale `s`, has
+/// `axes == [(s, 0), (0, s)]`; a 3D scene's axes are projected onto the panel's plane.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneAxes {
+    /// Where the scene's origin is drawn.
+    pub origin: DVec2,
+    /// The drawn components of each scene axis's unit vector.
+    pub axes: Vec<DVec2>,
+}
+
 /// A figure: the display list, the world rectangle it shows, its canvas size, and its legend,
 /// title and caption.
 ///
@@ -44,6 +56,10 @@ pub struct Drawing {
     /// The tag prefix of the object outlines a label placed clear keeps off unless it names
     /// the object or its point lies on it ([`Drawing::guard_outlines`]).
     pub outline_guard: Option<String>,
+    /// How each panel that draws a scene maps the scene's axes onto the world of the drawing
+    /// ([`Drawing::record_axes`]), in the order the panels were drawn; empty for a drawing of no
+    /// scene (a chart, a tree). Metadata for tests and readers: no back end draws it.
+    pub scene_axes: Vec<SceneAxes>,
     /// The events of the items added now ([`Drawing::with_events`]).
     pub(super) events: Vec<usize>,
     /// The labels placed clear, as indices into `items`, each with whether it may go far
@@ -73,6 +89,7 @@ impl Drawing {
             label_area: None,
             guard: None,
             outline_guard: None,
+            scene_axes: Vec::new(),
             events: Vec::new(),
             placed_clear: Vec::new(),
         }
@@ -137,6 +154,13 @@ impl Drawing {
     /// also [`Drawing::labels_on_outlines`], the check.
     pub fn guard_outlines(&mut self, prefix: &str) -> &mut Self {
         self.outline_guard = Some(prefix.to_owned());
+        self
+    }
+
+    /// Records how a panel draws its scene ([`SceneAxes`]): where the scene's origin lands and
+    /// the drawing's components of the scene's unit axes.
+    pub fn record_axes(&mut self, origin: DVec2, axes: impl IntoIterator<Item = DVec2>) -> &mut Self {
+        self.scene_axes.push(SceneAxes { origin, axes: axes.into_iter().collect() });
         self
     }
 

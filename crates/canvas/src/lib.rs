@@ -39,7 +39,7 @@ pub mod svg;
 pub mod text;
 pub mod view;
 
-pub use drawing::Drawing;
+pub use drawing::{Drawing, SceneAxes};
 pub use items::{
     Align, ArrowPx, Corner, HAlign, Item, LegendEntry, LegendIcon, LegendPlace, Mark, Placement, Text,
     TextOpts, VAlign,

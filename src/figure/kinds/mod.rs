@@ -90,6 +90,8 @@ pub fn draw<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: Drawing) -> Re
 /// Draws `kind` into `d` once.
 fn draw_once<V: Planar>(kind: FigureKind, input: &Input<'_, V>, d: &mut Drawing) -> Result<(), FigureError> {
     draw_kind(kind, input, d)?;
+    // A ray that passes close by what it misses says by how much (issue 32 item 3).
+    super::clearance::note_near_misses(d, input.scene, input.lang);
     // With every label drawn, each placed clear goes back to its own point if a later one took it.
     d.settle_labels();
     Ok(())

@@ -28,6 +28,9 @@ use crate::shape::Dim;
 use crate::shape::Shape;
 use crate::trace::Tracer;
 
+use super::kinds::projections;
+use super::plane::Planar;
+use super::style::RAY_WIDTH;
 use super::{FigureError, FigureKind};
 
 mod logs;
@@ -236,7 +239,7 @@ impl TraceOptions {
 /// # Errors
 /// A pixel outside the image, or a given pixel (or a whole scan) whose trace lacks what the
 /// kind draws (a refraction for `refraction`, a hit for `local-model` and `shadows`).
-pub fn record<V: Dim>(
+pub fn record<V: Planar>(
     kind: FigureKind,
     scene: &Scene<V>,
     scene_name: &str,
@@ -583,16 +586,17 @@ pub fn default_pixel<V: Dim>(scene: &Scene<V>) -> (usize, usize) {
 const PROJECTION_RAYS: usize = 9;
 
 /// `projections`: the same pixels traced (primary rays only) with an orthographic and a
-/// perspective camera of the same window: evenly spread columns of the given pixel's row (the
-/// middle row by default).
-fn projections<V: Dim>(rec: &FigureTracer<'_, V>, aim: &Aim<V>) -> Vec<FigureTrace<V>> {
+/// perspective camera of the same window: spread columns of the given pixel's row (the middle
+/// row by default). Where the image has more columns than the figure draws, each is the column
+/// nearest its evenly spread place whose two rays keep clear of what they pass ([`clear_columns`]).
+fn projections<V: Planar>(rec: &FigureTracer<'_, V>, aim: &Aim<V>) -> Vec<FigureTrace<V>> {
     let cam = &rec.scene.camera;
     let row = match aim {
         Aim::Pixel(_, j) => *j,
         _ => cam.ny / 2,
     };
     let n = cam.nx.min(PROJECTION_RAYS);
-    let columns: Vec<usize> = (0..n)
+    let even: Vec<usize> = (0..n)
         .map(|k| {
             // Evenly spread over [0, Nx − 1], ends included.
             if n == 1 {
@@ -602,17 +606,97 @@ fn projections<V: Dim>(rec: &FigureTracer<'_, V>, aim: &Aim<V>) -> Vec<FigureTra
             }
         })
         .collect();
-    [Projection::Orthographic, Projection::Perspective]
-        .into_iter()
-        .map(|projection| {
-            let mut scene = rec.scene.clone();
-            scene.camera.projection = projection;
-            let rays: Vec<(Ray<V>, Target)> =
-                columns.iter().map(|&i| FigureTracer::pixel_ray(&scene, i, row)).collect();
-            let pick = if matches!(aim, Aim::Pixel(..)) { Pick::Given } else { Pick::Default };
-            rec.trace(&scene, &rays, 0, pick)
-        })
-        .collect()
+    let pick = if matches!(aim, Aim::Pixel(..)) { Pick::Given } else { Pick::Default };
+    let scenes = [Projection::Orthographic, Projection::Perspective].map(|projection| {
+        let mut scene = rec.scene.clone();
+        scene.camera.projection = projection;
+        scene
+    });
+    let traced = |columns: &[usize]| -> Vec<FigureTrace<V>> {
+        scenes
+            .iter()
+            .map(|scene| {
+                let rays: Vec<(Ray<V>, Target)> =
+                    columns.iter().map(|&i| FigureTracer::pixel_ray(scene, i, row)).collect();
+                rec.trace(scene, &rays, 0, pick)
+            })
+            .collect()
+    };
+    let first = traced(&even);
+    if n == cam.nx {
+        // Every column is drawn: nothing to choose.
+        return first;
+    }
+    let columns = clear_columns(rec, &scenes, row, &even, &first);
+    if columns == even {
+        first
+    } else {
+        traced(&columns)
+    }
+}
+
+/// The least clearance, in reference pixels at slide size, between a drawn primary ray of
+/// `projections` and an object's outline it passes: 3 ray widths (issue 32: a ray that grazes
+/// what it misses reads as a hit), with a third more for the estimate of the scale.
+const CLEAR_PX: f64 = 3.0 * RAY_WIDTH * 1.3;
+/// At most this many columns of a row are tried by [`clear_columns`] (evenly spread, with the
+/// evenly spread ones the figure would draw).
+const CLEAR_CANDIDATES: usize = 64;
+
+/// The columns `projections` draws: for each evenly spread column of `even` (traced in `first`),
+/// in order, the nearest column not yet taken, within half their spacing, whose orthographic and
+/// perspective rays both pass every object they do not hit by at least [`CLEAR_PX`] at the
+/// figure's estimated slide scale (`kinds::projections::slide_scale`), so that no ray seems to
+/// touch what it misses; none for a column whose reach holds no clear one (the figure draws
+/// fewer rays), and `even` itself when no column is clear.
+fn clear_columns<V: Planar>(
+    rec: &FigureTracer<'_, V>,
+    scenes: &[Scene<V>; 2],
+    row: usize,
+    even: &[usize],
+    first: &[FigureTrace<V>],
+) -> Vec<usize> {
+    let [ortho, persp] = first else { return even.to_vec() };
+    let cam = &rec.scene.camera;
+    let v_row = cam.pixel_center(0, row).1;
+    let extent = projections::extent(rec.scene, ortho, persp, v_row);
+    let need = CLEAR_PX / projections::slide_scale(&extent);
+    let planes = scenes.each_ref().map(|s| projections::row_plane(s, s.camera.projection, v_row));
+    let clearance = |i: usize| {
+        scenes
+            .iter()
+            .zip(&planes)
+            .map(|(scene, plane)| {
+                let one = rec.trace(scene, &[FigureTracer::pixel_ray(scene, i, row)], 0, Pick::Default);
+                projections::ray_clearance(rec.scene, plane, &one, 0, extent.y_far)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let tried = CLEAR_CANDIDATES.min(cam.nx);
+    let mut candidates: Vec<usize> = (0..tried)
+        .map(|k| (k * (cam.nx - 1) + (tried - 1) / 2) / (tried - 1).max(1))
+        .chain(even.iter().copied())
+        .collect();
+    candidates.sort_unstable();
+    candidates.dedup();
+    let mut clear: Vec<usize> = candidates.into_iter().filter(|i| clearance(*i) >= need).collect();
+    if clear.is_empty() {
+        return even.to_vec();
+    }
+    // A column's reach: half the spacing of the evenly spread ones (at least one column).
+    let reach = ((cam.nx - 1) / (2 * (even.len() - 1).max(1))).max(1);
+    let mut columns = Vec::new();
+    for &c in even {
+        let nearest = (0..clear.len()).min_by_key(|k| clear[*k].abs_diff(c));
+        if let Some(k) = nearest.filter(|k| clear[*k].abs_diff(c) <= reach) {
+            columns.push(clear.remove(k));
+        }
+    }
+    if columns.is_empty() {
+        return even.to_vec();
+    }
+    columns.sort_unstable();
+    columns
 }
 
 /// `refraction`: the score of [`refraction_node`].
