@@ -184,7 +184,7 @@ pub enum Label {
     SplitWhen,
     /// "samples traced".
     SamplesTraced,
-    /// "reused".
+    /// The corner reads that traced no new ray (the samples a square read again).
     Reused,
     /// "pixel" (its colour).
     PixelColour,
@@ -272,7 +272,8 @@ pub enum Label {
     NodesSkipped,
     /// "grid" (caption, before its cells).
     Grid,
-    /// "cells visited".
+    /// "voxels visited" (the lecture's word for a grid's cell, "voxel", in both languages, as in
+    /// the captions and the narration).
     CellsVisited,
     /// Legend: a visited cell.
     CellVisited,
@@ -284,7 +285,7 @@ pub enum Label {
     ListedByBox,
     /// Table: the same, after the object's name.
     BoxOnly,
-    /// "cell" (table head).
+    /// "voxel" (table head).
     Cell,
     /// The pitfall: "found while visiting cell".
     PitfallIn,
@@ -541,7 +542,7 @@ impl Label {
             Self::LeafColour => ("leaf: the mean of its corners", "frunză: media colțurilor"),
             Self::SplitWhen => ("a subregion splits while", "o subzonă se divide cât timp"),
             Self::SamplesTraced => ("samples traced", "eșantioane trasate"),
-            Self::Reused => ("reused", "refolosite"),
+            Self::Reused => ("re-read without a new ray", "recitite fără rază nouă"),
             Self::PixelColour => ("pixel", "pixelul"),
             Self::RaysTraced => ("primary rays traced (shared once)", "raze primare trasate (comune o dată)"),
             Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
@@ -611,17 +612,17 @@ impl Label {
             }
             Self::NodeUntested => ("never tested", "netestat"),
             Self::Grid => ("grid", "grila"),
-            Self::CellsVisited => ("cells visited", "voxeli parcurși"),
-            Self::CellVisited => ("cell visited (k: order)", "voxel parcurs (k: ordinea)"),
-            Self::CellExit => ("ray leaves the cell (min tMax)", "raza iese din voxel (min tMax)"),
-            Self::FoundBeyond => ("hit found beyond its cell", "intersecție găsită dincolo de voxel"),
+            Self::CellsVisited => ("voxels visited", "voxeli parcurși"),
+            Self::CellVisited => ("voxel visited (k: order)", "voxel parcurs (k: ordinea)"),
+            Self::CellExit => ("ray leaves the voxel (min tMax)", "raza iese din voxel (min tMax)"),
+            Self::FoundBeyond => ("hit found beyond its voxel", "intersecție găsită dincolo de voxel"),
             Self::ListedByBox => ("listed via its bounding box only", "listat doar prin volumul încadrator"),
             Self::BoxOnly => ("box only", "doar volumul"),
-            Self::Cell => ("cell", "voxel"),
-            Self::PitfallIn => ("the pitfall: hit found in cell", "capcana: intersecție găsită în voxelul"),
+            Self::Cell => ("voxel", "voxel"),
+            Self::PitfallIn => ("the pitfall: hit found in voxel", "capcana: intersecție găsită în voxelul"),
             Self::CellExitT => ("its exit", "ieșirea lui"),
             Self::PitfallRule => (
-                "a hit counts only within its cell:\nthe walk goes on",
+                "a hit counts only within its voxel:\nthe walk goes on",
                 "o intersecție contează numai în voxelul ei:\nparcurgerea continuă",
             ),
             Self::CornersOnly => {
