@@ -486,17 +486,27 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             let normal = DVec2::new(-along.y, -along.x);
             let weight_opts = TextOpts::NOTE.color(role.color());
             let mut spots = Vec::new();
-            for share in WEIGHT_AT {
+            // The near spots first; then, where the wedges beside the edge are taken (another
+            // edge leaves the node close by), spots farther out and nearer the edge's ends.
+            let near = [normal * WEIGHT_GAP, -normal * WEIGHT_GAP, normal * WEIGHT_FAR, -normal * WEIGHT_FAR];
+            let far = [
+                normal * WEIGHT_FARTHER,
+                -normal * WEIGHT_FARTHER,
+                normal * WEIGHT_GAP,
+                -normal * WEIGHT_GAP,
+            ];
+            let tries = WEIGHT_AT.iter().map(|s| (*s, &near)).chain(WEIGHT_ENDS.iter().map(|s| (*s, &far)));
+            for (share, offsets) in tries {
                 let at = tf.to_world(a + (b - a) * share);
-                let corners: Vec<TextOpts> =
-                    [normal * WEIGHT_GAP, -normal * WEIGHT_GAP, normal * WEIGHT_FAR, -normal * WEIGHT_FAR]
-                        .into_iter()
-                        .map(|n| {
-                            let h = if n.x >= 0.0 { HAlign::Left } else { HAlign::Right };
-                            let v = if n.y >= 0.0 { VAlign::Bottom } else { VAlign::Top };
-                            weight_opts.align(Align { h, v }).offset(n.x, n.y)
-                        })
-                        .collect();
+                let corners: Vec<TextOpts> = offsets
+                    .iter()
+                    .copied()
+                    .map(|n| {
+                        let h = if n.x >= 0.0 { HAlign::Left } else { HAlign::Right };
+                        let v = if n.y >= 0.0 { VAlign::Bottom } else { VAlign::Top };
+                        weight_opts.align(Align { h, v }).offset(n.x, n.y)
+                    })
+                    .collect();
                 spots.push((at, corners));
             }
             let spots: Vec<(DVec2, &[TextOpts])> = spots.iter().map(|(at, c)| (*at, &c[..])).collect();
@@ -577,6 +587,10 @@ const WEIGHT_GAP: f64 = 6.0;
 const WEIGHT_FAR: f64 = 20.0;
 /// Where along its edge a weight may stand, tried in this order (shares of the edge).
 const WEIGHT_AT: [f64; 9] = [0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8, 0.15, 0.85];
+/// The second round of spots along an edge (shares), with the farthest gap first.
+const WEIGHT_ENDS: [f64; 11] = [0.5, 0.6, 0.4, 0.7, 0.3, 0.8, 0.2, 0.85, 0.15, 0.9, 0.1];
+/// The farthest gap a weight takes from its edge, in reference pixels.
+const WEIGHT_FARTHER: f64 = 36.0;
 /// How many spots along the depth-limit line its words may start at.
 const LIMIT_SPOTS: u32 = 8;
 /// Reference pixels between the depth-limit line and its words.
