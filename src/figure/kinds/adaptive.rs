@@ -287,12 +287,8 @@ fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
     let mut lines = rule;
     let traced = pixel.samples.len();
     if !pixel.uniform {
-        lines.push(format!(
-            "{}: {traced} / {full}, {}: {}",
-            input.t(Label::SamplesTraced),
-            input.t(Label::Reused),
-            reads.saturating_sub(traced)
-        ));
+        lines.push(format!("{}: {traced} / {full}", input.t(Label::SamplesTraced)));
+        lines.push(format!("{}: {}", input.t(Label::Reused), reads.saturating_sub(traced)));
     }
     // A uniform pixel's corners, each as traced: the mean below is theirs.
     if pixel.uniform {
