@@ -505,7 +505,7 @@ impl Label {
             Self::Scene => ("scene", "scena"),
             Self::GivenRay => ("a given ray", "o rază dată"),
             Self::NothingBetween => ("nothing in between", "nimic între ele"),
-            Self::TowardsLight => ("to the light", "spre sursa S"),
+            Self::TowardsLight => ("to the light", "spre sursa"),
             Self::Opaque => ("opaque", "opac"),
             Self::PlaneUw => (
                 "3D trace projected onto the camera's (u, w) plane",
@@ -1013,8 +1013,9 @@ mod tests {
         assert_eq!(Label::PrimaryRay.text(Lang::Ro), "rază primară P");
         assert_eq!(Label::TitleRayTree.text(Lang::Ro), "Arborele de raze");
         assert_eq!(Label::ViewWindow.text(Lang::Ro), "fereastra vizuală");
-        // "spre sursa S", not "Isursa" (the source's intensity); the lecture's "nivel max".
-        assert_eq!(Label::TowardsLight.text(Lang::Ro), "spre sursa S");
+        // "spre sursa" (the figure adds the light's name: "spre sursa S"), not "Isursa" (the
+        // source's intensity); the lecture's "nivel max".
+        assert_eq!(Label::TowardsLight.text(Lang::Ro), "spre sursa");
         assert_eq!(Label::MaxDepth.text(Lang::Ro), "nivel max");
     }
 }

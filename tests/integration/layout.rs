@@ -1013,3 +1013,23 @@ fn a_uniform_pixel_s_corners_are_filled_and_their_values_printed() {
     }
     assert_eq!(checked, 2);
 }
+
+/// A far light's name where L leaves the picture reads as the lecture writes it, once: "to the
+/// light S" / „spre sursa S" (the Romanian label had the name in it too, and the figure printed
+/// „spre sursa S S" in shadows-2, RO).
+#[test]
+fn a_far_light_is_named_once_in_both_languages() {
+    let mut seen = 0;
+    for (lang, words) in [(Lang::En, "to the light S"), (Lang::Ro, "spre sursa S")] {
+        for (name, d) in lesson_figures(lang) {
+            for item in &d.items {
+                let Mark::Text(t) = &item.mark else { continue };
+                if t.text.starts_with(&words[..words.len() - 2]) {
+                    seen += 1;
+                    assert_eq!(t.text, words, "{name}");
+                }
+            }
+        }
+    }
+    assert!(seen >= 2, "{seen}");
+}
