@@ -1032,4 +1032,12 @@ fn a_far_light_is_named_once_in_both_languages() {
         }
     }
     assert!(seen >= 2, "{seen}");
+    // And the transparency a shadow's factor multiplies is the lecture's Kt on a Romanian slide,
+    // as the legend beside it writes it (it said "kt" in the text and "Kt" in the legend).
+    for (name, d) in lesson_figures(Lang::Ro).iter().filter(|(n, _)| n.contains("-shadows (")) {
+        for item in &d.items {
+            let Mark::Text(t) = &item.mark else { continue };
+            assert!(!t.text.contains("kt ="), "{name}: {}", t.text);
+        }
+    }
 }
