@@ -6,8 +6,9 @@ use super::accel::AccelArgs;
 use super::sampling::SamplingArgs;
 use super::trace::{pixel_of, LangArg};
 use super::{load_scene, output, print_out, write_file, Failure};
-use clap::Args;
+use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
+use whitted::canvas::svg::SvgText;
 use whitted::canvas::Drawing;
 use whitted::canvas::{skia, svg};
 use whitted::figure::source::TraceOptions;
@@ -43,6 +44,9 @@ pub struct FigureArgs {
     /// The labels' language.
     #[arg(long, value_enum, default_value = "en")]
     lang: LangArg,
+    /// How an SVG draws its words (a PNG ignores it).
+    #[arg(long, value_enum, default_value = "embed")]
+    svg_text: SvgTextArg,
     /// Canvas size WxH in pixels (default 1920x1080; W alone keeps 16:9).
     #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
@@ -64,6 +68,26 @@ pub struct FigureArgs {
     /// Print every kind with one line and exit.
     #[arg(long)]
     list: bool,
+}
+
+/// How an SVG draws its words: `--svg-text`.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum SvgTextArg {
+    /// As text, in the subsets of the fonts it prints with, embedded.
+    Embed,
+    /// As glyph outlines (`<path>`), the words kept in an invisible `<text>` for screen readers
+    /// and search; no font embedded.
+    Paths,
+}
+
+impl SvgTextArg {
+    /// The canvas's choice.
+    pub fn text(self) -> SvgText {
+        match self {
+            Self::Embed => SvgText::Embed,
+            Self::Paths => SvgText::Paths,
+        }
+    }
 }
 
 /// `KIND` → a figure kind, naming the valid ones otherwise.
@@ -103,7 +127,7 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
     if let Some(title) = &args.title {
         made.drawing.set_title(title);
     }
-    write_file(&output, &format.encode(&made.drawing)?)
+    write_file(&output, &format.encode(&made.drawing, args.svg_text.text())?)
 }
 
 /// The dimension of a loaded scene.
@@ -134,11 +158,11 @@ impl Format {
     pub fn of(path: &Path, scene: &Path) -> Result<Self, Failure> {
         Ok([Self::Png, Self::Svg][output::check(path, &["png", "svg"], &[scene])?])
     }
-    /// The file's bytes.
-    pub fn encode(self, drawing: &Drawing) -> Result<Vec<u8>, Failure> {
+    /// The file's bytes; an SVG's words drawn as `text` says.
+    pub fn encode(self, drawing: &Drawing, text: SvgText) -> Result<Vec<u8>, Failure> {
         match self {
             Self::Png => skia::to_png(drawing).map_err(|e| Failure::other(e.to_string())),
-            Self::Svg => Ok(svg::to_svg(drawing).into_bytes()),
+            Self::Svg => Ok(svg::to_svg_with(drawing, text).into_bytes()),
         }
     }
 }

@@ -8,7 +8,7 @@
 //! it). The lessons and scenes are read from disk or from the binary (`course`).
 
 use super::course::{self, tidy, Files};
-use super::figure::{scene_name, Format};
+use super::figure::{scene_name, Format, SvgTextArg};
 use super::trace::LangArg;
 use super::{output, print_out, write_file, Failure};
 use clap::Args;
@@ -48,6 +48,10 @@ pub struct LessonsArgs {
     /// Canvas size WxH in pixels (default 1920x1080).
     #[arg(long, value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(usize, Option<usize>)>,
+    /// How the figures' SVG files draw their words: `embed` (text in the fonts' subsets) or
+    /// `paths` (glyph outlines, the words kept invisible for screen readers and search).
+    #[arg(long, value_enum, default_value = "embed")]
+    svg_text: SvgTextArg,
     /// The WebAssembly module that makes the pages live (default: the one built into this whitted,
     /// else target/wasm/whitted_web.wasm, built by web/build.sh).
     #[arg(long)]
@@ -284,7 +288,7 @@ pub fn run(args: &LessonsArgs) -> Result<(), Failure> {
             let (png, svg) = (dir.join(format!("{stem}.png")), dir.join(format!("{stem}.svg")));
             let written = made.and_then(|(drawing, _)| {
                 for (path, format) in [(&png, Format::Png), (&svg, Format::Svg)] {
-                    write_file(path, &format.encode(&drawing).map_err(|f| f.message)?)
+                    write_file(path, &format.encode(&drawing, args.svg_text.text()).map_err(|f| f.message)?)
                         .map_err(|f| f.message)?;
                 }
                 Ok(())

@@ -14,6 +14,7 @@ use std::fmt::Write;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use whitted::accel::{AccelKind, AccelOptions};
+use whitted::canvas::svg::SvgText;
 use whitted::doc::{float, stats};
 use whitted::figure::labels::Label;
 use whitted::figure::plane::Planar;
@@ -290,7 +291,7 @@ fn plots<V: Planar>(scene: &Scene<V>, args: &TradeoffArgs, measured: &Tradeoff) 
     drawings.push(("heat-map", heat));
     for (stem, drawing) in &drawings {
         for (ext, format) in PLOT_FORMATS {
-            write_file(&plot_file(dir, stem, ext), &format.encode(drawing)?)?;
+            write_file(&plot_file(dir, stem, ext), &format.encode(drawing, SvgText::Embed)?)?;
         }
     }
     Ok(())

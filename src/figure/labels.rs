@@ -184,7 +184,7 @@ pub enum Label {
     SplitWhen,
     /// "samples traced".
     SamplesTraced,
-    /// "reused".
+    /// The corner reads that traced no new ray (the samples a square read again).
     Reused,
     /// "pixel" (its colour).
     PixelColour,
@@ -276,7 +276,8 @@ pub enum Label {
     NodesSkipped,
     /// "grid" (caption, before its cells).
     Grid,
-    /// "cells visited".
+    /// "voxels visited" (the lecture's word for a grid's cell, "voxel", in both languages, as in
+    /// the captions and the narration).
     CellsVisited,
     /// Legend: a visited cell.
     CellVisited,
@@ -288,7 +289,7 @@ pub enum Label {
     ListedByBox,
     /// Table: the same, after the object's name.
     BoxOnly,
-    /// "cell" (table head).
+    /// "voxel" (table head).
     Cell,
     /// The pitfall: "found while visiting cell".
     PitfallIn,
@@ -508,7 +509,7 @@ impl Label {
             Self::Scene => ("scene", "scena"),
             Self::GivenRay => ("a given ray", "o rază dată"),
             Self::NothingBetween => ("nothing in between", "nimic între ele"),
-            Self::TowardsLight => ("to the light", "spre sursa S"),
+            Self::TowardsLight => ("to the light", "spre sursa"),
             Self::Opaque => ("opaque", "opac"),
             Self::PlaneUw => (
                 "3D trace projected onto the camera's (u, w) plane",
@@ -545,7 +546,7 @@ impl Label {
             Self::LeafColour => ("leaf: the mean of its corners", "frunză: media colțurilor"),
             Self::SplitWhen => ("a subregion splits while", "o subzonă se divide cât timp"),
             Self::SamplesTraced => ("samples traced", "eșantioane trasate"),
-            Self::Reused => ("reused", "refolosite"),
+            Self::Reused => ("re-read without a new ray", "recitite fără rază nouă"),
             Self::PixelColour => ("pixel", "pixelul"),
             Self::RaysTraced => ("primary rays traced (shared once)", "raze primare trasate (comune o dată)"),
             Self::MeanPerPixel => ("mean per pixel", "media pe pixel"),
@@ -617,17 +618,17 @@ impl Label {
             }
             Self::NodeUntested => ("never tested", "netestat"),
             Self::Grid => ("grid", "grila"),
-            Self::CellsVisited => ("cells visited", "voxeli parcurși"),
-            Self::CellVisited => ("cell visited (k: order)", "voxel parcurs (k: ordinea)"),
-            Self::CellExit => ("ray leaves the cell (min tMax)", "raza iese din voxel (min tMax)"),
-            Self::FoundBeyond => ("hit found beyond its cell", "intersecție găsită dincolo de voxel"),
+            Self::CellsVisited => ("voxels visited", "voxeli parcurși"),
+            Self::CellVisited => ("voxel visited (k: order)", "voxel parcurs (k: ordinea)"),
+            Self::CellExit => ("ray leaves the voxel (min tMax)", "raza iese din voxel (min tMax)"),
+            Self::FoundBeyond => ("hit found beyond its voxel", "intersecție găsită dincolo de voxel"),
             Self::ListedByBox => ("listed via its bounding box only", "listat doar prin volumul încadrator"),
             Self::BoxOnly => ("box only", "doar volumul"),
-            Self::Cell => ("cell", "voxel"),
-            Self::PitfallIn => ("the pitfall: hit found in cell", "capcana: intersecție găsită în voxelul"),
+            Self::Cell => ("voxel", "voxel"),
+            Self::PitfallIn => ("the pitfall: hit found in voxel", "capcana: intersecție găsită în voxelul"),
             Self::CellExitT => ("its exit", "ieșirea lui"),
             Self::PitfallRule => (
-                "a hit counts only within its cell:\nthe walk goes on",
+                "a hit counts only within its voxel:\nthe walk goes on",
                 "o intersecție contează numai în voxelul ei:\nparcurgerea continuă",
             ),
             Self::CornersOnly => {
@@ -1020,8 +1021,9 @@ mod tests {
         assert_eq!(Label::PrimaryRay.text(Lang::Ro), "rază primară P");
         assert_eq!(Label::TitleRayTree.text(Lang::Ro), "Arborele de raze");
         assert_eq!(Label::ViewWindow.text(Lang::Ro), "fereastra vizuală");
-        // "spre sursa S", not "Isursa" (the source's intensity); the lecture's "nivel max".
-        assert_eq!(Label::TowardsLight.text(Lang::Ro), "spre sursa S");
+        // "spre sursa" (the figure adds the light's name: "spre sursa S"), not "Isursa" (the
+        // source's intensity); the lecture's "nivel max".
+        assert_eq!(Label::TowardsLight.text(Lang::Ro), "spre sursa");
         assert_eq!(Label::MaxDepth.text(Lang::Ro), "nivel max");
     }
 }

@@ -444,7 +444,7 @@ fn next_voxel<V: Dim>(
         "{} {} {} [{}], D = {}; tMax = ({}) {}, tDelta = ({}). {}",
         t(lang, "The ray", "Raza"),
         names.ray_text(node),
-        t(lang, "walks the grid and is in cell", "parcurge grila și se află în celula"),
+        t(lang, "walks the grid and is in voxel", "parcurge grila și se află în voxelul"),
         ints(cell),
         vec_text(log.nodes[node].start.direction),
         nums(t_max),
@@ -452,8 +452,8 @@ fn next_voxel<V: Dim>(
         nums(t_delta),
         t(
             lang,
-            "At which t does it leave this cell, and which voxel does it enter next?",
-            "La ce t părăsește celula și în ce voxel intră apoi?"
+            "At which t does it leave this voxel, and which voxel does it enter next?",
+            "La ce t părăsește voxelul și în ce voxel intră apoi?"
         )
     );
     Some(Question { statement, answer: vec![told(here)?, told(next)?], keep: true })

@@ -165,11 +165,11 @@ test('a structure figure is narrated by its structure, the others by every objec
   const page = await open(browser, 'en/grid.html');
   await settled(page, PAGE_MS);
   let s = await view(page);
-  assert.ok(await stepTo(page, /Grid cell/) > 0, 'a cell step lights its cell');
+  assert.ok(await stepTo(page, /Voxel \[/) > 0, 'a cell step lights its cell');
   await shot(page, 'grid-narrated-by-cells', '[data-whitted="view"]');
   assert.equal(s.accel, 'grid');
   assert.match(s.command, /--accel grid/);
-  assert.ok(s.steps.some((t) => /Grid cell/.test(t)), 'the steps walk the cells');
+  assert.ok(s.steps.some((t) => /Voxel \[/.test(t)), 'the steps walk the cells');
   assert.ok(!s.steps.some((t) => /Visit node/.test(t)), 'no BVH in the grid lesson');
   assert.match(s.stats, /voxels [1-9]/);
   const imageCost = s.stats;
@@ -183,7 +183,7 @@ test('a structure figure is narrated by its structure, the others by every objec
   assert.match(s.cost, /nodes [1-9]/);
   const phone = await open(browser, 'en/grid.html', { width: PHONE, height: 844 });
   await settled(phone, PAGE_MS);
-  await stepTo(phone, /Grid cell/);
+  await stepTo(phone, /Voxel \[/);
   await shot(phone, 'grid-narrated-by-cells-390', '[data-whitted="view"] .figure-pane');
   await phone.close();
   await page.close();

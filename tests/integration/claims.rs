@@ -615,3 +615,63 @@ fn every_numbering_of_a_lesson_figure_says_what_it_counts() {
     assert!(numbered >= 10, "only {numbered} numbered figures");
     assert!(wrong.is_empty(), "{} numberings wrong:\n{}", wrong.len(), wrong.join("\n"));
 }
+
+/// An adaptive figure's count of samples read again is the trace's: the corner reads that traced
+/// no new ray, each a `sample` event with `reused: true` in `whitted trace --json`. Before, it
+/// printed how many samples were read again at least once ("reused 22" beside 22 traced: every
+/// sample of a split pixel is), which read as 22 rays saved.
+#[test]
+fn an_adaptive_figure_counts_the_corner_reads_that_traced_no_new_ray() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+    let mut checked = 0;
+    for lesson in lessons() {
+        for spec in lesson.figures.iter().filter(|f| f.kind.name() == "adaptive") {
+            let Some(whitted::sample::Sampling::Adaptive { threshold, max_level }) = spec.sampling else {
+                continue;
+            };
+            for (lang, words) in
+                [(Lang::En, "re-read without a new ray: "), (Lang::Ro, "recitite fără rază nouă: ")]
+            {
+                let m = made(&dir, spec, lang);
+                let printed: Vec<usize> = m
+                    .drawing
+                    .items
+                    .iter()
+                    .filter_map(|i| match &i.mark {
+                        whitted::canvas::Mark::Text(t) => {
+                            let at = t.text.find(words)? + words.len();
+                            t.text[at..].split(|c: char| !c.is_ascii_digit()).next()?.parse().ok()
+                        }
+                        _ => None,
+                    })
+                    .collect();
+                assert_eq!(printed.len(), 1, "{}: {printed:?}", lesson.name);
+                let pixel = m.traced.pixel.expect("an adaptive figure traces a pixel");
+                let pixel = pixel.iter().map(ToString::to_string).collect::<Vec<_>>().join(",");
+                let scene = dir.join(&spec.scene);
+                let (code, out, err) = crate::support::whitted(&[
+                    "trace",
+                    scene.to_str().unwrap(),
+                    "--pixel",
+                    &pixel,
+                    "--aa",
+                    "adaptive",
+                    "--threshold",
+                    &threshold.to_string(),
+                    "--max-level",
+                    &max_level.to_string(),
+                    "--json",
+                ]);
+                assert_eq!(code, 0, "{err}");
+                let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+                let events = doc["events"].as_array().expect("the trace's events");
+                let reads = events.iter().filter(|e| e["reused"] == serde_json::json!(true)).count();
+                assert_eq!(printed[0], reads, "{}", lesson.name);
+                let traced = doc["samples"].as_array().map_or(0, Vec::len);
+                assert!(reads > traced / 2, "{reads} reads again, {traced} traced");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 4, "{checked}");
+}

@@ -422,6 +422,31 @@ fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
     assert!(roxmltree::Document::parse(&text).is_ok());
     assert!(text.contains("width=\"640\" height=\"360\""));
     assert!(text.contains("rază primară P"));
+    // `--svg-text paths`: the same words, kept for readers but not painted, drawn as paths, with
+    // no font embedded.
+    let paths_path = dir.join("rays-paths.svg");
+    let (code, _, err) = whitted(&[
+        "figure",
+        "rays",
+        &scene,
+        "--pixel",
+        "3",
+        "--lang",
+        "ro",
+        "--size",
+        "640x360",
+        "--svg-text",
+        "paths",
+        "-o",
+        paths_path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let paths = std::fs::read_to_string(&paths_path).unwrap();
+    let doc = roxmltree::Document::parse(&paths).unwrap();
+    assert!(paths.contains("rază primară P") && !paths.contains("@font-face") && text.contains("@font-face"));
+    let texts: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("text")).collect();
+    assert!(!texts.is_empty() && texts.iter().all(|t| t.attribute("fill-opacity") == Some("0")));
+    assert_eq!(doc.descendants().filter(|n| n.has_tag_name("path")).count(), texts.len());
     let png_path = dir.join("tree.png");
     let (code, _, err) =
         whitted(&["figure", "ray-tree", &scene, "--size", "480x270", "-o", png_path.to_str().unwrap()]);

@@ -309,7 +309,7 @@ fn a_grid_sheet_asks_which_voxel_the_ray_enters_next_and_answers_with_the_walk()
         assert_eq!(exercises.matches("which voxel does it enter next").count(), 1, "{scene} {seed}");
         let answers = std::fs::read_to_string(Path::new(&out).join("answers.html")).unwrap();
         let item = answers.split("<li>").find(|li| li.contains("which voxel does it enter next")).unwrap();
-        let cell = numbers_after(item, "is in cell", '[', ']');
+        let cell = numbers_after(item, "is in voxel", '[', ']');
         let d = numbers_after(item, "D = ", '(', ')');
         let t_max = numbers_after(item, "tMax = ", '(', ')');
         let axis = (0..t_max.len()).min_by(|&a, &b| t_max[a].total_cmp(&t_max[b])).unwrap();
@@ -318,10 +318,10 @@ fn a_grid_sheet_asks_which_voxel_the_ray_enters_next_and_answers_with_the_walk()
         let text = |v: &[f64]| v.iter().map(|x| format!("{x}")).collect::<Vec<_>>().join(", ");
         let steps: Vec<&str> = item.split("<pre>").skip(1).collect();
         assert_eq!(steps.len(), 2, "the cell's step and the next cell's: {item}");
-        assert!(steps[0].contains(&format!("Grid cell [{}]", text(&cell))), "{}", steps[0]);
+        assert!(steps[0].contains(&format!("Voxel [{}]", text(&cell))), "{}", steps[0]);
         let exit = whitted::format::narration_number(t_max[axis]);
-        assert!(steps[0].contains(&format!("leaves the cell at t = {exit}")), "{}", steps[0]);
-        assert!(steps[1].contains(&format!("Grid cell [{}]", text(&next))), "{} → {}", text(&cell), steps[1]);
+        assert!(steps[0].contains(&format!("leaves the voxel at t = {exit}")), "{}", steps[0]);
+        assert!(steps[1].contains(&format!("Voxel [{}]", text(&next))), "{} → {}", text(&cell), steps[1]);
     }
     // Without the grid, no such question.
     let out = scratch.arg("bvh");

@@ -204,11 +204,11 @@ fn the_narration_names_rays_and_hits_as_the_figures_do() {
 #[test]
 fn a_grid_cell_is_told_before_its_tests() {
     let told = narrate(&cases()[4], Lang::En);
-    let cell = told.text.find("Grid cell [0, 0, 2]").expect("the cell");
+    let cell = told.text.find("Voxel [0, 0, 2]").expect("the cell");
     let a = told.text.find("Intersection test of P with “A”").expect("the test of A");
     assert!(cell < a, "{}", told.text);
     let steps = told.steps();
-    let k = steps.iter().position(|s| s.text.contains("Grid cell")).unwrap();
+    let k = steps.iter().position(|s| s.text.contains("Voxel [")).unwrap();
     // The log recorded the test before the cell; the narration tells the cell first.
     assert!(steps[k + 1].text.contains("“A”") && steps[k + 1].events[0] < steps[k].events[0]);
 }

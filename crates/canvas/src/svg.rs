@@ -7,9 +7,12 @@
 //! groups with a `class` and no `data-tag`. Text stays text: `<text>` in the embedded fonts, whose
 //! subsets (cut to the characters the SVG prints, [`subset`]) the `<defs>` carry as `@font-face`
 //! rules with base64 `data:` URLs under a family of the SVG's own (then the reader's Noto Sans,
-//! then any sans-serif), with sub- and superscripts as `<tspan baseline-shift="sub" font-size="…">`
-//! and the halo as a white stroke painted first. Each `<text>` has the `textLength` it was laid
-//! out with, so a reader that falls back to another font keeps every line's width.
+//! then any sans-serif), with sub- and superscripts as `<tspan dy="…" font-size="…">` (lowered or
+//! raised by the layout's own shift, where the PNG puts them, not by the reader's
+//! `baseline-shift`) and the halo as a white stroke painted first. Each `<text>` has the
+//! `textLength` it was laid out with, so a reader that falls back to another font keeps every
+//! line's width. On request ([`SvgText::Paths`]) the words are drawn as glyph outlines instead,
+//! each line a `<path>` beside its `<text>` made invisible, and no font is embedded.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -28,9 +31,29 @@ use super::{
 /// The id of the clip path that keeps shapes inside the plot area.
 const CLIP_ID: &str = "plot-area";
 
-/// The SVG document of `drawing`.
+/// How an SVG draws its words.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SvgText {
+    /// As `<text>` in the subsets of the fonts it prints with, embedded (the default): small,
+    /// selectable, and the same glyphs on any machine that reads web fonts.
+    #[default]
+    Embed,
+    /// As `<path>` glyph outlines in the text's colour, each line beside an invisible `<text>`
+    /// (`fill-opacity="0"`) of the same words at the same place, which a screen reader reads and a
+    /// search finds: the same glyphs in a reader that ignores embedded fonts (a print shop's, a
+    /// drawing program's), for a larger file.
+    Paths,
+}
+
+/// The SVG document of `drawing`, its words in embedded fonts ([`SvgText::Embed`]).
 #[must_use]
 pub fn to_svg(drawing: &Drawing) -> String {
+    to_svg_with(drawing, SvgText::Embed)
+}
+
+/// The SVG document of `drawing`, its words drawn as `text` says.
+#[must_use]
+pub fn to_svg_with(drawing: &Drawing, text: SvgText) -> String {
     let frame = drawing.frame();
     let (w, h) = (drawing.width(), drawing.height());
     let mut out = String::new();
@@ -54,11 +77,15 @@ pub fn to_svg(drawing: &Drawing) -> String {
             xml_escape(&item.tag),
             events.join(" ")
         );
-        shape(&mut body, &tf, &item.pen, &item.mark);
+        shape(&mut body, &tf, &item.pen, &item.mark, text);
         body.push_str("</g>\n");
     }
-    chrome(&mut body, drawing, &frame);
-    let (faces, families) = font_faces(&printed_text(&body));
+    chrome(&mut body, drawing, &frame, text);
+    // Glyphs drawn as paths need no font: the invisible words take the reader's.
+    let (faces, families) = match text {
+        SvgText::Embed => font_faces(&printed_text(&body)),
+        SvgText::Paths => (String::new(), Vec::new()),
+    };
     // The embedded faces first, then the reader's own copies, then any sans-serif.
     let mut family: Vec<String> = families;
     family.extend([text::FAMILY, text::MATH_FAMILY, "sans-serif"].map(str::to_owned));
@@ -254,7 +281,7 @@ fn points_attr(points: impl IntoIterator<Item = DVec2>) -> String {
 }
 
 /// The elements of one shape.
-fn shape(out: &mut String, tf: &Transform, style: &Pen, shape: &Mark) {
+fn shape(out: &mut String, tf: &Transform, style: &Pen, shape: &Mark, mode: SvgText) {
     match shape {
         Mark::Line { points } => {
             let pts = points_attr(points.iter().map(|p| tf.to_px(*p)));
@@ -299,7 +326,7 @@ fn shape(out: &mut String, tf: &Transform, style: &Pen, shape: &Mark) {
                 );
             }
             let halo = label.halo.then(|| tf.ref_px(style::HALO_WIDTH));
-            text_element(out, label, placed.origin, placed.size, style.color, halo);
+            text_element(out, label, placed.origin, placed.size, (style.color, halo), mode);
         }
     }
 }
@@ -354,18 +381,27 @@ fn arrow(out: &mut String, tf: &Transform, a: DVec2, b: DVec2, head: f64, style:
 }
 
 /// A `<text>` element for a label, anchored so a substitute font keeps the alignment.
-fn text_element(out: &mut String, label: &Text, origin: DVec2, size: f64, color: Rgba, halo: Option<f64>) {
+fn text_element(
+    out: &mut String,
+    label: &Text,
+    origin: DVec2,
+    size: f64,
+    (color, halo): (Rgba, Option<f64>),
+    mode: SvgText,
+) {
     let width = text::layout(&label.text, size, label.weight).width;
     let (x, anchor) = match label.align.h {
         HAlign::Left => (origin.x, "start"),
         HAlign::Center => (origin.x + width / 2.0, "middle"),
         HAlign::Right => (origin.x + width, "end"),
     };
-    text_line(out, &label.text, DVec2::new(x, origin.y), anchor, size, label.weight, color, halo);
+    text_line(out, &label.text, DVec2::new(x, origin.y), anchor, size, label.weight, (color, halo), mode);
 }
 
-/// One line of markup as `<text>` with `<tspan>`s for its scripts.
+/// One line of markup as `<text>` with `<tspan>`s for its scripts; drawn as glyph outlines
+/// first when `mode` asks for paths, the `<text>` then invisible.
 #[allow(clippy::too_many_arguments)]
+#[allow(clippy::float_cmp)] // a shift of exactly 0 (a run on the baseline) needs no `dy`
 fn text_line(
     out: &mut String,
     markup: &str,
@@ -373,9 +409,19 @@ fn text_line(
     anchor: &str,
     size: f64,
     weight: Weight,
-    color: Rgba,
-    halo: Option<f64>,
+    (color, halo): (Rgba, Option<f64>),
+    mode: SvgText,
 ) {
+    let laid = text::layout(markup, size, weight);
+    let width = laid.width;
+    if mode == SvgText::Paths {
+        let start = match anchor {
+            "middle" => at.x - width / 2.0,
+            "end" => at.x - width,
+            _ => at.x,
+        };
+        glyph_path(out, &laid, DVec2::new(start, at.y), color, halo);
+    }
     let _ = write!(
         out,
         "<text x=\"{}\" y=\"{}\" font-size=\"{}\" text-anchor=\"{anchor}\" fill=\"{}\"",
@@ -384,12 +430,15 @@ fn text_line(
         svg_coordinate(size),
         color.hex()
     );
+    if mode == SvgText::Paths {
+        // The words are there to be read and found, not seen: the path above draws them.
+        out.push_str(" fill-opacity=\"0\"");
+    }
     if weight == Weight::Bold {
         out.push_str(" font-weight=\"bold\"");
     }
     // The line keeps the width it was laid out with in the embedded font, whatever font the
     // reader substitutes (a wider one would run a centred caption past the picture's edge).
-    let width = text::layout(markup, size, weight).width;
     if width > 0.0 {
         let _ = write!(out, " textLength=\"{}\" lengthAdjust=\"spacingAndGlyphs\"", svg_coordinate(width));
     }
@@ -397,7 +446,7 @@ fn text_line(
     if markup.contains("  ") || markup.starts_with(' ') || markup.ends_with(' ') {
         out.push_str(" xml:space=\"preserve\"");
     }
-    if let Some(width) = halo {
+    if let (Some(width), SvgText::Embed) = (halo, mode) {
         let _ = write!(
             out,
             " stroke=\"#ffffff\" stroke-width=\"{}\" stroke-linejoin=\"round\" \
@@ -406,49 +455,109 @@ fn text_line(
         );
     }
     out.push('>');
+    // Each run is lowered or raised by the layout's own shift (`Script::shift`, in em of the
+    // line's size) as an explicit `dy` from where the run before left the baseline: a reader's
+    // `baseline-shift="sub"` takes the font's subscript offset, which Chromium sets lower than
+    // the PNG does.
+    let mut rise = 0.0;
     for run in text::runs(markup, weight) {
         let content = xml_escape(&run.text);
-        match run.script {
-            Script::Normal => out.push_str(&content),
+        let shift = size * run.script.shift();
+        let dy = rise - shift;
+        rise = shift;
+        let font_size = match run.script {
+            Script::Normal => String::new(),
             Script::Sub | Script::Super => {
-                let shift = if run.script == Script::Sub { "sub" } else { "super" };
-                let _ = write!(
-                    out,
-                    "<tspan baseline-shift=\"{shift}\" font-size=\"{}\">{content}</tspan>",
-                    svg_coordinate(size * run.script.scale())
-                );
+                format!(" font-size=\"{}\"", svg_coordinate(size * run.script.scale()))
             }
+        };
+        if dy == 0.0 && font_size.is_empty() {
+            out.push_str(&content);
+        } else {
+            let dy = if dy == 0.0 { String::new() } else { format!(" dy=\"{}\"", svg_coordinate(dy)) };
+            let _ = write!(out, "<tspan{dy}{font_size}>{content}</tspan>");
         }
     }
     out.push_str("</text>");
 }
 
+/// The glyph outlines of a laid-out line whose baseline starts at pixel `origin`, as one
+/// `<path>` in `color` (with the white halo stroked under it when `halo` is given), hidden from
+/// screen readers, which read the invisible `<text>` beside it.
+fn glyph_path(out: &mut String, laid: &text::TextLayout, origin: DVec2, color: Rgba, halo: Option<f64>) {
+    let mut d = PathData(String::new());
+    text::outline(laid, origin, &mut d);
+    if d.0.is_empty() {
+        return;
+    }
+    let _ = write!(out, "<path d=\"{}\" fill=\"{}\"", d.0.trim_start(), color.hex());
+    if let Some(width) = halo {
+        let _ = write!(
+            out,
+            " stroke=\"#ffffff\" stroke-width=\"{}\" stroke-linejoin=\"round\" paint-order=\"stroke\"",
+            svg_coordinate(width)
+        );
+    }
+    out.push_str(" aria-hidden=\"true\"/>");
+}
+
+/// SVG path data (`M x y L … Q … C … Z`, absolute pixel coordinates) written by a
+/// [`text::PathSink`].
+struct PathData(String);
+
+impl PathData {
+    fn command(&mut self, letter: char, points: &[DVec2]) {
+        let _ = write!(self.0, " {letter}");
+        for p in points {
+            let _ = write!(self.0, " {} {}", svg_coordinate(p.x), svg_coordinate(p.y));
+        }
+    }
+}
+
+impl text::PathSink for PathData {
+    fn move_to(&mut self, p: DVec2) {
+        self.command('M', &[p]);
+    }
+    fn line_to(&mut self, p: DVec2) {
+        self.command('L', &[p]);
+    }
+    fn quad_to(&mut self, c: DVec2, p: DVec2) {
+        self.command('Q', &[c, p]);
+    }
+    fn cubic_to(&mut self, c1: DVec2, c2: DVec2, p: DVec2) {
+        self.command('C', &[c1, c2, p]);
+    }
+    fn close(&mut self) {
+        self.0.push_str(" Z");
+    }
+}
+
 /// A placed chrome line (its origin is the baseline start).
-fn chrome_line(out: &mut String, line: &PlacedLine, weight: Weight) {
-    text_line(out, &line.text, line.origin, "start", line.size, weight, style::TEXT, None);
+fn chrome_line(out: &mut String, line: &PlacedLine, weight: Weight, mode: SvgText) {
+    text_line(out, &line.text, line.origin, "start", line.size, weight, (style::TEXT, None), mode);
 }
 
 /// The title, caption and legend groups.
-fn chrome(out: &mut String, drawing: &Drawing, frame: &PageLayout) {
+fn chrome(out: &mut String, drawing: &Drawing, frame: &PageLayout, mode: SvgText) {
     if let Some(title) = &frame.title {
         out.push_str("<g class=\"title\">");
-        chrome_line(out, title, Weight::Bold);
+        chrome_line(out, title, Weight::Bold, mode);
         out.push_str("</g>\n");
     }
     if !frame.caption.is_empty() {
         out.push_str("<g class=\"caption\">");
         for line in &frame.caption {
-            chrome_line(out, line, Weight::Regular);
+            chrome_line(out, line, Weight::Regular, mode);
         }
         out.push_str("</g>\n");
     }
     if let Some(legend) = &frame.legend {
-        legend_group(out, drawing, &frame.transform, legend);
+        legend_group(out, drawing, &frame.transform, legend, mode);
     }
 }
 
 /// The legend box.
-fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &LegendBox) {
+fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &LegendBox, mode: SvgText) {
     out.push_str("<g class=\"legend\">");
     let border = Pen::solid(style::LIGHT_GREY, style::GRID_WIDTH);
     rect(out, tf, &legend.rect, Some(style::WHITE.with_alpha(0.92)), &border);
@@ -479,7 +588,7 @@ fn legend_group(out: &mut String, drawing: &Drawing, tf: &Transform, legend: &Le
                 rect(out, tf, &PxRect { min: mid - half, max: mid + half }, Some(fill), &entry.style);
             }
         }
-        chrome_line(out, &row.label, Weight::Regular);
+        chrome_line(out, &row.label, Weight::Regular, mode);
     }
     out.push_str("</g>\n");
 }
@@ -573,6 +682,65 @@ mod tests {
         assert_eq!(faces, 2, "{css}");
     }
 
+    /// The bounds of the points of absolute path data (`M x y L … Q … C … Z`): a curve lies in
+    /// the hull of its points, and a TrueType glyph's box holds every point of its outline.
+    fn path_bounds(d: &str) -> PxRect {
+        let numbers: Vec<f64> = d.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+        let points: Vec<DVec2> = numbers.chunks(2).map(|p| DVec2::new(p[0], p[1])).collect();
+        let min = points.iter().copied().reduce(DVec2::min).unwrap();
+        let max = points.iter().copied().reduce(DVec2::max).unwrap();
+        PxRect { min, max }
+    }
+
+    /// `--svg-text paths` (issue 32 item 6): every line of words is a `<path>` of its glyphs whose
+    /// box is the layout's ink box (the one the label checks use: the glyphs' ink up and down, the
+    /// advance across, less the side bearings), with the same words beside it in a `<text>` that
+    /// is not painted (`fill-opacity="0"`) but read by a screen reader and found by a search; no
+    /// font is embedded.
+    #[test]
+    fn words_drawn_as_paths_lie_in_the_layout_s_ink_box_and_stay_readable() {
+        let d = demo();
+        let svg = to_svg_with(&d, SvgText::Paths);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        assert!(!svg.contains("@font-face") && !svg.contains("<style"));
+        let texts: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("text")).collect();
+        let paths = doc.descendants().filter(|n| n.has_tag_name("path")).count();
+        assert_eq!(paths, texts.len(), "a path per line of words");
+        for t in &texts {
+            assert_eq!(t.attribute("fill-opacity"), Some("0"), "a visible <text>");
+            assert_eq!(t.attribute("stroke"), None, "a visible halo");
+        }
+        let embedded = to_svg(&d);
+        let words = |svg: &str| {
+            let doc = roxmltree::Document::parse(svg).unwrap();
+            let all: Vec<String> = doc
+                .descendants()
+                .filter(|n| n.has_tag_name("text"))
+                .map(|t| t.descendants().filter_map(|n| n.text()).collect())
+                .collect();
+            all
+        };
+        assert_eq!(words(&svg), words(&embedded), "the same words, readable");
+        let tf = d.frame().transform;
+        let groups = doc.descendants().filter(|n| n.has_tag_name("g") && n.attribute("data-tag").is_some());
+        let mut labels = 0;
+        for (g, item) in groups.zip(&d.items) {
+            let Mark::Text(label) = &item.mark else { continue };
+            labels += 1;
+            let path = g.children().find(|c| c.has_tag_name("path")).unwrap();
+            let drawn = path_bounds(path.attribute("d").unwrap());
+            let ink = Drawing::ink_box(label, &tf);
+            let size = tf.ref_px(label.size.px());
+            // Up and down: the very ink (to the SVG's hundredth of a pixel); across: within the
+            // side bearings of the first and last glyph.
+            assert!((drawn.min.y - ink.min.y).abs() < 0.02 && (drawn.max.y - ink.max.y).abs() < 0.02);
+            let what = format!("{:?}: drawn {drawn:?}, ink {ink:?}", label.text);
+            assert!(drawn.min.x >= ink.min.x - 0.01 && drawn.min.x - ink.min.x < 0.25 * size, "{what}");
+            assert!(drawn.max.x <= ink.max.x + 0.01 && ink.max.x - drawn.max.x < 0.25 * size, "{what}");
+        }
+        assert_eq!(labels, 2);
+    }
+
     #[test]
     fn svg_parses_and_has_one_group_per_item() {
         let d = demo();
@@ -601,9 +769,19 @@ mod tests {
             .unwrap();
         let all: String = label.descendants().filter(|n| n.is_text()).filter_map(|n| n.text()).collect();
         assert_eq!(all, "θt & tex <Ks>");
-        let subs: Vec<_> =
-            label.descendants().filter(|n| n.attribute("baseline-shift") == Some("sub")).collect();
+        // Each subscript lowered by the layout's own shift (0.2 em of the line), at 0.7 of its
+        // size, and the run after it raised back: where the PNG draws them.
+        let size: f64 = label.attribute("font-size").unwrap().parse().unwrap();
+        let dy = |n: &roxmltree::Node| n.attribute("dy").map(|v| v.parse::<f64>().unwrap());
+        let spans: Vec<_> = label.children().filter(|n| n.has_tag_name("tspan")).collect();
+        let subs: Vec<_> = spans.iter().filter(|n| n.attribute("font-size").is_some()).collect();
         assert_eq!(subs.len(), 3);
+        for sub in &subs {
+            assert!((dy(sub).unwrap() - 0.2 * size).abs() < 0.01, "{:?}", sub.attribute("dy"));
+        }
+        let total: f64 = spans.iter().filter_map(dy).sum();
+        assert!(total.abs() < 0.02, "the line ends on its baseline: {total}");
+        assert!(!svg.contains("baseline-shift"));
         assert!(svg.contains("Refracție &lt;T&gt; &amp; &quot;R&quot;"));
     }
 

@@ -118,7 +118,7 @@ impl<'a, V: Dim> Writer<'a, V> {
                 narration_number(*t_best),
                 self.t("skipped", "sărit")
             ),
-            Event::VoxelStep { cell, .. } => format!("{} {cell:?}", self.t("cell", "celula")),
+            Event::VoxelStep { cell, .. } => format!("{} {cell:?}", self.t("voxel", "voxelul")),
             _ => String::new(),
         }
     }
@@ -324,7 +324,7 @@ impl<'a, V: Dim> Writer<'a, V> {
                 }
                 Event::VoxelStep { cell, t_max, objects, .. } => {
                     in_cell = objects.len();
-                    let title = format!("{} {cell:?}", self.t("Grid cell", "Celula grilei"));
+                    let title = format!("{} {cell:?}", self.t("Voxel", "Voxelul"));
                     let t: Vec<String> = t_max.iter().map(|x| narration_number(*x)).collect();
                     let exit = t_max.iter().copied().fold(f64::INFINITY, f64::min);
                     let tested = if objects.is_empty() {
@@ -337,13 +337,13 @@ impl<'a, V: Dim> Writer<'a, V> {
                         format!(
                             "tMax = ({}): {} t = {}",
                             t.join(", "),
-                            self.t("the ray leaves the cell at", "raza iese din celulă la"),
+                            self.t("the ray leaves the voxel at", "raza iese din voxel la"),
                             narration_number(exit)
                         ),
                         tested,
                         self.t(
-                            "a hit is accepted only if t ≤ the cell's exit; a farther one waits for its cell",
-                            "o intersecție este acceptată doar dacă t ≤ ieșirea din celulă; una mai îndepărtată își așteaptă celula",
+                            "a hit is accepted only if t ≤ the voxel's exit; a farther one waits for its voxel",
+                            "o intersecție este acceptată doar dacă t ≤ ieșirea din voxel; una mai îndepărtată își așteaptă voxelul",
                         )
                         .to_owned(),
                     ];

@@ -264,7 +264,9 @@ fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
     let per_side = (1u64 << k) + 1;
     let full = if V::DIM == 2 { per_side } else { per_side * per_side };
     let corners = if V::DIM == 2 { 2 } else { 4 };
-    let reused = pixel.samples.iter().filter(|s| s.reused).count();
+    // The corner reads that traced no new ray: every square reads its corners, and only the
+    // first read of a lattice point traces it (a `sample` event with `reused: true` each).
+    let reads: usize = pixel.squares.iter().map(|s| s.corners.len()).sum();
     let rule = if pixel.uniform {
         let shared = if V::DIM == 2 { Label::UniformShared2d } else { Label::UniformShared };
         let mut lines = vec![input.t(Label::UniformCorners).to_owned()];
@@ -285,11 +287,8 @@ fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
     let mut lines = rule;
     let traced = pixel.samples.len();
     if !pixel.uniform {
-        lines.push(format!(
-            "{}: {traced} / {full}, {} {reused}",
-            input.t(Label::SamplesTraced),
-            input.t(Label::Reused)
-        ));
+        lines.push(format!("{}: {traced} / {full}", input.t(Label::SamplesTraced)));
+        lines.push(format!("{}: {}", input.t(Label::Reused), reads.saturating_sub(traced)));
     }
     // A uniform pixel's corners, each as traced: the mean below is theirs.
     if pixel.uniform {

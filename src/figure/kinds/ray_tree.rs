@@ -80,19 +80,44 @@ const RAY_LEAF_GAP: f64 = 1.5;
 /// (`lum = 0`, `s = 0.9`) side by side touched at one unit.
 const SHADOW_ROW_GAP: f64 = 1.25;
 
+/// Where the rows of a tree lie: row r (level r + 1) at y = −r·h, and the rows from `gap_at` down
+/// lowered by `extra` more, to make room for the depth-limit line and its words between level
+/// `max_depth` (row `gap_at` − 1) and the level under it.
+#[derive(Clone, Copy, Debug)]
+struct Rows {
+    /// The distance between two rows, in world units.
+    h: f64,
+    /// The first row lowered.
+    gap_at: f64,
+    /// How much it is lowered, in world units.
+    extra: f64,
+}
+
+impl Rows {
+    /// Evenly spaced rows `h` apart.
+    fn even(h: f64) -> Self {
+        Self { h, gap_at: f64::INFINITY, extra: 0.0 }
+    }
+
+    /// The y of row `row` (0 for the primary ray's).
+    fn y(self, row: f64) -> f64 {
+        -row * self.h - if row >= self.gap_at { self.extra } else { 0.0 }
+    }
+}
+
 /// Lays the tree out: leaves one unit apart in order (ray leaves [`RAY_LEAF_GAP`]), each parent over the middle of its
-/// children, one row per level. Returns every vertex with its position and parent position.
+/// children, one row per level (at `rows`). Returns every vertex with its position and parent position.
 fn layout<V>(
     log: &EventLog<V>,
     root: usize,
     shadows: bool,
-    row_h: f64,
+    rows: Rows,
 ) -> Vec<(Vertex, DVec2, Option<DVec2>)> {
     fn walk<V>(
         log: &EventLog<V>,
         v: Vertex,
         row: f64,
-        (shadows, row_h): (bool, f64),
+        (shadows, rows): (bool, Rows),
         next: &mut (f64, Option<(bool, f64)>),
         out: &mut Vec<(Vertex, DVec2, Option<DVec2>)>,
     ) -> DVec2 {
@@ -116,11 +141,11 @@ fn layout<V>(
                 };
             }
             next.1 = Some((ray, row));
-            DVec2::new(next.0, -row * row_h)
+            DVec2::new(next.0, rows.y(row))
         } else {
             let xs: Vec<f64> =
-                kids.into_iter().map(|c| walk(log, c, row + 1.0, (shadows, row_h), next, out).x).collect();
-            DVec2::new((xs[0] + xs[xs.len() - 1]) / 2.0, -row * row_h)
+                kids.into_iter().map(|c| walk(log, c, row + 1.0, (shadows, rows), next, out).x).collect();
+            DVec2::new((xs[0] + xs[xs.len() - 1]) / 2.0, rows.y(row))
         };
         out[slot].1 = at;
         at
@@ -128,7 +153,7 @@ fn layout<V>(
     let mut out = Vec::new();
     // The last leaf's x, whether it was a ray's and its row.
     let mut next = (0.0, None);
-    walk(log, Vertex::Ray(root), 0.0, (shadows, row_h), &mut next, &mut out);
+    walk(log, Vertex::Ray(root), 0.0, (shadows, rows), &mut next, &mut out);
     // Each vertex's parent position, from the tree's own structure.
     let positions: Vec<(Vertex, DVec2)> = out.iter().map(|(v, p, _)| (v.clone(), *p)).collect();
     let of_ray =
@@ -154,7 +179,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let root = log.roots().next().ok_or_else(|| FigureError("the trace has no ray".into()))?;
     let scene = input.scene;
     let names = Names::of(log);
-    let full = layout(log, root, true, 1.0);
+    let full = layout(log, root, true, Rows::even(1.0));
     let leaves = full
         .iter()
         .filter(|(v, _, _)| match v {
@@ -164,14 +189,14 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         .count();
     let shadows = leaves <= MAX_LEAVES;
     // Rows as tall as make the graph about as wide as the plot (within reason).
-    let probe = if shadows { full } else { layout(log, root, false, 1.0) };
+    let probe = if shadows { full } else { layout(log, root, false, Rows::even(1.0)) };
     let width = probe.iter().map(|(_, p, _)| p.x).fold(0.0, f64::max) + 1.7;
     let rows = probe.iter().map(|(_, p, _)| -p.y).fold(0.0, f64::max) + 1.5;
     let natural = width / ASPECT / rows;
     let row_h = natural.clamp(0.55, 1.3);
     // A deep, narrow tree: rows too close for a word under each node.
     let deep = natural < 0.55;
-    let graph = layout(log, root, shadows, row_h);
+    let graph = layout(log, root, shadows, Rows::even(row_h));
     let deepest = log.nodes.iter().map(|n| n.start.level).max().unwrap_or(1);
     let stopped: Vec<usize> = log
         .events
@@ -225,13 +250,6 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
 
     // The legend beside the graph, which fills the rest: its corners are rarely free.
     d.legend_place = crate::canvas::LegendPlace::Outside;
-    // The view: the graph, a column for the level names on the left, the limit line below.
-    let mut points: Vec<DVec2> = graph.iter().map(|(_, p, _)| *p).collect();
-    let left = points.iter().map(|p| p.x).fold(f64::INFINITY, f64::min) - 1.5;
-    let right = points.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max) + 0.6;
-    let bottom = points.iter().map(|p| p.y).fold(0.0, f64::min) - 0.5 * row_h;
-    points.extend([DVec2::new(left, 0.4 * row_h), DVec2::new(right, bottom)]);
-    d.fit_view(&points, 0.03);
     // How far below its centre a vertex's words reach, in reference pixels.
     let reach = |v: &Vertex| match (v, deep) {
         (Vertex::Ray(_), true) => STOP_RADIUS + STOP_CLEAR,
@@ -239,36 +257,61 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         (Vertex::Shadow { .. }, true) => SHADOW_NODE + STOP_CLEAR,
         (Vertex::Shadow { .. }, false) => SHADOW_WORD_BELOW + WORD_BOX + STOP_CLEAR,
     };
-    // The lowest words must fit too; where they reach depends on the view's scale and the view
-    // on where they reach: refit until they agree (three fits move it by well under a pixel).
-    for _ in 0..3 {
-        let px = d.px_scale() / d.picture_scale();
-        let lowest = graph.iter().map(|(v, p, _)| p.y - reach(v) * px).fold(bottom, f64::min);
-        let mut with_words = points.clone();
-        with_words.push(DVec2::new(left, lowest));
-        d.fit_view(&with_words, 0.03);
-    }
     // The limit line lies between level max_depth, the last whose nodes spawn R and T, and level
     // max_depth + 1, whose nodes spawn nothing (§6: a node at level n spawns iff
     // n ≤ max_depth): under the words of the upper level's vertices (its ray nodes, and the
-    // shadow leaves of the level above, drawn on its row) and over the lower level's rings.
+    // shadow leaves of the level above, drawn on its row), with room under it for its words
+    // over the lower level's rings. Where the rows are too close for that, the rows from level
+    // max_depth + 1 down are lowered by what is missing, and the view fitted again (the scale
+    // shrinks a little with the taller tree: a few rounds settle it).
+    let gap_at = f64::from(traced.max_depth);
+    let mut rows = Rows { h: row_h, gap_at, extra: 0.0 };
+    let (mut graph, mut left, mut right, mut limit_y) = (graph, 0.0, 0.0, 0.0);
+    for round in 0..LIMIT_ROUNDS {
+        graph = layout(log, root, shadows, rows);
+        // The view: the graph, a column for the level names on the left, the limit line below.
+        let mut points: Vec<DVec2> = graph.iter().map(|(_, p, _)| *p).collect();
+        left = points.iter().map(|p| p.x).fold(f64::INFINITY, f64::min) - 1.5;
+        right = points.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max) + 0.6;
+        let bottom = points.iter().map(|p| p.y).fold(0.0, f64::min) - 0.5 * row_h;
+        points.extend([DVec2::new(left, 0.4 * row_h), DVec2::new(right, bottom)]);
+        d.fit_view(&points, 0.03);
+        // The lowest words must fit too; where they reach depends on the view's scale and the
+        // view on where they reach: refit until they agree (three fits move it by well under a
+        // pixel).
+        for _ in 0..3 {
+            let px = d.px_scale() / d.picture_scale();
+            let lowest = graph.iter().map(|(v, p, _)| p.y - reach(v) * px).fold(bottom, f64::min);
+            let mut with_words = points.clone();
+            with_words.push(DVec2::new(left, lowest));
+            d.fit_view(&with_words, 0.03);
+        }
+        if stopped.is_empty() || traced.max_depth == 0 {
+            break;
+        }
+        let px = d.px_scale() / d.picture_scale();
+        let upper_y = rows.y(gap_at - 1.0);
+        #[allow(clippy::float_cmp)] // a row's y is computed alike for each of its vertices
+        let under_upper = graph
+            .iter()
+            .filter(|(_, p, _)| p.y == upper_y)
+            .map(|(v, p, _)| p.y - reach(v) * px)
+            .fold(upper_y, f64::min);
+        let over_lower = rows.y(gap_at) + (STOP_RADIUS + STOP_CLEAR) * px;
+        limit_y = under_upper;
+        let missing = LIMIT_ROOM * px - (under_upper - over_lower);
+        if missing <= 0.0 || round + 1 == LIMIT_ROUNDS {
+            break;
+        }
+        rows.extra += missing + px;
+    }
     let px = d.px_scale() / d.picture_scale();
-    let upper_y = -f64::from(traced.max_depth.saturating_sub(1)) * row_h;
-    let lower_y = upper_y - row_h;
-    #[allow(clippy::float_cmp)] // rows are whole multiples of row_h, computed alike
-    let under_upper = graph
-        .iter()
-        .filter(|(_, p, _)| p.y == upper_y)
-        .map(|(v, p, _)| p.y - reach(v) * px)
-        .fold(upper_y, f64::min);
-    let over_lower = lower_y + (STOP_RADIUS + STOP_CLEAR) * px;
-    // Rows too close for the line to pass between them clear of both: under the whole tree,
-    // below its lowest words, as the view was fitted for.
-    let lowest = graph.iter().map(|(v, p, _)| p.y - reach(v) * px).fold(bottom, f64::min);
-    let limit_y = if under_upper >= over_lower { under_upper } else { lowest };
-
+    if traced.max_depth == 0 {
+        // Ray casting: the primary ray itself spawns nothing; the line runs under its words.
+        limit_y = graph.iter().map(|(v, p, _)| p.y - reach(v) * px).fold(0.0, f64::min);
+    }
     for level in 1..=deepest {
-        let y = -f64::from(level - 1) * row_h;
+        let y = rows.y(f64::from(level - 1));
         let opts = TextOpts::NOTE.align(Align::RIGHT_OF).color(style::DARK_GREY);
         d.text("level", DVec2::new(left, y), &format!("n = {level}"), opts);
     }
@@ -415,7 +458,14 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 let text = format!("I = {}", parts::rgb_text(colour));
                 let far = side + 24.0;
                 let mut spots = word.to_vec();
+                // One line farther out than the word's spots above and below the node, then
+                // beside it farther.
+                let line = slant + COLOUR_LINE;
                 spots.extend([
+                    TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Bottom }).offset(slant, line),
+                    TextOpts::NOTE.align(Align { h: HAlign::Right, v: VAlign::Bottom }).offset(-slant, line),
+                    TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Top }).offset(slant, -line),
+                    TextOpts::NOTE.align(Align { h: HAlign::Right, v: VAlign::Top }).offset(-slant, -line),
                     TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Bottom }).offset(far, slant),
                     TextOpts::NOTE.align(Align { h: HAlign::Right, v: VAlign::Bottom }).offset(-far, slant),
                     TextOpts::NOTE.align(Align::ABOVE).offset(0.0, side),
@@ -436,17 +486,27 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             let normal = DVec2::new(-along.y, -along.x);
             let weight_opts = TextOpts::NOTE.color(role.color());
             let mut spots = Vec::new();
-            for share in WEIGHT_AT {
+            // The near spots first; then, where the wedges beside the edge are taken (another
+            // edge leaves the node close by), spots farther out and nearer the edge's ends.
+            let near = [normal * WEIGHT_GAP, -normal * WEIGHT_GAP, normal * WEIGHT_FAR, -normal * WEIGHT_FAR];
+            let far = [
+                normal * WEIGHT_FARTHER,
+                -normal * WEIGHT_FARTHER,
+                normal * WEIGHT_GAP,
+                -normal * WEIGHT_GAP,
+            ];
+            let tries = WEIGHT_AT.iter().map(|s| (*s, &near)).chain(WEIGHT_ENDS.iter().map(|s| (*s, &far)));
+            for (share, offsets) in tries {
                 let at = tf.to_world(a + (b - a) * share);
-                let corners: Vec<TextOpts> =
-                    [normal * WEIGHT_GAP, -normal * WEIGHT_GAP, normal * WEIGHT_FAR, -normal * WEIGHT_FAR]
-                        .into_iter()
-                        .map(|n| {
-                            let h = if n.x >= 0.0 { HAlign::Left } else { HAlign::Right };
-                            let v = if n.y >= 0.0 { VAlign::Bottom } else { VAlign::Top };
-                            weight_opts.align(Align { h, v }).offset(n.x, n.y)
-                        })
-                        .collect();
+                let corners: Vec<TextOpts> = offsets
+                    .iter()
+                    .copied()
+                    .map(|n| {
+                        let h = if n.x >= 0.0 { HAlign::Left } else { HAlign::Right };
+                        let v = if n.y >= 0.0 { VAlign::Bottom } else { VAlign::Top };
+                        weight_opts.align(Align { h, v }).offset(n.x, n.y)
+                    })
+                    .collect();
                 spots.push((at, corners));
             }
             let spots: Vec<(DVec2, &[TextOpts])> = spots.iter().map(|(at, c)| (*at, &c[..])).collect();
@@ -527,10 +587,22 @@ const WEIGHT_GAP: f64 = 6.0;
 const WEIGHT_FAR: f64 = 20.0;
 /// Where along its edge a weight may stand, tried in this order (shares of the edge).
 const WEIGHT_AT: [f64; 9] = [0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8, 0.15, 0.85];
+/// The second round of spots along an edge (shares), with the farthest gap first.
+const WEIGHT_ENDS: [f64; 11] = [0.5, 0.6, 0.4, 0.7, 0.3, 0.8, 0.2, 0.85, 0.15, 0.9, 0.1];
+/// The farthest gap a weight takes from its edge, in reference pixels.
+const WEIGHT_FARTHER: f64 = 36.0;
 /// How many spots along the depth-limit line its words may start at.
 const LIMIT_SPOTS: u32 = 8;
 /// Reference pixels between the depth-limit line and its words.
 const LIMIT_GAP: f64 = 8.0;
+/// The room, in reference pixels, between the depth-limit line (under the words of level
+/// max_depth) and the rings of the level under it: its words under it, a gap either side.
+const LIMIT_ROOM: f64 = LIMIT_GAP + WORD_BOX + LIMIT_GAP;
+/// How many times the rows under the depth limit may be lowered and the view fitted again.
+const LIMIT_ROUNDS: usize = 5;
+
+/// Reference pixels a node's colour may stand one line farther out than its word's spots.
+const COLOUR_LINE: f64 = 36.0;
 
 /// How much a word may cross before it is not clear: nothing, in pixels.
 const WORD_GAP: f64 = 3.0;
@@ -590,8 +662,8 @@ impl Spots {
                 let crossed: f64 = self
                     .edges
                     .iter()
-                    // A weight may cross the depth-limit line (its edge does), nothing else.
-                    .filter(|(to, _, _)| *to != owner && !(tag == "weight" && *to == usize::MAX))
+                    // The depth-limit line too: a weight on an edge across it keeps to one side.
+                    .filter(|(to, _, _)| *to != owner)
                     .map(|(_, a, b)| ink.length_inside(*a, *b))
                     .sum();
                 // Its own disc too, but for the words beside it, which stand clear of it by their

@@ -199,6 +199,8 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             lines.push(format!("{name}: {} → s = 1", input.t(Label::NothingBetween)));
             continue;
         }
+        // The lecture's letter, as the legend and the ray tree write it (`kt`, Romanian `Kt`).
+        let kt = input.t(Label::WeightKt);
         let list: Vec<String> = s
             .occluders
             .iter()
@@ -207,7 +209,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
                 if o.kt == 0.0 {
                     format!("{what} ({})", input.t(Label::Opaque))
                 } else {
-                    format!("{what} (kt = {})", slide_number(o.kt))
+                    format!("{what} ({kt} = {})", slide_number(o.kt))
                 }
             })
             .collect();
@@ -216,9 +218,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         lines.push(if s.occluders.iter().any(|o| o.kt == 0.0) {
             "   → s = 0".to_owned()
         } else if product.len() == 1 {
-            format!("   → s = kt = {}", slide_number(s.s))
+            format!("   → s = {kt} = {}", slide_number(s.s))
         } else {
-            format!("   → s = Π kt = {} = {}", product.join(" · "), slide_number(s.s))
+            format!("   → s = Π {kt} = {} = {}", product.join(" · "), slide_number(s.s))
         });
     }
     text_column(d, column + DVec2::new(0.02 * view.width(), 0.0), &lines, TextSize::Body, 50.0);
