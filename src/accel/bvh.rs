@@ -20,6 +20,7 @@
 //!
 //! A tree that is one leaf (a small scene) is visited without the stack.
 
+use super::binned;
 use super::wide::{Binary, Child, WideBvh};
 use super::{beyond, node_skip, node_visit, prim_bounds, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
@@ -101,55 +102,83 @@ impl<V: Vector> Item<V> {
     }
 }
 
-/// What the builder works on: a run of items, the first at position `base` of the whole list.
-struct Builder<'a, V> {
-    items: &'a mut [Item<V>],
-    base: usize,
-    nodes: &'a mut Vec<Built<V>>,
+/// A builder's record of a primitive, and how a group of records is split: the exact [`Item`]s
+/// of small scenes, or the compact records of large ones ([`super::binned`]). The driver
+/// ([`build_into`]) is the same for both.
+pub(super) trait Split<V>: Copy + Send + Sync {
+    /// What a group's split needs to know of the group (its box, the box of its centroids),
+    /// found when its parent was split.
+    type Group: Copy + Send + Sync;
+    /// The group of `items`, in one pass (the root's; the median split's sides).
+    fn group(items: &[Self]) -> Self::Group;
+    /// The group's box: its node's.
+    fn bounds(group: &Self::Group) -> Aabb<V>;
+    /// The index of the primitive in the build's list.
+    fn prim(&self) -> u32;
+    /// Where to split `items` (more than one, reordering them) and both sides' groups, or `None`
+    /// for a leaf.
+    fn split(
+        items: &mut [Self],
+        depth: u32,
+        group: &Self::Group,
+    ) -> Option<(usize, Self::Group, Self::Group)>;
 }
 
 /// Groups of at least this many primitives have their two subtrees built in parallel (rayon),
-/// down to [`PARALLEL_DEPTH`] levels; the tree is the same whatever the number of threads.
+/// down to [`PARALLEL_DEPTH`] levels, when the pool has more than one thread; the tree is the
+/// same whatever the number of threads.
 const PARALLEL_MIN: usize = 1 << 16;
 /// How many levels fork (at most 2^PARALLEL_DEPTH tasks).
 const PARALLEL_DEPTH: u32 = 3;
 
-/// Appends the subtree over `items` (at `base` of the whole list) to `out`, depth first: an
-/// inner node's `start` is the index of its right child in `out`, a leaf's the position of its
-/// first item in the whole list.
-fn build_into<V: Vector>(out: &mut Vec<Built<V>>, items: &mut [Item<V>], base: usize, depth: u32) {
-    let n = items.len();
-    if n < PARALLEL_MIN || depth >= PARALLEL_DEPTH {
-        Builder { items, base, nodes: out }.node(0, n, depth);
+/// Appends the subtree over `items` (at `base` of the whole list; `group` their group) to
+/// `out`, depth first: an inner node's `start` is the index of its right child in `out`, a
+/// leaf's the position of its first item in the whole list.
+fn build_into<V: Vector, T: Split<V>>(
+    out: &mut Vec<Built<V>>,
+    items: &mut [T],
+    base: usize,
+    depth: u32,
+    group: T::Group,
+) {
+    let (index, n) = (out.len(), items.len());
+    let bounds = T::bounds(&group);
+    out.push(Built { bounds, start: to_u32(base), count: to_u32(n) });
+    if n == 1 {
         return;
     }
-    let index = out.len();
-    let (bounds, mid) = {
-        let mut b = Builder { items: &mut *items, base, nodes: &mut *out };
-        let (bounds, cbox) = b.boxes(0, n);
-        (bounds, b.split(0, n, depth, &bounds, &cbox))
-    };
-    out.push(Built { bounds, start: to_u32(base), count: to_u32(n) });
-    let Some(mid) = mid else {
+    let Some((mid, left, right)) = T::split(items, depth, &group) else {
         return;
     };
-    // The left subtree goes straight into `out`, the right one into its own list, appended after.
     let (left_items, right_items) = items.split_at_mut(mid);
-    // Reserved here, on the calling thread, so that the memory comes from the allocator's main
-    // arena (where the scene's parse left free memory) rather than a worker's fresh one.
-    let mut right = Vec::with_capacity(right_items.len());
-    rayon::join(
-        || build_into(out, left_items, base, depth + 1),
-        || build_into(&mut right, right_items, base + mid, depth + 1),
-    );
-    let right_start = out.len();
+    // With one thread (a pinned benchmark), no fork: the tree is the same, without the copy of
+    // the right subtree's list.
+    let fork = n >= PARALLEL_MIN && depth < PARALLEL_DEPTH && rayon::current_num_threads() > 1;
+    let right_start = if fork {
+        // The left subtree goes straight into `out`, the right one into its own list, appended
+        // after. Reserved here, on the calling thread, so that the memory comes from the
+        // allocator's main arena (where the scene's parse left free memory) rather than a
+        // worker's fresh one.
+        let mut right_nodes = Vec::with_capacity(right_items.len());
+        rayon::join(
+            || build_into(out, left_items, base, depth + 1, left),
+            || build_into(&mut right_nodes, right_items, base + mid, depth + 1, right),
+        );
+        let right_start = out.len();
+        out.extend(right_nodes.into_iter().map(|mut b| {
+            if b.count == 0 {
+                b.start += to_u32(right_start);
+            }
+            b
+        }));
+        right_start
+    } else {
+        build_into(out, left_items, base, depth + 1, left);
+        let right_start = out.len();
+        build_into(out, right_items, base + mid, depth + 1, right);
+        right_start
+    };
     out[index] = Built { bounds, start: to_u32(right_start), count: 0 };
-    out.extend(right.into_iter().map(|mut b| {
-        if b.count == 0 {
-            b.start += to_u32(right_start);
-        }
-        b
-    }));
 }
 
 /// Room on a walk's stack of pending `(link, depth, t_in)`: a walk keeps at most one pending
@@ -157,24 +186,38 @@ fn build_into<V: Vector>(out: &mut Vec<Built<V>>, items: &mut [Item<V>], base: u
 const STACK_SIZE: usize = BALANCE_DEPTH as usize + 40;
 
 impl<V: Dim> Bvh<V> {
-    /// Builds the tree over `prims` (their boxes from the scene).
+    /// Builds the tree over `prims` (their boxes from the scene): more than
+    /// [`binned::LARGE`] of them by the compact build of [`super::binned`], fewer (every lesson
+    /// scene) by the exact one.
     #[must_use]
     pub fn build(scene: &Scene<V>, prims: Vec<Prim>) -> Self {
+        let cost = |p: Prim| {
+            #[allow(clippy::cast_possible_truncation)] // 0.25 and 1 are exact in f32
+            let cost = scene.objects[p.object()].shape.test_cost() as f32;
+            cost
+        };
+        if prims.len() > binned::LARGE {
+            if let Some(records) = binned::records(prims.iter().map(|&p| (prim_bounds(scene, p), cost(p)))) {
+                return Self::from_items(prims, records);
+            }
+        }
         let items = prims
             .iter()
             .enumerate()
-            .map(|(i, &p)| {
-                #[allow(clippy::cast_possible_truncation)] // 0.25 and 1 are exact in f32
-                let cost = scene.objects[p.object()].shape.test_cost() as f32;
-                Item { bounds: prim_bounds(scene, p), prim: to_u32(i), cost }
-            })
+            .map(|(i, &p)| Item { bounds: prim_bounds(scene, p), prim: to_u32(i), cost: cost(p) })
             .collect();
         Self::from_items(prims, items)
     }
 
-    /// Builds the tree over primitives with the given boxes (each costing one triangle test).
+    /// Builds the tree over primitives with the given boxes (each costing one triangle test),
+    /// as [`Bvh::build`] does.
     #[must_use]
     pub fn from_boxes(prims: Vec<Prim>, boxes: Vec<Aabb<V>>) -> Self {
+        if boxes.len() > binned::LARGE {
+            if let Some(records) = binned::records(boxes.iter().map(|&b| (b, 1.0))) {
+                return Self::from_items(prims, records);
+            }
+        }
         let items = boxes
             .into_iter()
             .enumerate()
@@ -183,8 +226,8 @@ impl<V: Dim> Bvh<V> {
         Self::from_items(prims, items)
     }
 
-    /// Builds the tree over primitives given as builder items (box and index into `prims`).
-    fn from_items(prims: Vec<Prim>, mut items: Vec<Item<V>>) -> Self {
+    /// Builds the tree over primitives given as builder records (box and index into `prims`).
+    fn from_items<T: Split<V>>(prims: Vec<Prim>, mut items: Vec<T>) -> Self {
         let n = prims.len();
         let empty = Link { start: 0, count: 0, id: 0 };
         if n == 0 {
@@ -192,8 +235,9 @@ impl<V: Dim> Bvh<V> {
         }
         let (order, built) = {
             let mut built = Vec::with_capacity(n);
-            build_into(&mut built, &mut items, 0, 0);
-            let order: Vec<u32> = items.iter().map(|it| it.prim).collect();
+            let group = T::group(&items);
+            build_into(&mut built, &mut items, 0, 0, group);
+            let order: Vec<u32> = items.iter().map(T::prim).collect();
             drop(items);
             (order, built)
         };
@@ -376,11 +420,16 @@ impl<V: Dim> Bvh<V> {
     }
 }
 
-impl<V: Vector> Builder<'_, V> {
-    /// The box of `items[lo..hi]` and the box of their centroids, in one pass.
-    fn boxes(&self, lo: usize, hi: usize) -> (Aabb<V>, Aabb<V>) {
+/// The exact build's group: the box of the items and the box of their centroids.
+type Boxes<V> = (Aabb<V>, Aabb<V>);
+
+impl<V: Vector> Split<V> for Item<V> {
+    type Group = Boxes<V>;
+
+    /// The box of `items` and the box of their centroids, in one pass.
+    fn group(items: &[Self]) -> Boxes<V> {
         let (mut bounds, mut cbox) = (Aabb::empty(), Aabb::empty());
-        for it in &self.items[lo..hi] {
+        for it in items {
             bounds = bounds.union(&it.bounds);
             let c = it.centroid();
             cbox = cbox.union(&Aabb::new(c, c));
@@ -388,127 +437,131 @@ impl<V: Vector> Builder<'_, V> {
         (bounds, cbox)
     }
 
-    /// Builds the node over `items[lo..hi]` and its subtree; the node is pushed at the index it
-    /// had when called.
-    fn node(&mut self, lo: usize, hi: usize, depth: u32) {
-        let index = self.nodes.len();
-        let (bounds, cbox) = self.boxes(lo, hi);
-        self.nodes.push(Built { bounds, start: to_u32(self.base + lo), count: to_u32(hi - lo) });
-        if hi - lo == 1 {
-            return;
-        }
-        let Some(mid) = self.split(lo, hi, depth, &bounds, &cbox) else {
-            return;
-        };
-        self.node(lo, mid, depth + 1);
-        let right = self.nodes.len();
-        self.node(mid, hi, depth + 1);
-        self.nodes[index] = Built { bounds, start: to_u32(right), count: 0 };
+    fn bounds(group: &Boxes<V>) -> Aabb<V> {
+        group.0
     }
 
-    /// Where to split `items[lo..hi]` (reordering it), or `None` for a leaf.
-    fn split(&mut self, lo: usize, hi: usize, depth: u32, bounds: &Aabb<V>, cbox: &Aabb<V>) -> Option<usize> {
-        let count = hi - lo;
-        let axis = cbox.longest_axis();
-        if depth >= BALANCE_DEPTH || !(cbox.extent()[axis] > 0.0) {
-            return (count > MAX_LEAF || depth >= BALANCE_DEPTH).then(|| self.median(lo, hi, axis));
-        }
-        let BinSplit { cost, axis, bin } = self.best_bin_split(lo, hi, cbox, bounds);
-        // A leaf costs the tests of all its primitives; summed only where a leaf may be chosen
-        // (otherwise one more pass over every item at every level of the build).
-        if count <= MAX_LEAF {
-            let leaf: f64 = self.items[lo..hi].iter().map(|it| f64::from(it.cost)).sum();
-            if cost >= leaf {
-                return None;
-            }
-        }
-        // Partition by bin: those left of the split first.
-        let (cmin, scale) = bin_map(cbox, axis);
-        let mut mid = lo;
-        for k in lo..hi {
-            if bin_of(self.items[k].centroid()[axis], cmin, scale) <= bin {
-                self.items.swap(mid, k);
-                mid += 1;
-            }
-        }
-        if mid == lo || mid == hi {
-            return Some(self.median(lo, hi, axis));
-        }
-        Some(mid)
+    fn prim(&self) -> u32 {
+        self.prim
     }
 
-    /// The best binned SAH split over every axis. All axes are binned in one pass over the
-    /// primitives.
-    fn best_bin_split(&self, lo: usize, hi: usize, cbox: &Aabb<V>, bounds: &Aabb<V>) -> BinSplit {
-        let parent = bounds.surface();
-        // Large groups are binned along their longest axis only, small ones along every axis.
-        let longest = cbox.longest_axis();
-        let mut maps: [Option<(f64, f64)>; 3] = [None; 3];
-        for (axis, map) in maps.iter_mut().enumerate().take(V::DIM) {
-            let used = hi - lo <= ALL_AXES_BELOW || axis == longest;
-            *map = (used && cbox.extent()[axis] > 0.0).then(|| bin_map(cbox, axis));
-        }
-        let mut counts = [[0usize; BINS]; 3];
-        let mut costs = [[0.0f64; BINS]; 3];
-        let mut boxes = [[Aabb::empty(); BINS]; 3];
-        for it in &self.items[lo..hi] {
-            let (c, b) = (it.centroid(), &it.bounds);
-            for (axis, map) in maps.iter().enumerate() {
-                if let Some((cmin, scale)) = map {
-                    let k = bin_of(c[axis], *cmin, *scale);
-                    counts[axis][k] += 1;
-                    costs[axis][k] += f64::from(it.cost);
-                    boxes[axis][k] = boxes[axis][k].union(b);
-                }
-            }
-        }
-        let mut best = BinSplit { cost: f64::INFINITY, axis: 0, bin: 0 };
-        for axis in (0..V::DIM).filter(|&a| maps[a].is_some()) {
-            let (counts, costs, boxes) = (&counts[axis], &costs[axis], &boxes[axis]);
-            // Sweep from the right: the area, count and test cost of bins b+1.. .
-            let mut right_area = [0.0; BINS];
-            let mut right_count = [0usize; BINS];
-            let mut right_cost = [0.0; BINS];
-            let (mut acc, mut n, mut c) = (Aabb::empty(), 0, 0.0);
-            for b in (1..BINS).rev() {
-                acc = acc.union(&boxes[b]);
-                n += counts[b];
-                c += costs[b];
-                right_area[b] = acc.surface();
-                right_count[b] = n;
-                right_cost[b] = c;
-            }
-            let (mut acc, mut n, mut c) = (Aabb::empty(), 0, 0.0);
-            for b in 0..BINS - 1 {
-                acc = acc.union(&boxes[b]);
-                n += counts[b];
-                c += costs[b];
-                if n == 0 || right_count[b + 1] == 0 {
-                    continue;
-                }
-                let (cl, cr) = (c, right_cost[b + 1]);
-                let cost = if parent > 0.0 {
-                    C_TRAV + (acc.surface() * cl + right_area[b + 1] * cr) / parent
-                } else {
-                    // A flat or point-like group: every box has measure 0; split evenly.
-                    C_TRAV + f64::max(cl, cr)
-                };
-                if cost < best.cost {
-                    best = BinSplit { cost, axis, bin: b };
-                }
-            }
-        }
-        best
+    fn split(
+        items: &mut [Self],
+        depth: u32,
+        (bounds, cbox): &Boxes<V>,
+    ) -> Option<(usize, Boxes<V>, Boxes<V>)> {
+        let mid = split_items(items, depth, bounds, cbox)?;
+        Some((mid, Self::group(&items[..mid]), Self::group(&items[mid..])))
     }
+}
 
-    /// Splits `items[lo..hi]` at its middle, by centroid along `axis` then by index.
-    fn median(&mut self, lo: usize, hi: usize, axis: usize) -> usize {
-        let mid = lo + (hi - lo) / 2;
-        self.items[lo..hi].select_nth_unstable_by(mid - lo, |a, b| {
-            a.centroid()[axis].total_cmp(&b.centroid()[axis]).then(a.prim.cmp(&b.prim))
-        });
-        mid
+/// Where to split `items` (reordering them), or `None` for a leaf.
+fn split_items<V: Vector>(
+    items: &mut [Item<V>],
+    depth: u32,
+    bounds: &Aabb<V>,
+    cbox: &Aabb<V>,
+) -> Option<usize> {
+    let count = items.len();
+    let axis = cbox.longest_axis();
+    if depth >= BALANCE_DEPTH || !(cbox.extent()[axis] > 0.0) {
+        return (count > MAX_LEAF || depth >= BALANCE_DEPTH).then(|| median(items, axis));
     }
+    let BinSplit { cost, axis, bin } = best_bin_split(items, cbox, bounds);
+    // A leaf costs the tests of all its primitives; summed only where a leaf may be chosen
+    // (otherwise one more pass over every item at every level of the build).
+    if count <= MAX_LEAF {
+        let leaf: f64 = items.iter().map(|it| f64::from(it.cost)).sum();
+        if cost >= leaf {
+            return None;
+        }
+    }
+    // Partition by bin: those left of the split first.
+    let (cmin, scale) = bin_map(cbox, axis);
+    let mut mid = 0;
+    for k in 0..count {
+        if bin_of(items[k].centroid()[axis], cmin, scale) <= bin {
+            items.swap(mid, k);
+            mid += 1;
+        }
+    }
+    if mid == 0 || mid == count {
+        return Some(median(items, axis));
+    }
+    Some(mid)
+}
+
+/// The best binned SAH split of `items` over every axis. All axes are binned in one pass over
+/// the primitives.
+fn best_bin_split<V: Vector>(items: &[Item<V>], cbox: &Aabb<V>, bounds: &Aabb<V>) -> BinSplit {
+    let parent = bounds.surface();
+    // Large groups are binned along their longest axis only, small ones along every axis.
+    let longest = cbox.longest_axis();
+    let mut maps: [Option<(f64, f64)>; 3] = [None; 3];
+    for (axis, map) in maps.iter_mut().enumerate().take(V::DIM) {
+        let used = items.len() <= ALL_AXES_BELOW || axis == longest;
+        *map = (used && cbox.extent()[axis] > 0.0).then(|| bin_map(cbox, axis));
+    }
+    let mut counts = [[0usize; BINS]; 3];
+    let mut costs = [[0.0f64; BINS]; 3];
+    let mut boxes = [[Aabb::empty(); BINS]; 3];
+    for it in items {
+        let (c, b) = (it.centroid(), &it.bounds);
+        for (axis, map) in maps.iter().enumerate() {
+            if let Some((cmin, scale)) = map {
+                let k = bin_of(c[axis], *cmin, *scale);
+                counts[axis][k] += 1;
+                costs[axis][k] += f64::from(it.cost);
+                boxes[axis][k] = boxes[axis][k].union(b);
+            }
+        }
+    }
+    let mut best = BinSplit { cost: f64::INFINITY, axis: 0, bin: 0 };
+    for axis in (0..V::DIM).filter(|&a| maps[a].is_some()) {
+        let (counts, costs, boxes) = (&counts[axis], &costs[axis], &boxes[axis]);
+        // Sweep from the right: the area, count and test cost of bins b+1.. .
+        let mut right_area = [0.0; BINS];
+        let mut right_count = [0usize; BINS];
+        let mut right_cost = [0.0; BINS];
+        let (mut acc, mut n, mut c) = (Aabb::empty(), 0, 0.0);
+        for b in (1..BINS).rev() {
+            acc = acc.union(&boxes[b]);
+            n += counts[b];
+            c += costs[b];
+            right_area[b] = acc.surface();
+            right_count[b] = n;
+            right_cost[b] = c;
+        }
+        let (mut acc, mut n, mut c) = (Aabb::empty(), 0, 0.0);
+        for b in 0..BINS - 1 {
+            acc = acc.union(&boxes[b]);
+            n += counts[b];
+            c += costs[b];
+            if n == 0 || right_count[b + 1] == 0 {
+                continue;
+            }
+            let (cl, cr) = (c, right_cost[b + 1]);
+            let cost = if parent > 0.0 {
+                C_TRAV + (acc.surface() * cl + right_area[b + 1] * cr) / parent
+            } else {
+                // A flat or point-like group: every box has measure 0; split evenly.
+                C_TRAV + f64::max(cl, cr)
+            };
+            if cost < best.cost {
+                best = BinSplit { cost, axis, bin: b };
+            }
+        }
+    }
+    best
+}
+
+/// Splits `items` at its middle, by centroid along `axis` then by index.
+fn median<V: Vector>(items: &mut [Item<V>], axis: usize) -> usize {
+    let mid = items.len() / 2;
+    items.select_nth_unstable_by(mid, |a, b| {
+        a.centroid()[axis].total_cmp(&b.centroid()[axis]).then(a.prim.cmp(&b.prim))
+    });
+    mid
 }
 
 /// A binned SAH split: what [`Bvh`]'s build chooses among.
@@ -550,29 +603,61 @@ mod tests {
         Aabb::new(p, p + DVec3::splat(0.5))
     }
 
-    #[test]
-    fn build_is_deterministic_and_covers_every_primitive_once() {
-        let prims: Vec<Prim> = (0..1000).map(|i| Prim { object: i, part: 0 }).collect();
-        let boxes: Vec<Aabb<DVec3>> = (0..1000).map(cube).collect();
-        let a = Bvh::from_boxes(prims.clone(), boxes.clone());
-        let b = Bvh::from_boxes(prims, boxes);
-        assert_eq!(a.nodes, b.nodes);
-        assert_eq!(a.prims, b.prims);
-        let mut seen: Vec<u32> = a.prims.iter().map(|p| p.object).collect();
+    /// Asserts that `t` holds every primitive once, each inside its leaf's box (`boxes[object]`),
+    /// every child box inside its parent's, and leaves of at most `MAX_LEAF` primitives.
+    fn assert_sound(t: &Bvh<DVec3>, boxes: &[Aabb<DVec3>]) {
+        let mut seen: Vec<u32> = t.prims.iter().map(|p| p.object).collect();
         seen.sort_unstable();
-        assert_eq!(seen, (0..1000).collect::<Vec<_>>());
-        // Every leaf is small and every child box lies inside its parent's.
-        let mut parents = vec![a.root_box; a.nodes.len()];
-        for (i, n) in a.nodes.iter().enumerate() {
+        assert_eq!(seen, (0..to_u32(boxes.len())).collect::<Vec<_>>());
+        let mut parents = vec![t.root_box; t.nodes.len()];
+        for (i, n) in t.nodes.iter().enumerate() {
             for (b, l) in n.boxes.iter().zip(n.links) {
                 assert_eq!(parents[i].union(b), parents[i]);
                 if l.count > 0 {
                     assert!(l.count as usize <= MAX_LEAF);
+                    for p in &t.prims[l.start as usize..(l.start + l.count) as usize] {
+                        assert_eq!(b.union(&boxes[p.object()]), *b, "{p:?} outside its leaf");
+                    }
                 } else {
                     parents[l.start as usize] = *b;
                 }
             }
         }
+    }
+
+    #[test]
+    fn build_is_deterministic_and_covers_every_primitive_once() {
+        let prims: Vec<Prim> = (0..1000).map(|i| Prim { object: i, part: 0 }).collect();
+        let boxes: Vec<Aabb<DVec3>> = (0..1000).map(cube).collect();
+        let a = Bvh::from_boxes(prims.clone(), boxes.clone());
+        let b = Bvh::from_boxes(prims, boxes.clone());
+        assert_eq!(a.nodes, b.nodes);
+        assert_eq!(a.prims, b.prims);
+        assert_sound(&a, &boxes);
+    }
+
+    #[test]
+    fn the_binned_build_is_the_same_on_any_number_of_threads_and_sound() {
+        // Enough boxes for the compact build and for its top levels to fork; coordinates with
+        // many digits, so that every box is rounded outward to f32.
+        let n = PARALLEL_MIN + 1000;
+        assert!(n > binned::LARGE);
+        let prims: Vec<Prim> = (0..to_u32(n)).map(|i| Prim { object: i, part: 0 }).collect();
+        let boxes: Vec<Aabb<DVec3>> = (0..n)
+            .map(|i| {
+                let x = (i as f64 * 0.618_033_988_749_894_9).fract();
+                let p = DVec3::new(x * 97.3, (x * 7.77).fract() * 11.1, i as f64 * 1e-3 / 3.0);
+                Aabb::new(p, p + DVec3::new(0.01, 0.02 / 3.0, 0.1 / 7.0))
+            })
+            .collect();
+        let build = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| Bvh::from_boxes(prims.clone(), boxes.clone()))
+        };
+        let (a, b) = (build(1), build(2));
+        assert_eq!(a.nodes, b.nodes);
+        assert_eq!(a.prims, b.prims);
+        assert_sound(&a, &boxes);
     }
 
     #[test]

@@ -16,6 +16,7 @@
 //! `occluders` through one `search`), and what a structure's build reads of a primitive
 //! ([`prim_bounds`], [`prim_hull`]).
 
+pub mod binned;
 pub mod bvh;
 pub mod grid;
 pub mod layout;
