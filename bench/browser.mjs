@@ -11,6 +11,15 @@
 //                --threads 1` (the median of RUNS each)
 //   size         the module, raw and gzipped
 //   long task    the longest main-thread task seen (longtask entries are tasks over 50 ms)
+//
+//   node bench/browser.mjs --module [SCENE] [WxH] [ROUNDS]
+// measures the module alone, without the site (web/build.sh and cargo build --release first):
+// the same render (default bench/scenes/whitted.json, 640x480) in each sampling mode, by
+// target/wasm/whitted_web.wasm (or WHITTED_WASM) in a blank Chromium page and by `whitted render --threads 1`, in
+// interleaved rounds (default 9), the ratio page / native of each round's pair and its median.
+// The page's time is the whole `render` call (the scene parsed, the structure built, the image
+// traced and turned into RGBA8, the answer written); the native time is the binary's own
+// load + build + trace seconds (its PNG is not timed). Both check the same rays.
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { gzipSync } from 'node:zlib';
@@ -24,6 +33,65 @@ const CLICKS = 21;
 const RUNS = 5;
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
 const report = (name, value, goal) => console.log(`${name.padEnd(12)} ${value.padEnd(44)} goal ${goal}`);
+
+if (process.argv[2] === '--module') {
+  await moduleAgainstNative(process.argv.slice(3));
+  process.exit(0);
+}
+
+/** `--module`: the module's render in a blank page against the native binary on one thread. */
+async function moduleAgainstNative([scenePath = join(ROOT, 'bench', 'scenes', 'whitted.json'), size = '640x480', rounds = '9']) {
+  const [w, h] = size.split('x').map(Number);
+  const text = readFileSync(scenePath, 'utf8');
+  const wasm = readFileSync(process.env.WHITTED_WASM ?? join(ROOT, 'target', 'wasm', 'whitted_web.wasm'));
+  const modes = [
+    ['center', {}, []],
+    ['corners', { aa: 'corners' }, ['--aa', 'corners']],
+    ['adaptive', { aa: 'adaptive', threshold: 0.3, max_level: 2 }, ['--aa', 'adaptive', '--threshold', '0.3', '--max-level', '2']],
+  ];
+  const browser = await launch();
+  const page = await browser.newPage();
+  // The module instantiated in the page, called through web/README.md's ABI, as the course's
+  // worker calls it; each call timed by the page's own clock.
+  await page.evaluate(async (b64) => {
+    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const { instance } = await WebAssembly.instantiate(bytes, {});
+    const x = instance.exports;
+    const encoder = new TextEncoder();
+    const decoder = new TextDecoder();
+    self.timedCall = (request) => {
+      const start = performance.now();
+      const input = encoder.encode(JSON.stringify(request));
+      const at = x.whitted_inbox(input.length);
+      new Uint8Array(x.memory.buffer, at, input.length).set(input);
+      const code = x.whitted_call();
+      const json = decoder.decode(new Uint8Array(x.memory.buffer, x.whitted_outbox(), x.whitted_outbox_len()));
+      const ms = performance.now() - start;
+      if (code !== 0) throw new Error(json);
+      return { ms, answer: JSON.parse(json) };
+    };
+  }, wasm.toString('base64'));
+  console.log(`${scenePath}, ${size}, ${rounds} rounds; page = the module in ${await browser.version()}, native = ${BIN} --threads 1`);
+  console.log('| mode | page (ms) | native (ms) | page / native, median of rounds (range) |');
+  console.log('|---|---:|---:|---:|');
+  for (const [name, options, flags] of modes) {
+    const request = { op: 'render', scene: text, options: { ...options, size: [w, h] } };
+    await page.evaluate((r) => self.timedCall(r), request); // a first, cold call
+    const inPage = [];
+    const native = [];
+    for (let k = 0; k < Number(rounds); k++) {
+      const { ms, answer } = await page.evaluate((r) => self.timedCall(r), request);
+      const doc = JSON.parse(execFileSync(BIN, ['render', scenePath, '--size', size, '--threads', '1', ...flags, '--json',
+        '-o', '/dev/null'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }));
+      if (JSON.stringify(doc.rays) !== JSON.stringify(answer.rays)) throw new Error(`${name}: the page and the binary traced other rays`);
+      inPage.push(ms);
+      native.push(1000 * (doc.load_seconds + doc.build_seconds + doc.seconds));
+    }
+    const ratios = inPage.map((p, k) => p / native[k]);
+    console.log(`| ${name} | ${median(inPage).toFixed(1)} | ${median(native).toFixed(1)} | ${median(ratios).toFixed(2)} (${Math.min(...ratios).toFixed(2)}–${Math.max(...ratios).toFixed(2)}) |`);
+  }
+  await browser.close();
+}
 
 const browser = await launch();
 const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
