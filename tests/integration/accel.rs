@@ -310,6 +310,72 @@ proptest! {
     }
 }
 
+/// A coordinate of any scale the `f32` slab test must survive inside `F32_RANGE` (2⁴⁰ ≈ 1.1·10¹²):
+/// small, tiny, huge, or a small integer (box faces and origins on one plane).
+fn scaled_coord() -> BoxedStrategy<f64> {
+    prop_oneof![-4.0f64..4.0, -1e-30f64..1e-30, -1e12f64..1e12, (-4i32..5).prop_map(f64::from),].boxed()
+}
+
+/// A direction for the `f32` slab test: axis-parallel, diagonal or general (from `direction`), or
+/// nearly parallel to an axis (a component of 10⁻¹⁴ … 10⁻⁶, so `1/d` may leave `F32_RANGE`).
+fn slab_direction() -> BoxedStrategy<DVec3> {
+    let grazing = (0..3usize, -1e-6f64..1e-6, -1.0f64..1.0, -1.0f64..1.0).prop_map(|(a, tiny, p, q)| {
+        let mut d = DVec3::new(p, q, 0.5);
+        d[a] = tiny;
+        d
+    });
+    prop_oneof![direction(3).prop_map(|v| DVec3::from_slice(&v)), grazing]
+        .prop_filter_map("a unit direction", |d| d.try_normalize())
+        .boxed()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// The conservative `f32` slab test of the wide BVH (`RecipRay32`): for every ray it takes
+    /// (oblique, inside `F32_RANGE`), the `f32` interval `[lo, hi]` of a box stored in `f32`
+    /// holds the `f64` walk's `[t_in, widened t_out]`, so it admits every box the `f64` test
+    /// admits, and nothing is NaN; an axis-parallel ray never takes it.
+    #[test]
+    fn the_f32_slab_interval_holds_the_f64_one(
+        o in [scaled_coord(), scaled_coord(), prop_oneof![scaled_coord(), -1e14f64..1e14].boxed()],
+        d in slab_direction(),
+        a in [scaled_coord(), scaled_coord(), scaled_coord()],
+        b in [scaled_coord(), scaled_coord(), scaled_coord()],
+        on_face in proptest::option::of((0..3usize, any::<bool>())),
+    ) {
+        use whitted::geom::slab::{culling_hit, down_to_f32, up_to_f32, widen_exit, RecipRay, F32_RANGE};
+        let lo32: [f32; 3] = std::array::from_fn(|i| down_to_f32(a[i].min(b[i])));
+        let hi32: [f32; 3] = std::array::from_fn(|i| up_to_f32(a[i].max(b[i])));
+        let (lo, hi) = (DVec3::from(lo32.map(f64::from)), DVec3::from(hi32.map(f64::from)));
+        let mut o = DVec3::from(o);
+        // The origin on one of the box's faces, as a ray that leaves a surface may be.
+        if let Some((axis, upper)) = on_face {
+            o[axis] = if upper { hi[axis] } else { lo[axis] };
+        }
+        let r = RecipRay::new(&Ray::new(o, d));
+        let Some(r32) = r.to_f32() else {
+            let in_range = (0..3).all(|i| o[i].abs() <= F32_RANGE && r.inv_dir[i].abs() <= F32_RANGE);
+            prop_assert!(!r.oblique || !in_range || r.inv_dir.abs().min_element() * F32_RANGE < 1.0);
+            return Ok(());
+        };
+        prop_assert!(r.oblique, "an axis-parallel ray has no f32 twin");
+        prop_assert!(lo.abs().max_element() <= F32_RANGE && hi.abs().max_element() <= F32_RANGE);
+        let (t_in, t_out) = r.box_interval(lo, hi);
+        // Lane 2 holds the box; the others, the point box at 0 (as a wide node's unused lanes).
+        let lane = |x: f32| [0.0, 0.0, x, 0.0];
+        let planes: [[[f32; 4]; 2]; 3] = std::array::from_fn(|i| [lane(lo32[i]), lane(hi32[i])]);
+        let (l, h) = r32.box_lanes::<4>(3, &planes);
+        let (l, h) = (f64::from(l[2]), f64::from(h[2]));
+        prop_assert!(!l.is_nan() && !h.is_nan());
+        prop_assert!(l <= t_in, "entry {l} after the f64 walk's {t_in}");
+        prop_assert!(h >= widen_exit(t_out), "exit {h} before the f64 walk's {}", widen_exit(t_out));
+        if culling_hit(t_in, t_out) {
+            prop_assert!(l <= h && h >= 0.0, "the f64 test admits the box, the f32 test must");
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Exact-arithmetic scenes, by hand
 

@@ -2,10 +2,12 @@
 //! `[t_near, t_far]`, their intersection `[max t_near, min t_far]`, closed, NaN-proof.
 //!
 //! `RecipRay` with `slab_interval_recip` is the same slab by reciprocals, for the traversals that
-//! test many boxes with one ray.
+//! test many boxes with one ray; `RecipRay32` is its conservative `f32` twin for boxes stored in
+//! `f32` (the render's wide BVH), whose interval always holds the `f64` one.
 
 use super::ray::Ray;
 use super::Vector;
+use glam::Vec4;
 
 /// One slab's interval along a ray, `t_near ≤ t_far` unless the slab is parallel and outside.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -136,6 +138,169 @@ impl<V: Vector> RecipRay<V> {
             }
         }
         [(t_in[0], t_out[0]), (t_in[1], t_out[1])]
+    }
+}
+
+/// `x` rounded down to an `f32` (`x` itself when exact): the largest `f32` not above it.
+#[must_use]
+pub fn down_to_f32(x: f64) -> f32 {
+    // Rounding to nearest, then one step down when that went above.
+    #[allow(clippy::cast_possible_truncation)]
+    let f = x as f32;
+    if f64::from(f) > x {
+        f.next_down()
+    } else {
+        f
+    }
+}
+
+/// `x` rounded up to an `f32`: the smallest `f32` not below it.
+#[must_use]
+pub fn up_to_f32(x: f64) -> f32 {
+    #[allow(clippy::cast_possible_truncation)]
+    let f = x as f32;
+    if f64::from(f) < x {
+        f.next_up()
+    } else {
+        f
+    }
+}
+
+/// `f32`'s unit roundoff `u = 2⁻²⁴`.
+const U32: f64 = f32::EPSILON as f64 * 0.5;
+/// The relative margin `c = 5u` of [`RecipRay32::box_lanes`].
+pub const F32_REL_MARGIN: f32 = 5.0 * f32::EPSILON * 0.5;
+/// The factor of the per-ray margin, `3u` (see [`RecipRay32`]).
+const F32_ABS_FACTOR: f64 = 3.0 * U32;
+/// The absolute floor `2⁻¹⁰⁰` of the per-ray margin: it covers the underflows (at most
+/// `2⁻¹⁵⁰·(1 + |1/d|) ≤ 2⁻¹⁰⁹` inside [`F32_RANGE`]).
+const F32_FLOOR: f64 = 1.0 / (1u128 << 100) as f64;
+/// The range of the `f32` test: it is used only when `|O|`, every box plane `|x|` and `|1/d|`
+/// are at most `2⁴⁰` and `|1/d| ≥ 2⁻⁴⁰`, so that no `f32` step overflows (`|t| ≤ 2⁸¹`) or
+/// meets a subnormal `1/d`; elsewhere the `f64` test decides.
+pub const F32_RANGE: f64 = (1u64 << 40) as f64;
+
+/// A ray prepared for the conservative `f32` slab test of boxes stored in `f32` (planes `x`,
+/// exact in `f64`), many at once: `Ô = fl32(O)`, `R̂ = fl32(1/D)` (of the `f64` reciprocal `R`
+/// of [`RecipRay`]) and the per-ray margin `M`.
+///
+/// **The bound.** Per axis, the `f64` walk computes `T = fl64(fl64(x − O)·R)` and this test
+/// `t = fl32(fl32(x − Ô)·R̂)`. With `u = 2⁻²⁴`, `γₖ = ku/(1 − ku)`, `v = 2⁻⁵³` and the real
+/// `τ = (x − O)·R`: `Ô = O + e` with `|e| ≤ u·|O|`, so
+/// `|t − τ| ≤ γ₃·|τ| + u(1 + u)³·|O·R|` and `|T − τ| ≤ γ₂(v)·|τ|`; hence
+/// `|t − T| ≤ k·|t| + m`, `k = (γ₃ + γ₂(v))/(1 − γ₃) < 3.1u`, `m ≤ 2u·|O·R| + 2⁻¹⁰⁸` (the
+/// last term for the underflows of `Ô` and of the product).
+/// The interval of a box, `t_in = max` of the entries and `t_out = min` of the exits over the
+/// axes, is widened to
+///
+/// `lo = t_in − (c·|t_in| + M)`, `hi = t_out + (c·|t_out| + M)`, `c = 5u`,
+/// `M = max over axes of 3u·|O·R| + 2⁻¹⁰⁰` (rounded up to `f32`),
+///
+/// each computed in `f32`, whose three roundings lose at most `(u + 3cu)·|t| + 3u·M`; since
+/// `c > k + u + 3cu` and `M·(1 − 3u) ≥ m`, the axis that set `t_in` has `T ≥ lo`. So
+/// `lo ≤ T_in` (the largest `T`) and likewise `hi ≥ T_out·(1 + 2γ₃(v))`, the `f64` walk's
+/// widened exit (its extra `(2γ₃(v) + v)·|T|` fits in the same slack): whenever the `f64` test
+/// [`culling_hit`] admits a box, `lo ≤ hi` and `hi ≥ 0` admit it too, and `lo` may stand for
+/// `T_in` in any prune that only grows with `t_in` (the walks' `beyond`).
+///
+/// Only oblique rays inside [`F32_RANGE`] have one ([`RecipRay::to_f32`]): an axis-parallel
+/// ray (`1/d = ±∞`) keeps the `f64` test, which handles its parallel slabs; no NaN arises.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RecipRay32 {
+    /// `fl32(O)` per axis (0 beyond the dimension).
+    pub origin: [f32; 3],
+    /// `fl32(1/D)` per axis (1 beyond the dimension).
+    pub inv_dir: [f32; 3],
+    /// The per-ray margin `M`.
+    pub margin: f32,
+    /// Per axis, which side of a box the ray enters by: 0 (`min`) when `1/d ≥ 0`, else 1
+    /// (`max`); it leaves by the other.
+    pub near: [usize; 3],
+}
+
+impl<V: Vector> RecipRay<V> {
+    /// The `f32` twin of this ray ([`RecipRay32`]), when the ray is oblique and inside
+    /// [`F32_RANGE`].
+    #[inline]
+    #[must_use]
+    pub fn to_f32(&self) -> Option<RecipRay32> {
+        if !self.oblique {
+            return None;
+        }
+        let mut ray = RecipRay32 { origin: [0.0; 3], inv_dir: [1.0; 3], margin: 0.0, near: [0; 3] };
+        let mut margin: f64 = 0.0;
+        for axis in 0..V::DIM {
+            let (o, r) = (self.origin[axis], self.inv_dir[axis]);
+            if !(o.abs() <= F32_RANGE && r.abs() <= F32_RANGE && r.abs() * F32_RANGE >= 1.0) {
+                return None;
+            }
+            // In range: the nearest f32s (the bound above takes their rounding).
+            #[allow(clippy::cast_possible_truncation)]
+            {
+                ray.origin[axis] = o as f32;
+                ray.inv_dir[axis] = r as f32;
+            }
+            ray.near[axis] = usize::from(r < 0.0);
+            margin = margin.max(F32_ABS_FACTOR * (o * r).abs());
+        }
+        ray.margin = up_to_f32(margin + F32_FLOOR);
+        Some(ray)
+    }
+}
+
+impl RecipRay32 {
+    /// `[lo, hi]` of each of `W` boxes, lane by lane (`planes[axis][0][lane]` the box's `min`,
+    /// `planes[axis][1][lane]` its `max`, the first `dim` axes; `W` a multiple of 4), by the bound of [`RecipRay32`]: `lo ≤` the `f64`
+    /// walk's `t_in` and `hi ≥` its widened `t_out`. Planes must lie within [`F32_RANGE`].
+    #[inline(always)]
+    #[must_use]
+    pub fn box_lanes<const W: usize>(&self, dim: usize, planes: &[[[f32; W]; 2]; 3]) -> ([f32; W], [f32; W]) {
+        let (mut lo, mut hi) = ([0.0; W], [0.0; W]);
+        for at in (0..W).step_by(4) {
+            let (l, h) = self.four(dim, planes, at);
+            lo[at..at + 4].copy_from_slice(&l.to_array());
+            hi[at..at + 4].copy_from_slice(&h.to_array());
+        }
+        (lo, hi)
+    }
+
+    /// Which of `W` boxes the ray meets by [`RecipRay32::box_lanes`] (`lo ≤ hi` and `hi ≥ 0`,
+    /// as bits: lane `k` is bit `k`), and their entries `lo`.
+    #[inline(always)]
+    #[must_use]
+    pub fn box_hits<const W: usize>(&self, dim: usize, planes: &[[[f32; W]; 2]; 3]) -> (u32, [f32; W]) {
+        let (mut hits, mut lo) = (0, [0.0; W]);
+        for at in (0..W).step_by(4) {
+            let (l, h) = self.four(dim, planes, at);
+            hits |= (l.cmple(h) & h.cmpge(Vec4::ZERO)).bitmask() << at;
+            lo[at..at + 4].copy_from_slice(&l.to_array());
+        }
+        (hits, lo)
+    }
+
+    /// `[lo, hi]` of lanes `at .. at + 4`, four lanes at a time (glam's `Vec4`: one SSE2 or
+    /// WebAssembly SIMD instruction a step where the target has them, the same IEEE operations
+    /// lane by lane where not). The near plane of each slab is the side given by the sign of
+    /// `1/d` ([`RecipRay32::near`]).
+    #[inline(always)]
+    fn four<const W: usize>(&self, dim: usize, planes: &[[[f32; W]; 2]; 3], at: usize) -> (Vec4, Vec4) {
+        const { assert!(W.is_multiple_of(4), "lanes come in fours") };
+        let slab = |axis: usize, plane: &[f32; W]| {
+            (Vec4::from_slice(&plane[at..at + 4]) - Vec4::splat(self.origin[axis]))
+                * Vec4::splat(self.inv_dir[axis])
+        };
+        // The sides by index (no branch): 1 − near is the far side.
+        let sides = |axis: usize| (&planes[axis][self.near[axis]], &planes[axis][1 - self.near[axis]]);
+        let (near, far) = sides(0);
+        let (mut t_in, mut t_out) = (slab(0, near), slab(0, far));
+        for axis in 1..dim {
+            let (near, far) = sides(axis);
+            // Vec4's max and min are `a > b ? a : b` per lane: no NaN arises here.
+            t_in = t_in.max(slab(axis, near));
+            t_out = t_out.min(slab(axis, far));
+        }
+        let (c, m) = (Vec4::splat(F32_REL_MARGIN), Vec4::splat(self.margin));
+        (t_in - (c * t_in.abs() + m), t_out + (c * t_out.abs() + m))
     }
 }
 
