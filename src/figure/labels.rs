@@ -768,7 +768,7 @@ impl Label {
             ),
             Self::CrowdCaption => (
                 "in its view: n random spheres",
-                "în câmpul ei vizual: n sfere aleatoare",
+                "în câmpul vizual al camerei: n sfere aleatoare",
             ),
             Self::RayCastingCount => (
                 "ray casting, one ray per pixel, shadow rays counted; one render per point; all tests: objects, bounding volumes, tree nodes, grid voxels",
