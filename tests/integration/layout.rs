@@ -384,7 +384,8 @@ fn every_label_of_every_lesson_figure_is_nearer_its_own_anchor_than_another_of_i
 }
 
 /// Issue 32 item 1: no label of any lesson figure lies on the outline of an object it does not
-/// name (a hit's name may touch the object its point lies on, an object's name its own outline).
+/// name (a hit's name may touch the object its point lies on, not be struck through by it:
+/// shadows 1's "I₁" lay across the floor; an object's name may lie on its own outline).
 /// Before the rule: 42 labels in 19 figures (primary-rays 2's „lentilă" over the block).
 #[test]
 fn no_label_of_any_lesson_figure_lies_on_an_object_outline_it_does_not_name() {

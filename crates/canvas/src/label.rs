@@ -364,8 +364,10 @@ impl Drawing {
     /// The pairs `(label, outline)`, as indices into `items`, of a text item whose ink box lies
     /// on the outline of an object it does not name (issue 32 item 1): a stroked item whose tag
     /// starts with `prefix` (`object:`), neither named by the label's tag (`object-name:2` names
-    /// `object:2`) nor passing within [`OWN_OUTLINE`] of the label's anchor (the object a hit
-    /// point lies on). "Lies on" as in [`Drawing::labels_on_lines`]. Empty for a legible layout.
+    /// `object:2`). "Lies on" as in [`Drawing::labels_on_lines`]. The outline passing within
+    /// [`OWN_OUTLINE`] of the label's anchor (the object a hit point lies on) may touch it but
+    /// not run through its ink box itself over [`MIN_CROSSING`] (shadows 1's "I₁" struck
+    /// through by the floor). Empty for a legible layout.
     #[must_use]
     pub fn labels_on_outlines(&self, prefix: &str) -> Vec<(usize, usize)> {
         let tf = self.frame().transform;
@@ -380,10 +382,16 @@ impl Drawing {
             let half = tf.ref_px(line.pen.width) / 2.0;
             for (i, b) in &boxes {
                 let Mark::Text(label) = &self.items[*i].mark else { continue };
-                if Self::own_outline(&self.items[*i].tag, label, line, &segments, &tf) {
-                    continue;
-                }
-                let stroke = b.inflate(half);
+                let tag = &self.items[*i].tag;
+                // The outline its point lies on may touch a point's name, not strike it through.
+                let stroke = if Self::own_outline(tag, label, line, &segments, &tf) {
+                    if Self::named_by_tag(tag, line) {
+                        continue;
+                    }
+                    *b
+                } else {
+                    b.inflate(half)
+                };
                 let inside: f64 = segments.iter().map(|(p, q)| stroke.length_inside(*p, *q)).sum();
                 if inside > tf.ref_px(MIN_CROSSING) {
                     out.push((*i, j));
@@ -414,6 +422,12 @@ impl Drawing {
         crossed
     }
 
+    /// Whether a label tagged `tag` names `outline` by its tag id (`object-name:2` names
+    /// `object:2`).
+    fn named_by_tag(tag: &str, outline: &Item) -> bool {
+        tag_id(tag).is_some() && tag_id(tag) == tag_id(&outline.tag)
+    }
+
     /// Whether `outline` (its pixel `segments`) is the outline of what a label tagged `tag`
     /// names: the same tag id, or an outline through the label's anchor.
     fn own_outline(
@@ -423,7 +437,7 @@ impl Drawing {
         segments: &[(DVec2, DVec2)],
         tf: &Transform,
     ) -> bool {
-        if tag_id(tag).is_some() && tag_id(tag) == tag_id(&outline.tag) {
+        if Self::named_by_tag(tag, outline) {
             return true;
         }
         let at = tf.to_px(label.anchor);
@@ -570,14 +584,17 @@ impl Drawing {
             })
             .filter(|at| at.distance(own) > tf.ref_px(SAME_ANCHOR))
             .collect();
-        // The outlines of the objects it does not name.
-        let mut foreign = Vec::new();
+        // The outlines of the objects it does not name, and those its point lies on (which
+        // its ink may touch but not cross).
+        let (mut foreign, mut under) = (Vec::new(), Vec::new());
         if let Some(prefix) = &self.outline_guard {
             for item in self.items.iter().filter(|item| Self::guarded(item, prefix)) {
                 let mut outline = Vec::new();
                 Self::item_segments(item, &tf, &mut outline);
                 if !Self::own_outline(tag, label, item, &outline, &tf) {
                     foreign.push(outline);
+                } else if !Self::named_by_tag(tag, item) {
+                    under.push(outline);
                 }
             }
         }
@@ -617,7 +634,14 @@ impl Drawing {
             let outside = if area.contains_rect(&b) { 0.0 } else { 1.0 };
             let ink = Self::ink_box(candidate, &tf);
             let not_its_own = rivals.iter().any(|r| reads_as(&ink, own, placed.leader, *r, &tf));
-            let outlines = foreign.iter().filter(|o| o.iter().any(|(a, c)| b.meets_segment(*a, *c))).count();
+            let outlines = foreign.iter().filter(|o| o.iter().any(|(a, c)| b.meets_segment(*a, *c))).count()
+                + under
+                    .iter()
+                    .filter(|o| {
+                        o.iter().map(|(a, c)| ink.length_inside(*a, *c)).sum::<f64>()
+                            > tf.ref_px(MIN_CROSSING)
+                    })
+                    .count();
             // A box that holds the anchor meets every leader: only the others count.
             let leader_over_labels = placed.leader.map_or(0, |(a, c)| {
                 boxes.iter().filter(|o| !o.contains_point(a) && o.meets_segment(a, c)).count()
