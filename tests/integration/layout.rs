@@ -1295,3 +1295,40 @@ fn a_far_light_is_named_once_in_both_languages() {
         }
     }
 }
+
+/// Issue 32: no text runs off the page. In every lesson figure, in both languages, every label's
+/// ink box ([`Drawing::ink_box`]) and every line of the title and caption lie inside the canvas
+/// (the adaptive lesson's counts line once ran past the right edge and passed every test).
+#[test]
+fn no_text_of_any_lesson_figure_runs_off_the_page() {
+    use whitted::canvas::text::{layout, Weight};
+    let mut found = Vec::new();
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            let (w, h) = (f64::from(d.width()), f64::from(d.height()));
+            let inside = |min: DVec2, max: DVec2| min.x >= 0.0 && min.y >= 0.0 && max.x <= w && max.y <= h;
+            let frame = d.frame();
+            for item in &d.items {
+                if let Mark::Text(t) = &item.mark {
+                    let ink = Drawing::ink_box(t, &frame.transform);
+                    if !inside(ink.min, ink.max) {
+                        found.push(format!(
+                            "{name}: {:?} [{}] at {:?}–{:?}",
+                            t.text, item.tag, ink.min, ink.max
+                        ));
+                    }
+                }
+            }
+            let title = frame.title.iter().map(|l| (l, Weight::Bold));
+            for (line, weight) in title.chain(frame.caption.iter().map(|l| (l, Weight::Regular))) {
+                let laid = layout(&line.text, line.size, weight);
+                let min = line.origin - DVec2::new(0.0, laid.ascent);
+                let max = line.origin + DVec2::new(laid.width, laid.descent);
+                if !inside(min, max) {
+                    found.push(format!("{name}: {:?} (title or caption) at {min:?}–{max:?}", line.text));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "{} texts off the page:\n{}", found.len(), found.join("\n"));
+}
