@@ -298,6 +298,17 @@ pub fn label(d: &mut Drawing, at: DVec2, markup: &str) {
     d.text("label", at, markup, TextOpts::LABEL.avoid_overlap());
 }
 
+/// The kind of label ([`crate::canvas::label::label_kind`]) of a ray's name: a ray's name is read
+/// against the other rays' names, a point's name against the other points' (issue 32 item 1),
+/// so "R₃" beside the point I₁ is no rival of "I₁", the letters tell them apart.
+pub const RAY_NAME_TAG: &str = "ray-name";
+
+/// A ray's name placed clear of lines and other labels near `at`, a point of the ray, tagged
+/// [`RAY_NAME_TAG`].
+pub fn ray_label(d: &mut Drawing, at: DVec2, markup: &str) {
+    d.text(RAY_NAME_TAG, at, markup, TextOpts::LABEL.avoid_overlap());
+}
+
 /// The legend row of a ray role.
 pub fn legend_role(d: &mut Drawing, role: RayRole, lang: Lang) {
     let text = match role {

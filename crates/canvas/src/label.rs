@@ -45,18 +45,30 @@ pub const MIN_CROSSING: f64 = 4.0;
 pub const GUARDED_LINE_COST: f64 = 30.0;
 /// What each ring farther from the anchor costs: a label far from its anchor loses its meaning.
 pub const RING_COST: f64 = 1.5;
-/// What a candidate spot without a leader costs when it lies as near another anchor of the
-/// label's kind as its own ([`Drawing::labels_nearer_another_anchor`]): the reader takes a
-/// name for the nearest point's, so it weighs more than a few rings and plain lines, but less
-/// than crossing a guarded line: [`Drawing::settle_labels`] then gives the name a leader
-/// rather than laying it on a ray.
-pub const OWNER_COST: f64 = 25.0;
+/// What a candidate spot costs when it reads as the name of another anchor of the label's
+/// kind ([`Drawing::labels_nearer_another_anchor`], with or without a leader): the reader takes
+/// a name for the nearest point's, so it weighs more than crossing one guarded line or outline
+/// (a name across a ray stays readable, a name at the wrong point teaches the wrong thing),
+/// less than covering most of another label.
+pub const OWNER_COST: f64 = 45.0;
 /// What a candidate spot costs per object outline ([`Drawing::guard_outlines`]) it crosses
 /// that is not its own: as much as a guarded line, a name on an outline reads as that object's.
 pub const OUTLINE_COST: f64 = GUARDED_LINE_COST;
 /// Two anchors closer than this many reference pixels are one point
 /// ([`Drawing::labels_nearer_another_anchor`]): labels that share a point share its anchor.
 pub const SAME_ANCHOR: f64 = 1.0;
+/// A label with a leader still reads as the name of another anchor of its kind that lies
+/// within this many reference pixels of its ink ([`LEADER_MARGIN`]): beside that point, the
+/// short line to its own is missed (ray-casting 2's "I₃" beside I₅, issue 32 item 1).
+pub const LEADER_RIVAL: f64 = 2.0 * LEADER_FROM;
+/// A label with a leader reads as its own anchor's only when every other anchor of its kind
+/// within [`LEADER_RIVAL`] lies more than this many times as far from its ink as its own: two
+/// labels mid-way between their points, each a little nearer its own (Kay–Kajiya's bold "I" and
+/// "E"), are read by where they stand, not by their leaders.
+pub const LEADER_MARGIN: f64 = 1.25;
+/// A leader that passes this close to another anchor of its label's kind, in reference pixels,
+/// reads as pointing at that anchor.
+pub const LEADER_PASS: f64 = 4.0;
 /// An outline that passes this close to a label's anchor, in reference pixels, is the outline
 /// of the object the label's point lies on: its own ([`Drawing::labels_on_outlines`]).
 pub const OWN_OUTLINE: f64 = 3.0;
@@ -80,6 +92,25 @@ fn to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
     let t =
         if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
     p.distance(a + ab * t)
+}
+
+/// Whether a label of ink box `ink`, anchored at `own` (pixels) and joined to it by `leader`,
+/// reads as the name of the anchor `rival` (pixels) of its kind (issue 32 item 1). Without a
+/// leader when `rival` lies as near the ink as `own`:
+/// `gap(ink, rival) ≤ gap(ink, own)`. With one when `rival` lies within [`LEADER_RIVAL`] of the
+/// ink and `gap(ink, rival) ≤ LEADER_MARGIN · gap(ink, own)`, or when the leader passes within
+/// [`LEADER_PASS`] of `rival` away from its own end (an anchor beside its own, as overlapping
+/// circles' centres, is told apart by the label's side, not by the line).
+fn reads_as(ink: &PxRect, own: DVec2, leader: Option<(DVec2, DVec2)>, rival: DVec2, tf: &Transform) -> bool {
+    let (gap, own_gap) = (gap_to(ink, rival), gap_to(ink, own));
+    match leader {
+        None => gap <= own_gap,
+        Some((a, c)) => {
+            (gap <= LEADER_MARGIN * own_gap && gap <= tf.ref_px(LEADER_RIVAL))
+                || (to_segment(rival, a, c) <= tf.ref_px(LEADER_PASS)
+                    && rival.distance(a) > 2.0 * tf.ref_px(LEADER_PASS))
+        }
+    }
 }
 
 /// The distance in pixels from `p` to the nearest point of `b` (0 inside).
@@ -292,11 +323,12 @@ impl Drawing {
         out
     }
 
-    /// The pairs `(label, rival)`, as indices into `items`, of a text item without a leader
-    /// whose ink box (see [`Drawing::overlapping_labels`]) lies as near the anchor of `rival` —
-    /// another text item of its kind ([`label_kind`]) anchored elsewhere (farther than
-    /// [`SAME_ANCHOR`]) — as its own anchor: a name beside another point reads as that point's
-    /// (issue 32 item 1). Empty when every label belongs to its point.
+    /// The pairs `(label, rival)`, as indices into `items`, of a text item whose ink box (see
+    /// [`Drawing::overlapping_labels`]) reads as the name of the anchor of `rival` — another
+    /// text item of its kind ([`label_kind`]) anchored elsewhere (farther than [`SAME_ANCHOR`]):
+    /// without a leader, lies as near it as its own anchor; with one, as in `reads_as` (a
+    /// leader does not excuse a name beside another point). Issue 32 item 1; empty when every
+    /// label belongs to its point.
     #[must_use]
     pub fn labels_nearer_another_anchor(&self) -> Vec<(usize, usize)> {
         let tf = self.frame().transform;
@@ -312,21 +344,18 @@ impl Drawing {
     }
 
     /// The first text item of `tag`'s kind, other than item `skip`, anchored elsewhere, whose
-    /// anchor lies as near `label`'s ink as `label`'s own anchor; `None` when there is none or
-    /// `label` has a leader (see [`Drawing::labels_nearer_another_anchor`]).
+    /// anchor `label` reads as the name of (`reads_as`); `None` when there is none (see
+    /// [`Drawing::labels_nearer_another_anchor`]).
     fn rival(&self, tag: &str, label: &Text, skip: usize, tf: &Transform) -> Option<usize> {
-        if Self::place_text(label, tf).leader.is_some() {
-            return None;
-        }
+        let leader = Self::place_text(label, tf).leader;
         let ink = Self::ink_box(label, tf);
         let own = tf.to_px(label.anchor);
-        let own_gap = gap_to(&ink, own);
         let kind = label_kind(tag);
         self.items.iter().enumerate().find_map(|(k, item)| match &item.mark {
             Mark::Text(other) if k != skip && label_kind(&item.tag) == kind => {
                 let at = tf.to_px(other.anchor);
                 let elsewhere = at.distance(own) > tf.ref_px(SAME_ANCHOR);
-                (elsewhere && gap_to(&ink, at) <= own_gap).then_some(k)
+                (elsewhere && reads_as(&ink, own, leader, at, tf)).then_some(k)
             }
             _ => None,
         })
@@ -335,8 +364,10 @@ impl Drawing {
     /// The pairs `(label, outline)`, as indices into `items`, of a text item whose ink box lies
     /// on the outline of an object it does not name (issue 32 item 1): a stroked item whose tag
     /// starts with `prefix` (`object:`), neither named by the label's tag (`object-name:2` names
-    /// `object:2`) nor passing within [`OWN_OUTLINE`] of the label's anchor (the object a hit
-    /// point lies on). "Lies on" as in [`Drawing::labels_on_lines`]. Empty for a legible layout.
+    /// `object:2`). "Lies on" as in [`Drawing::labels_on_lines`]. The outline passing within
+    /// [`OWN_OUTLINE`] of the label's anchor (the object a hit point lies on) may touch it but
+    /// not run through its ink box itself over [`MIN_CROSSING`] (shadows 1's "I₁" struck
+    /// through by the floor). Empty for a legible layout.
     #[must_use]
     pub fn labels_on_outlines(&self, prefix: &str) -> Vec<(usize, usize)> {
         let tf = self.frame().transform;
@@ -351,10 +382,16 @@ impl Drawing {
             let half = tf.ref_px(line.pen.width) / 2.0;
             for (i, b) in &boxes {
                 let Mark::Text(label) = &self.items[*i].mark else { continue };
-                if Self::own_outline(&self.items[*i].tag, label, line, &segments, &tf) {
-                    continue;
-                }
-                let stroke = b.inflate(half);
+                let tag = &self.items[*i].tag;
+                // The outline its point lies on may touch a point's name, not strike it through.
+                let stroke = if Self::own_outline(tag, label, line, &segments, &tf) {
+                    if Self::named_by_tag(tag, line) {
+                        continue;
+                    }
+                    *b
+                } else {
+                    b.inflate(half)
+                };
                 let inside: f64 = segments.iter().map(|(p, q)| stroke.length_inside(*p, *q)).sum();
                 if inside > tf.ref_px(MIN_CROSSING) {
                     out.push((*i, j));
@@ -385,6 +422,12 @@ impl Drawing {
         crossed
     }
 
+    /// Whether a label tagged `tag` names `outline` by its tag id (`object-name:2` names
+    /// `object:2`).
+    fn named_by_tag(tag: &str, outline: &Item) -> bool {
+        tag_id(tag).is_some() && tag_id(tag) == tag_id(&outline.tag)
+    }
+
     /// Whether `outline` (its pixel `segments`) is the outline of what a label tagged `tag`
     /// names: the same tag id, or an outline through the label's anchor.
     fn own_outline(
@@ -394,7 +437,7 @@ impl Drawing {
         segments: &[(DVec2, DVec2)],
         tf: &Transform,
     ) -> bool {
-        if tag_id(tag).is_some() && tag_id(tag) == tag_id(&outline.tag) {
+        if Self::named_by_tag(tag, outline) {
             return true;
         }
         let at = tf.to_px(label.anchor);
@@ -424,27 +467,37 @@ impl Drawing {
             .collect()
     }
 
+    /// Whether text item `index` lies as near another anchor of its kind as its own
+    /// ([`Drawing::labels_nearer_another_anchor`]), on a guarded line it does not name
+    /// ([`Drawing::labels_on_lines`]) or on an outline it does not name
+    /// ([`Drawing::labels_on_outlines`]).
+    fn misplaced(&self, index: usize, tf: &Transform) -> bool {
+        let Mark::Text(label) = &self.items[index].mark else { return false };
+        let on_outline = self
+            .outline_guard
+            .as_ref()
+            .is_some_and(|prefix| self.labels_on_outlines(prefix).iter().any(|(i, _)| *i == index));
+        let on_line = self
+            .guard
+            .as_ref()
+            .is_some_and(|guard| self.labels_on_lines(guard).iter().any(|(i, _)| *i == index));
+        on_outline || on_line || self.rival(&self.items[index].tag, label, index, tf).is_some()
+    }
+
     /// Places again every label placed clear ([`TextOpts::avoid_overlap`]) that, now that every
-    /// label is drawn, lies as near another anchor of its kind as its own or on an outline it
-    /// does not name (issue 32 item 1): a label is placed against the labels before it, so a
-    /// later point's name could not be foreseen. It goes to the clearest spot against all the
-    /// others, with a leader when that spot is far or still nearer another anchor.
+    /// label is drawn, reads as another anchor's name or lies on a line or outline it does not
+    /// name (`misplaced`, issue 32 item 1): a label is placed against the labels
+    /// before it, so a later point's name could not be foreseen. It goes to the clearest spot
+    /// against all the others among its rings, then among the far rings ([`FAR_STEPS`]) if
+    /// still misplaced, with a leader when that spot is far or still another anchor's.
     pub fn settle_labels(&mut self) {
         let tf = self.placed_legend().transform;
         for (index, far) in self.placed_clear.clone() {
             let Mark::Text(label) = &self.items[index].mark else { continue };
             let tag = self.items[index].tag.clone();
-            let on_outline = self
-                .outline_guard
-                .as_ref()
-                .is_some_and(|prefix| self.labels_on_outlines(prefix).iter().any(|(i, _)| *i == index));
-            let on_line = self
-                .guard
-                .as_ref()
-                .is_some_and(|guard| self.labels_on_lines(guard).iter().any(|(i, _)| *i == index));
             // Far from its point with nothing to join them: the reader cannot tell whose it is.
             let far_alone = !label.leader && label.offset.length() > LEADER_FROM;
-            if self.rival(&tag, label, index, &tf).is_none() && !on_outline && !on_line && !far_alone {
+            if !self.misplaced(index, &tf) && !far_alone {
                 continue;
             }
             let old = self.items[index].clone();
@@ -454,6 +507,14 @@ impl Drawing {
                 let steps: &[f64] = if far { &FAR_STEPS } else { &NEAR_STEPS };
                 self.place_clear(&tag, label, true, steps);
                 self.items.insert(index, item);
+                // Still misplaced within the near rings: out to the far ones, joined.
+                if !far && self.misplaced(index, &tf) {
+                    let mut item = self.items.remove(index);
+                    if let Mark::Text(label) = &mut item.mark {
+                        self.place_clear(&tag, label, true, &FAR_STEPS);
+                    }
+                    self.items.insert(index, item);
+                }
                 let Mark::Text(label) = &self.items[index].mark else { unreachable!() };
                 if self.rival(&tag, label, index, &tf).is_some() {
                     if let Mark::Text(label) = &mut self.items[index].mark {
@@ -523,14 +584,17 @@ impl Drawing {
             })
             .filter(|at| at.distance(own) > tf.ref_px(SAME_ANCHOR))
             .collect();
-        // The outlines of the objects it does not name.
-        let mut foreign = Vec::new();
+        // The outlines of the objects it does not name, and those its point lies on (which
+        // its ink may touch but not cross).
+        let (mut foreign, mut under) = (Vec::new(), Vec::new());
         if let Some(prefix) = &self.outline_guard {
             for item in self.items.iter().filter(|item| Self::guarded(item, prefix)) {
                 let mut outline = Vec::new();
                 Self::item_segments(item, &tf, &mut outline);
                 if !Self::own_outline(tag, label, item, &outline, &tf) {
                     foreign.push(outline);
+                } else if !Self::named_by_tag(tag, item) {
+                    under.push(outline);
                 }
             }
         }
@@ -569,9 +633,15 @@ impl Drawing {
             let guarded_crossings = guarded.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
             let outside = if area.contains_rect(&b) { 0.0 } else { 1.0 };
             let ink = Self::ink_box(candidate, &tf);
-            let own_gap = gap_to(&ink, own);
-            let not_its_own = placed.leader.is_none() && rivals.iter().any(|r| gap_to(&ink, *r) <= own_gap);
-            let outlines = foreign.iter().filter(|o| o.iter().any(|(a, c)| b.meets_segment(*a, *c))).count();
+            let not_its_own = rivals.iter().any(|r| reads_as(&ink, own, placed.leader, *r, &tf));
+            let outlines = foreign.iter().filter(|o| o.iter().any(|(a, c)| b.meets_segment(*a, *c))).count()
+                + under
+                    .iter()
+                    .filter(|o| {
+                        o.iter().map(|(a, c)| ink.length_inside(*a, *c)).sum::<f64>()
+                            > tf.ref_px(MIN_CROSSING)
+                    })
+                    .count();
             // A box that holds the anchor meets every leader: only the others count.
             let leader_over_labels = placed.leader.map_or(0, |(a, c)| {
                 boxes.iter().filter(|o| !o.contains_point(a) && o.meets_segment(a, c)).count()

@@ -194,7 +194,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             d.with_events(log.ended_by(s.node), |d| label(d, to, &name));
         }
         let to = s.to.unwrap_or_else(|| exit_point(s.from, s.dir, &view));
-        d.with_events(log.ray_events(s.node), |d| label(d, s.from + (to - s.from) * 0.3, &names.ray[s.node]));
+        d.with_events(log.ray_events(s.node), |d| {
+            parts::ray_label(d, s.from + (to - s.from) * 0.3, &names.ray[s.node]);
+        });
     }
     label_objects(d, scene, &anchors, input.lang);
     Ok(())
