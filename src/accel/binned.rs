@@ -226,9 +226,9 @@ impl<V: Vector> Split<V> for Record {
         }
         // Fewer bins than records would leave most of them empty (and cost their sweep).
         let choice = match n {
-            ..=4 => split_binned::<V, 4>(items, group, extent),
-            5..=8 => split_binned::<V, 8>(items, group, extent),
-            _ => split_binned::<V, BINS>(items, group, extent),
+            ..=4 => split_binned::<V>(items, group, extent, 4),
+            5..=8 => split_binned::<V>(items, group, extent, 8),
+            _ => split_binned::<V>(items, group, extent, BINS),
         };
         match choice {
             Choice::Leaf => None,
@@ -249,11 +249,13 @@ enum Choice {
 }
 
 /// The SAH's choice for `items` (centroid extent `extent`, not zero on some axis), binned into
-/// `N` bins an axis; a split is made (the records partitioned).
-fn split_binned<V: Vector, const N: usize>(items: &mut [Record], group: &Group, extent: Vec3A) -> Choice {
+/// `n_bins` (at most [`BINS`]) bins an axis; a split is made (the records partitioned). The bin
+/// count is a value, not a const parameter: one copy of the code serves 4, 8 and 12 bins (the
+/// WebAssembly module carried three, 120 KB).
+fn split_binned<V: Vector>(items: &mut [Record], group: &Group, extent: Vec3A, n_bins: usize) -> Choice {
     let n = items.len();
-    let scale = Vec3A::splat(N as f32) / extent;
-    let Some(best) = best_split::<V, N>(items, group, scale) else {
+    let scale = Vec3A::splat(n_bins as f32) / extent;
+    let Some(best) = best_split::<V>(items, group, scale, n_bins) else {
         return Choice::Median;
     };
     if n <= MAX_LEAF && best.cost >= items.iter().map(|r| r.cost).sum::<f32>() {
@@ -268,7 +270,7 @@ fn split_binned<V: Vector, const N: usize>(items: &mut [Record], group: &Group, 
     let (mut right_lo, mut right_hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
     for k in 0..n {
         let c = items[k].centroid2();
-        let left = bins_of(c, group.c_lo, scale, N)[best.axis] <= best.bin;
+        let left = bins_of(c, group.c_lo, scale, n_bins)[best.axis] <= best.bin;
         let mask = BVec3A::splat(left);
         left_lo = Vec3A::select(mask, left_lo.min(c), left_lo);
         left_hi = Vec3A::select(mask, left_hi.max(c), left_hi);
@@ -282,14 +284,14 @@ fn split_binned<V: Vector, const N: usize>(items: &mut [Record], group: &Group, 
     Choice::Split(mid, side(&best.left, left_lo, left_hi), side(&best.right, right_lo, right_hi))
 }
 
-/// Bins `items` along every axis of non-zero centroid extent (`N` bins a side; `scale`: bins per
-/// unit of doubled centroid) and sweeps each axis's splits for the least SAH cost; `None` when
-/// no split leaves records on both sides.
-fn best_split<V: Vector, const N: usize>(items: &[Record], group: &Group, scale: Vec3A) -> Option<Best> {
-    let mut all = [[Bin::EMPTY; N]; 3];
+/// Bins `items` along every axis of non-zero centroid extent (`n_bins` bins a side, at most
+/// [`BINS`]; `scale`: bins per unit of doubled centroid) and sweeps each axis's splits for the
+/// least SAH cost; `None` when no split leaves records on both sides.
+fn best_split<V: Vector>(items: &[Record], group: &Group, scale: Vec3A, n_bins: usize) -> Option<Best> {
+    let mut all = [[Bin::EMPTY; BINS]; 3];
     let used = axes_binned::<V>(items.len(), scale);
     for r in items {
-        let k = bins_of(r.centroid2(), group.c_lo, scale, N);
+        let k = bins_of(r.centroid2(), group.c_lo, scale, n_bins);
         for axis in 0..V::DIM {
             if used[axis] {
                 all[axis][k[axis]].add(r);
@@ -303,14 +305,14 @@ fn best_split<V: Vector, const N: usize>(items: &[Record], group: &Group, scale:
             continue;
         }
         // Sweep from the right: `right[b]` gathers bins b.. .
-        let mut right = [Bin::EMPTY; N];
+        let mut right = [Bin::EMPTY; BINS];
         let mut acc = Bin::EMPTY;
-        for b in (1..N).rev() {
+        for b in (1..n_bins).rev() {
             acc = acc.merge(&bins[b]);
             right[b] = acc;
         }
         let mut left = Bin::EMPTY;
-        for b in 0..N - 1 {
+        for b in 0..n_bins - 1 {
             left = left.merge(&bins[b]);
             let r = &right[b + 1];
             if left.count == 0 || r.count == 0 {
