@@ -525,8 +525,10 @@ pub fn wrap_even(markup: &str, size: f64, weight: Weight, max_width: f64) -> Vec
 /// Symbols that bind the words on both sides: a line never ends or starts with one.
 const RELATIONS: [&str; 8] = ["=", "<", ">", "≤", "≥", "≠", "≈", "×"];
 
-/// `words` with every relation joined to its neighbours (`["K", "=", "2"]` → `["K = 2"]`), and
-/// a name ending in a colon joined to the number after it (`["opened:", "6"]` → `["opened: 6"]`).
+/// `words` with every relation joined to its neighbours (`["K", "=", "2"]` → `["K = 2"]`), a
+/// name ending in a colon joined to the number after it (`["opened:", "6"]` → `["opened: 6"]`),
+/// and the words of a formula's open bracket joined up to its close (`["2D·(O", "−", "C),"]` →
+/// `["2D·(O − C),"]`: a formula's bracket is never cut, [`open_parentheses`]).
 fn unbreakable(words: Vec<String>) -> Vec<String> {
     let mut out: Vec<String> = Vec::new();
     let mut bind_next = false;
@@ -541,9 +543,27 @@ fn unbreakable(words: Vec<String>) -> Vec<String> {
             }
             _ => out.push(word),
         }
-        bind_next = relation;
+        let open = out.last().is_some_and(|last| open_parentheses(last) > 0);
+        bind_next = relation || open;
     }
     out
+}
+
+/// How many brackets of a formula are still open at the end of `word`: a `(` right after
+/// another character (`2D·(O`, `min(t₁,`), not one that opens a word (a prose aside, `(picked:
+/// …)`, may wrap); never below 0.
+fn open_parentheses(word: &str) -> usize {
+    let mut depth = 0_usize;
+    let mut previous = None;
+    for c in word.chars() {
+        match c {
+            '(' if previous.is_some_and(|p: char| !p.is_whitespace()) => depth += 1,
+            ')' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        previous = Some(c);
+    }
+    depth
 }
 
 /// The space-separated words of markup, keeping `{…}` groups and escaped spaces whole.
@@ -812,5 +832,15 @@ mod tests {
         let lines = wrap("pragul = 0.1, K = 2 · grila 16 × 10", 40.0, Weight::Regular, 10.0);
         assert_eq!(lines, ["pragul = 0.1,", "K = 2", "·", "grila", "16 × 10"]);
         assert_eq!(unbreakable(words("= a")), ["= a"], "a leading relation binds what follows");
+    }
+
+    #[test]
+    fn wrapping_never_cuts_a_bracket() {
+        // The Romanian discriminant caption broke as "cu b = 2D·(O" / "− C), c = …".
+        let lines = wrap("cu b = 2D·(O − C), c = |O − C|² − r²", 40.0, Weight::Regular, 10.0);
+        assert!(lines.contains(&"b = 2D·(O − C),".to_owned()), "{lines:?}");
+        assert_eq!(unbreakable(words("f(b c) d")), ["f(b c)", "d"]);
+        assert_eq!(unbreakable(words("a (b c) d")), ["a", "(b", "c)", "d"], "a prose aside may wrap");
+        assert_eq!(unbreakable(words("x) y")), ["x)", "y"], "a stray close opens nothing");
     }
 }
