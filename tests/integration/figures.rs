@@ -403,21 +403,16 @@ fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
 
     let dir = Scratch::new();
     let scene = fixture_path("lens_2d.json");
+    // The Romanian rays figure of lens_2d pixel 3 at 640x360, written to `out` with `extra` options.
+    let rays_svg = |extra: &[&str], out: &std::path::Path| {
+        let mut args = vec!["figure", "rays", &scene, "--pixel", "3", "--lang", "ro", "--size", "640x360"];
+        args.extend_from_slice(extra);
+        args.extend(["-o", out.to_str().unwrap()]);
+        let (code, _, err) = whitted(&args);
+        assert_eq!(code, 0, "{err}");
+    };
     let svg_path = dir.join("rays.svg");
-    let (code, _, err) = whitted(&[
-        "figure",
-        "rays",
-        &scene,
-        "--pixel",
-        "3",
-        "--lang",
-        "ro",
-        "--size",
-        "640x360",
-        "-o",
-        svg_path.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
+    rays_svg(&[], &svg_path);
     let text = std::fs::read_to_string(&svg_path).unwrap();
     assert!(roxmltree::Document::parse(&text).is_ok());
     assert!(text.contains("width=\"640\" height=\"360\""));
@@ -425,22 +420,7 @@ fn the_figure_command_lists_writes_both_formats_and_refuses_bad_input() {
     // `--svg-text paths`: the same words, kept for readers but not painted, drawn as paths, with
     // no font embedded.
     let paths_path = dir.join("rays-paths.svg");
-    let (code, _, err) = whitted(&[
-        "figure",
-        "rays",
-        &scene,
-        "--pixel",
-        "3",
-        "--lang",
-        "ro",
-        "--size",
-        "640x360",
-        "--svg-text",
-        "paths",
-        "-o",
-        paths_path.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
+    rays_svg(&["--svg-text", "paths"], &paths_path);
     let paths = std::fs::read_to_string(&paths_path).unwrap();
     let doc = roxmltree::Document::parse(&paths).unwrap();
     assert!(paths.contains("rază primară P") && !paths.contains("@font-face") && text.contains("@font-face"));
