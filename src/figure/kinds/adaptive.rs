@@ -80,11 +80,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         d.legend_entry(input.t(Label::SampleReused), reused_ring(), LegendIcon::Dot(style::WHITE));
     }
     if pixel.uniform {
-        d.legend_entry(
-            input.t(Label::UniformMean),
-            style::outline(style::BLACK),
-            LegendIcon::Dot(style::LIGHT_GREY),
-        );
+        d.legend_entry(input.t(Label::UniformMean), mean_outline(), LegendIcon::Dot(style::LIGHT_GREY));
     } else {
         for stop in [Stop::Threshold, Stop::MaxLevel] {
             if pixel.squares.iter().any(|s| stop_of(s, pixel) == Some(stop)) {
@@ -149,7 +145,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         let (lo, hi) = rect_of(s);
         let stop = stop_of(s, pixel).unwrap_or(Stop::Threshold);
         let (tag, outline) = if pixel.uniform {
-            ("leaf-colour:uniform".to_owned(), style::outline(style::BLACK))
+            ("leaf-colour:uniform".to_owned(), mean_outline())
         } else {
             (format!("leaf-colour:{}", stop.class()), stop.outline())
         };
@@ -257,6 +253,16 @@ fn reused_ring() -> Pen {
 
 /// The radius, in reference pixels, of a uniform pixel's corner, filled with its colour.
 const CORNER_RADIUS: f64 = 14.0;
+
+/// How much thicker than a corner's the outline of a uniform pixel's mean is, so that the mean
+/// and the samples it averages read apart, in the figure and in its legend.
+const MEAN_OUTLINE_SCALE: f64 = 2.0;
+
+/// The outline of a uniform pixel's mean: a corner's, [`MEAN_OUTLINE_SCALE`] times as thick.
+fn mean_outline() -> Pen {
+    let pen = style::outline(style::BLACK);
+    pen.with_width(pen.width * MEAN_OUTLINE_SCALE)
+}
 
 /// The text beside the pixel: the rule, the samples, a deepest leaf's mean and the pixel's.
 fn numbers<V: Planar>(input: &Input<'_, V>, pixel: &PixelTrace) -> Vec<String> {
