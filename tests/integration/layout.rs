@@ -9,6 +9,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 use whitted::canvas::{Drawing, Item, Mark};
 use whitted::figure::clearance::{MIN_CLEARANCE_WIDTHS, NOTE_TAG, TOUCH_PX};
+use whitted::figure::plane::Outline;
 use whitted::figure::style::{MIN_NODE_CONTRAST, OBJECT_TAG, RAY_TAG};
 use whitted::figure::{Lang, Options};
 use whitted::lesson;
@@ -1131,74 +1132,26 @@ fn drawn_rays(d: &Drawing) -> Vec<(String, Vec<DVec2>, f64)> {
     rays
 }
 
-/// An object's outline in pixels: a circle, or the edges of a polygon or a polyline.
-enum Outline {
-    Circle(DVec2, f64),
-    Edges(Vec<(DVec2, DVec2)>),
-}
-
-impl Outline {
-    /// The distance from `p` to the outline.
-    fn to_point(&self, p: DVec2) -> f64 {
-        match self {
-            Self::Circle(c, r) => (p.distance(*c) - r).abs(),
-            Self::Edges(edges) => {
-                edges.iter().map(|(a, b)| to_segment(p, *a, *b)).fold(f64::INFINITY, f64::min)
-            }
-        }
-    }
-
-    /// The distance from segment `a`–`b` to the outline (0 when it crosses it).
-    fn to_segment(&self, a: DVec2, b: DVec2) -> f64 {
-        match self {
-            Self::Circle(c, r) => {
-                let (near, far) = (to_segment(*c, a, b), a.distance(*c).max(b.distance(*c)));
-                if near >= *r {
-                    near - r
-                } else if far <= *r {
-                    r - far
-                } else {
-                    0.0
-                }
-            }
-            Self::Edges(edges) => edges
-                .iter()
-                .map(|(c, e)| {
-                    if cross(a, b, *c, *e) {
-                        0.0
-                    } else {
-                        [
-                            to_segment(a, *c, *e),
-                            to_segment(b, *c, *e),
-                            to_segment(*c, a, b),
-                            to_segment(*e, a, b),
-                        ]
-                        .into_iter()
-                        .fold(f64::INFINITY, f64::min)
-                    }
-                })
-                .fold(f64::INFINITY, f64::min),
-        }
-    }
-}
-
 /// The objects' outlines of a drawing, in pixels, with their tags.
+/// Their distances are the figures' own ([`Outline::gap`]: 0 where a segment meets the outline).
 fn drawn_outlines(d: &Drawing) -> Vec<(String, Outline)> {
     let tf = d.transform();
     let ring = |points: &[DVec2], closed: bool| {
         let px: Vec<DVec2> = points.iter().map(|p| tf.to_px(*p)).collect();
-        let mut edges: Vec<(DVec2, DVec2)> = px.windows(2).map(|w| (w[0], w[1])).collect();
-        if closed && px.len() > 2 {
-            edges.push((px[px.len() - 1], px[0]));
+        if closed {
+            Outline::Polygon(px)
+        } else {
+            Outline::Path(px)
         }
-        Outline::Edges(edges)
     };
     d.items
         .iter()
         .filter(|i| i.tag.starts_with(OBJECT_TAG))
         .filter_map(|i| {
             let outline = match &i.mark {
-                Mark::Circle { center, radius, .. } => Outline::Circle(tf.to_px(*center), tf.len_px(*radius)),
+                Mark::Circle { center, radius, .. } => {
+                    Outline::Circle { center: tf.to_px(*center), radius: tf.len_px(*radius) }
+                }
                 Mark::Polygon { points, .. } => ring(points, true),
                 Mark::Line { points } => ring(points, false),
                 Mark::Rect { min, max, .. } => {
@@ -1236,11 +1189,10 @@ fn no_ray_of_a_lesson_figure_grazes_an_object_it_misses() {
             for (tag, line, width) in drawn_rays(d) {
                 let ends = [line[0], line[line.len() - 1]];
                 for (object, outline) in &outlines {
-                    if ends.iter().any(|p| outline.to_point(*p) <= TOUCH_PX) {
+                    if ends.iter().any(|p| outline.gap(*p, *p) <= TOUCH_PX) {
                         continue;
                     }
-                    let gap =
-                        line.windows(2).map(|w| outline.to_segment(w[0], w[1])).fold(f64::INFINITY, f64::min);
+                    let gap = line.windows(2).map(|w| outline.gap(w[0], w[1])).fold(f64::INFINITY, f64::min);
                     // Within TOUCH_PX it touches (the tangent ray of the discriminant figure).
                     if !(gap > TOUCH_PX && gap < MIN_CLEARANCE_WIDTHS * width) {
                         continue;
@@ -1248,7 +1200,7 @@ fn no_ray_of_a_lesson_figure_grazes_an_object_it_misses() {
                     let printed = whitted::format::slide_number(gap / tf.len_px(1.0));
                     let said = notes.iter().any(|(at, text)| {
                         line.windows(2).any(|w| to_segment(*at, w[0], w[1]) <= TOUCH_PX)
-                            && outline.to_point(*at) <= gap + 2.0
+                            && outline.gap(*at, *at) <= gap + 2.0
                             && text.contains(&printed)
                     });
                     if said {
