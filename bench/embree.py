@@ -1,51 +1,72 @@
 #!/usr/bin/env python3
-"""whitted against Intel Embree 4 on the mesh scenes: ns per ray, build seconds, peak memory.
+"""whitted against Intel Embree on the many-object scenes: ns per ray, build seconds, peak memory.
 
 Embree is the practical limit for closest-hit queries on a CPU. This script loads the very scene
-whitted renders (bench/scenes/mesh-*.json and its OBJ), builds Embree's default BVH over the same
-triangles (the `embreex` package: Embree 4.4 behind a small Cython binding; Debian's libembree
-with a C harness would do the same, but embreex needs no compiler and gives the same library
-calls), and traces the same rays on one thread:
+whitted renders (bench/scenes/*.json, a mesh's OBJ), builds Embree's default BVH over the same
+primitives, and traces the same rays through it on one thread. Two peers answer the queries:
 
-  primary  one ray per pixel centre, the camera of docs/algorithm.md §2 (lookAt frame, window at
-           p, rows counted from the bottom), computed in f64 as whitted does, given to Embree in
-           f32 (Embree's precision);
-  shadow   from each primary hit whose facing normal N_f has N_f·L > 0 (whitted casts no shadow
-           ray otherwise, §6), a segment to the light: `rtcOccluded1` with `tfar` = the distance,
-           from the hit point moved off the surface along N_f by EMBREE_OFFSET (Embree's f32 hit
-           points need a larger offset than whitted's exact one).
+  embreex  the meshes: Embree 4.4 behind a small Cython binding (`pip install embreex`), which
+           binds triangle meshes only;
+  harness  spheres-10k: Embree 3.13 from Debian's libembree-dev through bench/embree_harness.c,
+           a C program that holds Embree's true sphere primitive (RTC_GEOMETRY_TYPE_SPHERE_POINT:
+           centre and radius, nothing tessellated) and answers batches of rays over a pipe. It
+           takes triangles too: `--mesh-peer harness` runs the meshes through it (Embree 3
+           against 4, a cross-check). The script compiles it (`cc -O2 … -lembree3`) into WORK.
 
-The mesh scenes have ks = 0 and no glass, so whitted traces exactly these rays: its `rays.primary`
-and `rays.shadow` must equal Embree's pixel count and shadow-ray count. Per pixel, whitted's PNG
-tells the class of the pixel (background colour, the ambient colour ka — no light, or shadowed —
-or lit) and Embree's rays tell it too: the script counts the pixels whose class differs (f32 against
-f64 arithmetic can flip a pixel on a silhouette or a grazing light; the counts say how many).
+Either way this script makes every ray, in f64 as whitted does, and gives it to Embree in f32
+(Embree's precision); one set of rules for both peers:
+
+  primary    one ray per pixel centre, the camera of docs/algorithm.md §2 (lookAt frame, window
+             at p, rows counted from the bottom);
+  hit        Embree's primitive and t; the point I = O + t·D and the outward normal N recomputed
+             in f64 from the scene (a sphere's (I − C)/r with I put back on the sphere, a
+             triangle's normalize((b − a) × (c − a))), the facing normal N_f = N when D·N ≤ 0;
+  shadow     from each hit with N_f·L > 0 (whitted casts no shadow ray otherwise, §6), a segment
+             to the light: `rtcOccluded1` with `tfar` = the distance, from I moved off the surface
+             along N_f by EMBREE_OFFSET (Embree's f32 hit points need a larger offset than
+             whitted's exact one);
+  reflected  from each hit on an object with ks > 0 at level n ≤ max_depth (§6), R = D − 2(D·N_f)·N_f
+             from the same offset origin, traced level by level (breadth first) like the primary
+             rays. No scene here has glass (kt > 0): the script refuses transmitted rays.
+
+So whitted traces the same rays: its `rays.primary`, `rays.reflected` and `rays.shadow` are
+compared with Embree's. Per pixel, whitted's PNG tells the class of the pixel (background colour;
+the ambient colour ka of the primitive hit — no light, or shadowed; lit; or, for a primitive with
+ks > 0, "mirror", whose colour mixes its reflections) and Embree's rays tell it too: the script
+counts the pixels whose class differs. f32 against f64 arithmetic flips a few on a silhouette or a
+grazing light; a run fails when a ray count or the differing pixels exceed MISMATCH_TOLERANCE.
 
 Each round runs whitted (`render --threads 1 --json`) and this script's Embree child, one after the
 other in one command, each its own process (so its peak RSS is its own, from os.wait4), pinned to
 the same single CPU (Embree's build would otherwise use every core through TBB; whitted's build
-runs in its one-thread pool). The tables show the medians of the rounds, the ratios of each round
-(whitted / Embree) as median [min–max], and the load average of the machine.
+runs in its one-thread pool; the harness also asks Embree for `threads=1`). The tables show the
+medians of the rounds, the ratios of each round (whitted / Embree) as median [min–max], and the
+load average of the machine.
 
-    ns/ray    whitted: trace seconds / (primary + shadow rays), its whole render (sampling,
-              shading, the image); Embree: (primary + shadow query seconds) / the same rays,
-              the queries alone — so the ratio is an upper bound on the traversal's gap
-    build s   whitted: `build_seconds` (the BVH over the loaded mesh); Embree: `rtcCommitScene`
-              (its default BVH build), timed around the first query, of one ray (the binding's
-              copy of the arrays into Embree's buffers, `upload_s`, is kept apart)
-    peak MB   the process's peak resident memory (ru_maxrss); Embree's includes Python, NumPy and
-              the mesh's arrays; in brackets what Embree itself added to the peak (its buffers
-              and its BVH: the growth of the resident memory across the upload and the build)
+    ns/ray    whitted: trace seconds / (primary + reflected + shadow rays), its whole render
+              (sampling, shading, the image); Embree: (primary + reflected + shadow query seconds)
+              / the same rays, the queries alone — so the ratio is an upper bound on the
+              traversal's gap
+    build s   whitted: `build_seconds` (the BVH over the loaded scene); Embree: `rtcCommitScene`
+              (its default BVH build); embreex: timed around the first query, of one ray (the
+              binding's copy of the arrays into Embree's buffers, `upload_s`, is kept apart)
+    peak MB   the process's peak resident memory (ru_maxrss); embreex's includes Python, NumPy and
+              the mesh's arrays, the harness's is the C process alone (with its batch of rays);
+              in brackets what Embree itself added to the peak (its buffers and its BVH: the
+              growth of the resident memory across the upload and the build)
 
-Usage (from the repository root; `cargo build --release` first; `pip install embreex`):
-    python3 bench/embree.py                          # both meshes, 5 rounds
-    python3 bench/embree.py --only mesh-100k --runs 3
+Usage (from the repository root; `cargo build --release` first; `pip install embreex` and
+`apt-get install libembree-dev`, which bench/peers.sh does):
+    python3 bench/embree.py                          # the meshes and spheres-10k, 5 rounds
+    python3 bench/embree.py --only spheres-10k --runs 3
+    python3 bench/embree.py --only mesh-100k --mesh-peer harness --runs 1   # Embree 3 on a mesh
 Results: bench/results/DATE-COMMIT-embree.json (the raw rounds and the table), like run.py's.
 """
 import argparse
 import json
 import os
 import statistics
+import struct
 import subprocess
 import sys
 import time
@@ -55,11 +76,20 @@ REPO = os.path.dirname(BENCH)
 sys.path.insert(0, BENCH)
 import run as runpy  # noqa: E402  (the POV-Ray bench: its PNG reader, process measure, git helpers)
 
-SCENES = ["mesh-100k", "mesh-1000k"]
+SCENES = ["mesh-100k", "mesh-1000k", "spheres-10k"]
 WORK = "/tmp/whitted-bench/embree"
-# How far a shadow ray's origin leaves the surface in Embree's run, relative to the hit point's
-# largest coordinate (at least 1): f32 hit points are off by about 1e-7 of that.
+HARNESS_SOURCE = os.path.join(BENCH, "embree_harness.c")
+HARNESS_BINARY = os.path.join(WORK, "embree_harness")
+# How far a shadow or reflected ray's origin leaves the surface in Embree's run, relative to the
+# hit point's largest coordinate (at least 1): f32 hit points are off by about 1e-7 of that.
 EMBREE_OFFSET = 1e-4
+# The most that whitted's and Embree's rays may disagree, as a fraction: of whitted's count for
+# each kind of ray, of the image's pixels for the pixels whose class differs. f32 silhouettes and
+# the larger offset flip a few hundred pixels of 307 200 (under 0.1 %); a wrong ray rule or camera
+# flips thousands.
+MISMATCH_TOLERANCE = 2e-3
+# A pixel's class, as both sides tell it.
+BACKGROUND, AMBIENT, LIT, MIRROR = 0, 1, 2, 3
 
 
 # ----------------------------------------------------------------------------------------------
@@ -96,6 +126,66 @@ def load_obj(path):
     return v, f
 
 
+class Mesh:
+    """The scene's one mesh object: Embree's triangles, and what a hit needs of them in f64."""
+
+    kind = "triangles"
+
+    def __init__(self, scene, scene_path):
+        (obj,) = [o for o in scene["objects"] if o["type"] == "mesh"]
+        if len(scene["objects"]) != 1:
+            raise SystemExit("embree.py: a mesh scene must hold the mesh alone")
+        self.verts, self.faces = load_obj(os.path.join(os.path.dirname(scene_path), obj["obj"]))
+        self.ks = float(obj["material"].get("ks", 0))
+        self.count = len(self.faces)
+
+    def surface(self, prim, point):
+        """The hit points and the outward unit normals normalize((b − a) × (c − a)) (§3)."""
+        import numpy as np
+
+        a, b, c = (self.verts[self.faces[prim, k]] for k in range(3))
+        n = np.cross(b - a, c - a)
+        return point, n / np.linalg.norm(n, axis=1)[:, None]
+
+    def reflects(self, prim):
+        import numpy as np
+
+        return np.full(len(prim), self.ks > 0)
+
+
+class Spheres:
+    """The scene's spheres (every object a sphere), in the order of `objects`."""
+
+    kind = "spheres"
+
+    def __init__(self, scene):
+        import numpy as np
+
+        if any(o["type"] != "sphere" for o in scene["objects"]):
+            raise SystemExit("embree.py: a sphere scene must hold spheres alone")
+        self.centres = np.array([o["center"] for o in scene["objects"]], float)
+        self.radii = np.array([o["radius"] for o in scene["objects"]], float)
+        self.ks = np.array([o["material"].get("ks", 0) for o in scene["objects"]], float)
+        if any(o["material"].get("kt", 0) > 0 for o in scene["objects"]):
+            raise SystemExit("embree.py: glass (kt > 0) is not traced here")
+        self.count = len(self.radii)
+
+    def surface(self, prim, point):
+        """The hit points put back on their sphere, C + r·N, and N = (I − C)/|I − C| (§3, §11)."""
+        import numpy as np
+
+        off = point - self.centres[prim]
+        n = off / np.linalg.norm(off, axis=1)[:, None]
+        return self.centres[prim] + self.radii[prim][:, None] * n, n
+
+    def reflects(self, prim):
+        return self.ks[prim] > 0
+
+
+def scene_geometry(scene, scene_path):
+    return Mesh(scene, scene_path) if any(o["type"] == "mesh" for o in scene["objects"]) else Spheres(scene)
+
+
 def camera_rays(cam):
     """Origins and unit directions (f64) of the primary rays, pixel (i, j) at row-major index
     (ny − 1 − j)·nx + i of the image (rows from the top), as whitted's camera makes them."""
@@ -130,71 +220,225 @@ def resident_mb():
     return float("nan")
 
 
-def child(scene_path, classes_out):
-    """Builds Embree's scene, traces the rays, prints the figures as JSON on stdout."""
-    import numpy as np
-    from embreex import rtcore_scene
-    from embreex.mesh_construction import TriangleMesh
+class Embreex:
+    """Embree 4.4 through the embreex binding: triangle meshes only."""
 
-    with open(scene_path) as fh:
-        scene = json.load(fh)
-    (obj,) = [o for o in scene["objects"] if o["type"] == "mesh"]
-    t0 = time.perf_counter()
-    verts, faces = load_obj(os.path.join(os.path.dirname(scene_path), obj["obj"]))
-    load_s = time.perf_counter() - t0
-    origins, dirs = camera_rays(scene["camera"])
+    def __init__(self, geom):
+        import numpy as np
+        from embreex import rtcore_scene
+        from embreex.mesh_construction import TriangleMesh
+
+        if geom.kind != "triangles":
+            raise SystemExit("embree.py: embreex binds triangle meshes only (use the harness)")
+        import embreex
+
+        self.name = "Embree %s (embreex)" % embreex.__version__
+        self.es = rtcore_scene.EmbreeScene()
+        rss_before = resident_mb()
+        t0 = time.perf_counter()
+        # The binding copies the arrays into Embree's buffers one element at a time (Cython):
+        # timed apart, it is not Embree's build.
+        TriangleMesh(self.es, geom.verts.astype(np.float32), geom.faces.astype(np.int32))
+        self.upload_s = time.perf_counter() - t0
+        # The first query commits the scene (rtcCommitScene: the BVH build); one ray costs nothing.
+        one = np.zeros((1, 3), np.float32)
+        t0 = time.perf_counter()
+        self.es.run(one, one + np.float32(1))
+        self.build_s = time.perf_counter() - t0
+        # What Embree itself holds: the growth of the resident memory across the upload and the build.
+        self.embree_mb = resident_mb() - rss_before
+        self.peak_mb = None  # this process's: the parent measures it
+
+    def intersect(self, o, d):
+        """(primitive or −1, t, seconds) of each ray's nearest hit."""
+        import numpy as np
+
+        o32, d32 = o.astype(np.float32), d.astype(np.float32)
+        t0 = time.perf_counter()
+        hit = self.es.run(o32, d32, output=1)
+        seconds = time.perf_counter() - t0
+        return np.asarray(hit["primID"]), np.asarray(hit["tfar"]).astype(float), seconds
+
+    def occluded(self, o, d, tfar):
+        """(whether something lies on each segment, seconds)."""
+        import numpy as np
+
+        o32, d32, t32 = o.astype(np.float32), d.astype(np.float32), tfar.astype(np.float32)
+        t0 = time.perf_counter()
+        occ = np.asarray(self.es.run(o32, d32, dists=t32, query="OCCLUDED"))
+        seconds = time.perf_counter() - t0
+        return (occ >= 0 if occ.dtype != bool else occ), seconds
+
+    def close(self):
+        pass
+
+
+class Harness:
+    """Embree 3 through bench/embree_harness.c, a process that answers batches over a pipe (its
+    protocol is in the C file's header comment)."""
+
+    KINDS = {"triangles": 1, "spheres": 2}
+    INTERSECT, OCCLUDED, END = 1, 2, 0
+
+    def __init__(self, geom, binary):
+        import numpy as np
+
+        self.proc = subprocess.Popen([binary], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+        if geom.kind == "triangles":
+            header = (len(geom.verts), len(geom.faces))
+            body = [geom.verts.astype("<f4").tobytes(), geom.faces.astype("<u4").tobytes()]
+        else:
+            header = (geom.count, 0)
+            body = [np.column_stack([geom.centres, geom.radii]).astype("<f4").tobytes()]
+        self._send(struct.pack("<IQQ", self.KINDS[geom.kind], *header), *body)
+        self.build_s, self.embree_mb, version = struct.unpack("<3d", self._receive(24))
+        v = int(version)
+        self.name = "Embree %d.%d.%d (C harness)" % (v // 10000, v // 100 % 100, v % 100)
+        self.upload_s = None
+        self.peak_mb = None
+
+    def _send(self, *chunks):
+        for c in chunks:
+            self.proc.stdin.write(c)
+        self.proc.stdin.flush()
+
+    def _receive(self, n):
+        data = self.proc.stdout.read(n)
+        if len(data) != n:
+            raise SystemExit("embree.py: the harness stopped (exit %s)" % self.proc.poll())
+        return data
+
+    def _batch(self, op, o, d, tfar):
+        import numpy as np
+
+        rays = np.column_stack([o, d, tfar]).astype("<f4")
+        self._send(struct.pack("<IQ", op, len(rays)), rays.tobytes())
+        (seconds,) = struct.unpack("<d", self._receive(8))
+        return seconds
+
+    def intersect(self, o, d):
+        import numpy as np
+
+        n = len(o)
+        seconds = self._batch(self.INTERSECT, o, d, np.full(n, np.inf))
+        prim = np.frombuffer(self._receive(4 * n), "<i4")
+        t = np.frombuffer(self._receive(4 * n), "<f4").astype(float)
+        return prim, t, seconds
+
+    def occluded(self, o, d, tfar):
+        import numpy as np
+
+        seconds = self._batch(self.OCCLUDED, o, d, tfar)
+        return np.frombuffer(self._receive(len(o)), np.uint8).astype(bool), seconds
+
+    def close(self):
+        self._send(struct.pack("<I", self.END))
+        (self.peak_mb,) = struct.unpack("<d", self._receive(8))
+        self.proc.wait()
+
+
+def offset_origins(point, facing):
+    """I moved off the surface along N_f by EMBREE_OFFSET · max(‖I‖∞, 1)."""
+    import numpy as np
+
+    scale = np.maximum(np.abs(point).max(axis=1), 1.0)
+    return point + facing * (EMBREE_OFFSET * scale)[:, None]
+
+
+def unit(v):
+    """The rows of v divided by their lengths (a zero row left zero) and the lengths."""
+    import numpy as np
+
+    length = np.linalg.norm(v, axis=1)
+    return v / np.where(length > 0, length, 1)[:, None], length
+
+
+def trace(peer, geom, scene):
+    """Every ray of the scene's ray trees through `peer`, level by level: figures and each pixel's
+    class and primary primitive."""
+    import numpy as np
+
     (light,) = scene["lights"]
     light = np.array(light["position"], float)
+    max_depth = scene.get("max_depth", 5)
+    o, d = camera_rays(scene["camera"])
+    pixels = len(o)
+    pixel = np.arange(pixels)
+    seconds = {"primary_s": 0.0, "reflected_s": 0.0}
+    reflected = 0
+    hits = 0
+    shadow = {"o": [], "d": [], "t": [], "pixel": []}
+    primary_prim = primary_cast = None
+    level = 1
+    while len(o):
+        prim, t, s = peer.intersect(o, d)
+        seconds["primary_s" if level == 1 else "reflected_s"] += s
+        if level > 1:
+            reflected += len(o)
+        hit = prim >= 0
+        if level == 1:
+            primary_prim, hits = prim.copy(), int(hit.sum())
+        p, o, d, pixel = prim[hit], o[hit], d[hit], pixel[hit]
+        point, n = geom.surface(p, o + d * t[hit][:, None])
+        # Entering iff D·N ≤ 0; the facing normal N_f is N entering, −N leaving (§3).
+        facing = np.where((np.einsum("ij,ij->i", n, d) <= 0)[:, None], n, -n)
+        start = offset_origins(point, facing)
+        ldir, _ = unit(light - point)
+        cast = np.einsum("ij,ij->i", facing, ldir) > 0
+        sdir, sdist = unit(light[None, :] - start[cast])
+        shadow["o"].append(start[cast])
+        shadow["d"].append(sdir)
+        shadow["t"].append(sdist)
+        shadow["pixel"].append(pixel[cast] if level == 1 else np.full(int(cast.sum()), -1))
+        if level == 1:
+            primary_cast = np.zeros(pixels, bool)
+            primary_cast[pixel[cast]] = True
+        if level > max_depth:
+            break
+        mirror = geom.reflects(p)
+        dm, fm = d[mirror], facing[mirror]
+        r, _ = unit(dm - 2 * np.einsum("ij,ij->i", dm, fm)[:, None] * fm)
+        o, d, pixel = start[mirror], r, pixel[mirror]
+        level += 1
+    so, sd, st = (np.concatenate(shadow[k]) for k in ("o", "d", "t"))
+    occluded, shadow_s = peer.occluded(so, sd, st)
+    spixel = np.concatenate(shadow["pixel"])
+    primary_lit = np.zeros(pixels, bool)
+    primary_lit[spixel[(spixel >= 0) & ~occluded]] = True
+    classes = np.where(primary_prim < 0, BACKGROUND, np.where(primary_lit, LIT, AMBIENT))
+    classes = np.where((primary_prim >= 0) & geom.reflects(np.maximum(primary_prim, 0)), MIRROR, classes)
+    assert not (primary_lit & ~primary_cast).any()
+    figures = dict(seconds, shadow_s=shadow_s, primary=pixels, reflected=reflected, shadow=len(so), hits=hits,
+                   occluded=int(occluded.sum()))
+    return figures, classes.astype(np.uint8), primary_prim.astype(np.int32)
 
-    es = rtcore_scene.EmbreeScene()
-    rss_before = resident_mb()
-    t0 = time.perf_counter()
-    # The binding copies the arrays into Embree's buffers one element at a time (Cython): timed
-    # apart, it is not Embree's build.
-    TriangleMesh(es, verts.astype(np.float32), faces.astype(np.int32))
-    upload_s = time.perf_counter() - t0
-    # The first query commits the scene (rtcCommitScene: the BVH build); one ray costs nothing.
-    t0 = time.perf_counter()
-    es.run(origins[:1].astype(np.float32), dirs[:1].astype(np.float32))
-    build_s = time.perf_counter() - t0
-    # What Embree itself holds: the growth of the resident memory across the upload and the build.
-    embree_mb = resident_mb() - rss_before
 
-    o32, d32 = origins.astype(np.float32), dirs.astype(np.float32)
+def child(scene_path, classes_out, peer_name):
+    """Builds Embree's scene, traces the rays, prints the figures as JSON on stdout; writes each
+    pixel's class (u8) to CLASSES and its primary primitive (i32, −1 none) to CLASSES.prim."""
+    with open(scene_path) as fh:
+        scene = json.load(fh)
     t0 = time.perf_counter()
-    hit = es.run(o32, d32, output=1)
-    primary_s = time.perf_counter() - t0
-    prim = hit["primID"]
-    is_hit = prim >= 0
-    t = hit["tfar"].astype(float)
-    n = hit["Ng"].astype(float)
-    n /= np.linalg.norm(n, axis=1)[:, None] + (~is_hit)[:, None]
-    # The facing normal: N when the ray enters (N·D < 0), else −N.
-    facing = np.where((np.einsum("ij,ij->i", n, dirs) < 0)[:, None], n, -n)
-    point = origins + dirs * t[:, None]
-    to_light = light - point
-    dist = np.linalg.norm(to_light, axis=1)
-    ldir = to_light / np.where(dist > 0, dist, 1)[:, None]
-    cast = is_hit & (np.einsum("ij,ij->i", facing, ldir) > 0)
-    scale = np.maximum(np.abs(point).max(axis=1), 1.0)
-    so = point + facing * (EMBREE_OFFSET * scale)[:, None]
-    sd = light - so
-    sdist = np.linalg.norm(sd, axis=1)
-    sd /= np.where(sdist > 0, sdist, 1)[:, None]
-    idx = np.nonzero(cast)[0]
-    s_o, s_d = so[idx].astype(np.float32), sd[idx].astype(np.float32)
-    s_t = sdist[idx].astype(np.float32)
-    t0 = time.perf_counter()
-    occ = es.run(s_o, s_d, dists=s_t, query="OCCLUDED")
-    shadow_s = time.perf_counter() - t0
-    occluded = np.zeros(len(prim), bool)
-    occluded[idx] = np.asarray(occ) >= 0 if np.asarray(occ).dtype != bool else np.asarray(occ)
-    # 0 background, 1 ambient only (no light or shadowed), 2 lit
-    classes = np.where(~is_hit, 0, np.where(cast & ~occluded, 2, 1)).astype(np.uint8)
+    geom = scene_geometry(scene, scene_path)
+    load_s = time.perf_counter() - t0
+    peer = Embreex(geom) if peer_name == "embreex" else Harness(geom, peer_name)
+    figures, classes, prim = trace(peer, geom, scene)
+    peer.close()
     classes.tofile(classes_out)
-    print(json.dumps({"load_s": load_s, "upload_s": upload_s, "build_s": build_s, "embree_mb": embree_mb, "primary_s": primary_s, "shadow_s": shadow_s,
-                      "primary": int(len(prim)), "hits": int(is_hit.sum()), "shadow": int(cast.sum()),
-                      "occluded": int(occluded.sum()), "triangles": int(len(faces))}))
+    prim.tofile(classes_out + ".prim")
+    print(json.dumps(dict(figures, load_s=load_s, upload_s=peer.upload_s, build_s=peer.build_s, embree_mb=peer.embree_mb,
+                          peer=peer.name, peer_peak_mb=peer.peak_mb, primitives=geom.count)))
+
+
+def harness_binary():
+    """bench/embree_harness.c compiled into WORK (again when the source is newer)."""
+    if os.path.exists(HARNESS_BINARY) and os.path.getmtime(HARNESS_BINARY) >= os.path.getmtime(HARNESS_SOURCE):
+        return HARNESS_BINARY
+    cmd = ["cc", "-O2", "-o", HARNESS_BINARY, HARNESS_SOURCE, "-lembree3"]
+    runpy.log(" ".join(cmd))
+    if subprocess.run(cmd).returncode != 0:
+        sys.exit("embree.py: the harness did not compile: apt-get install libembree-dev (Embree 3)")
+    return HARNESS_BINARY
 
 
 # ----------------------------------------------------------------------------------------------
@@ -232,18 +476,60 @@ def measured(cmd, cpu, timeout):
     return b"".join(chunks).decode(), wall, usage.ru_maxrss / 1024.0
 
 
-def png_classes(path, scene):
-    """Each pixel of whitted's PNG as 0 background, 1 ambient only, 2 lit (row-major from the top)."""
+def rgb8(c):
+    return tuple(round(255 * min(max(x, 0.0), 1.0)) for x in c)
+
+
+def png_classes(path, scene, prim):
+    """Each pixel of whitted's PNG (row-major from the top) as BACKGROUND (the background colour),
+    MIRROR (the primitive Embree hit there has ks > 0: its colour mixes reflections), AMBIENT (the
+    ambient colour ka of that primitive: no light, or shadowed) or LIT."""
     width, height, pixels = runpy.read_png(path)
-    bg = tuple(round(255 * min(max(c, 0.0), 1.0)) for c in scene["background"])
-    (obj,) = [o for o in scene["objects"] if o["type"] == "mesh"]
+    bg = rgb8(scene["background"])
+    objects = scene["objects"]
+    one = len(objects) == 1  # a mesh: every triangle is the one object
     amb = scene.get("ambient", [1, 1, 1])
-    ka = tuple(round(255 * min(max(a * k, 0.0), 1.0)) for a, k in zip(amb, obj["material"]["ka"]))
+    ka = [rgb8(a * k for a, k in zip(amb, o["material"]["ka"])) for o in objects]
+    mirror = [o["material"].get("ks", 0) > 0 for o in objects]
     out = bytearray(width * height)
     for k in range(width * height):
         px = tuple(pixels[3 * k:3 * k + 3])
-        out[k] = 0 if px == bg else 1 if px == ka else 2
+        j = 0 if one else max(int(prim[k]), 0)
+        out[k] = BACKGROUND if px == bg else MIRROR if mirror[j] else AMBIENT if px == ka[j] else LIT
     return bytes(out)
+
+
+CLASS_NAMES = {BACKGROUND: "background", AMBIENT: "unlit or shadowed", LIT: "lit", MIRROR: "mirror"}
+
+
+def compare_rays(w, e, mine, theirs, pixels):
+    """whitted's rays against Embree's: the counts, the pixels whose class differs (by pair of
+    classes), and the mismatches beyond MISMATCH_TOLERANCE."""
+    differ = {}
+    for a, b in zip(mine, theirs):
+        if a != b:
+            key = "whitted %s / Embree %s" % (CLASS_NAMES[a], CLASS_NAMES[b])
+            differ[key] = differ.get(key, 0) + 1
+    check = {
+        "primary": [w["rays"]["primary"], e["primary"]],
+        "reflected": [w["rays"]["reflected"], e["reflected"]],
+        "shadow": [w["rays"]["shadow"], e["shadow"]],
+        "transmitted": w["rays"]["transmitted"],
+        "hits": [sum(1 for c in mine if c != BACKGROUND), e["hits"]],
+        "lit": [sum(1 for c in mine if c == LIT), sum(1 for c in theirs if c == LIT)],
+        "pixels_whose_class_differs": sum(differ.values()),
+        "differing_classes": differ,
+        "tolerance": MISMATCH_TOLERANCE,
+    }
+    beyond = [k for k in ("reflected", "shadow") if abs(check[k][0] - check[k][1]) > MISMATCH_TOLERANCE * check[k][0]]
+    if check["primary"][0] != check["primary"][1]:
+        beyond.append("primary")
+    if check["transmitted"]:
+        beyond.append("transmitted")
+    if check["pixels_whose_class_differs"] > MISMATCH_TOLERANCE * pixels:
+        beyond.append("pixel classes")
+    check["beyond_tolerance"] = beyond
+    return check
 
 
 def spread(xs):
@@ -258,26 +544,33 @@ def main():
     ap.add_argument("--whitted", action="append", default=[],
                     help="a whitted binary (default: target/release/whitted); repeatable: several binaries "
                          "run in the same rounds (before and after a change), their PNGs compared byte for byte")
+    ap.add_argument("--mesh-peer", choices=["embreex", "harness"], default="embreex",
+                    help="the meshes through embreex (Embree 4, the default) or the C harness (Embree 3); "
+                         "spheres always go through the harness")
     ap.add_argument("--results", default=runpy.RESULTS, help="folder of the results file")
     ap.add_argument("--timeout", type=float, default=600)
     ap.add_argument("--povray-dir", help="folder of gen_mesh.py, when the meshes must be generated (see run.py)")
-    ap.add_argument("--child", nargs=2, metavar=("SCENE", "CLASSES"), help=argparse.SUPPRESS)
+    ap.add_argument("--child", nargs=3, metavar=("SCENE", "CLASSES", "PEER"), help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.child:
         child(*args.child)
         return
-    try:
-        import embreex  # noqa: F401
-    except ImportError:
-        sys.exit("embree.py: the embreex package is missing: pip install embreex")
     binaries = [os.path.abspath(w) for w in args.whitted] or [os.path.join(REPO, "target", "release", "whitted")]
     for w in binaries:
         if not os.access(w, os.X_OK):
             sys.exit("embree.py: the whitted binary is missing: %s (cargo build --release)" % w)
     cpu = args.cpu if args.cpu is not None else max(os.sched_getaffinity(0))
     scenes = args.only or SCENES
+    peers = {s: "harness" if s.startswith("spheres-") or args.mesh_peer == "harness" else "embreex" for s in scenes}
+    if "embreex" in peers.values():
+        try:
+            import embreex  # noqa: F401
+        except ImportError:
+            sys.exit("embree.py: the embreex package is missing: pip install embreex")
     runpy.ensure_scene_files([(s, s + ".json", []) for s in scenes], False, args.povray_dir)
     os.makedirs(WORK, exist_ok=True)
+    if "harness" in peers.values():
+        peers = {s: harness_binary() if p == "harness" else p for s, p in peers.items()}
     load_start = os.getloadavg()
     results = {"machine": runpy.machine_info(binaries[0], None, load_start), "cpu": cpu, "binaries": binaries,
                "runs": args.runs, "embree_offset": EMBREE_OFFSET, "scenes": []}
@@ -287,7 +580,7 @@ def main():
             scene = json.load(fh)
         pngs = [os.path.join(WORK, "%s-whitted%d.png" % (name, i)) for i in range(len(binaries))]
         classes = os.path.join(WORK, name + "-embree.classes")
-        e_cmd = [sys.executable, os.path.abspath(__file__), "--child", scene_path, classes]
+        e_cmd = [sys.executable, os.path.abspath(__file__), "--child", scene_path, classes, peers[name]]
         rounds = []
         for k in range(args.runs):
             sides = []
@@ -302,8 +595,10 @@ def main():
                               "ns_per_ray": 1e9 * w["seconds"] / n})
             out, wall, rss = measured(e_cmd, cpu, args.timeout)
             e = json.loads(out)
-            e_rays = e["primary"] + e["shadow"]
-            er = dict(e, peak_mb=rss, wall_s=wall, ns_per_ray=1e9 * (e["primary_s"] + e["shadow_s"]) / e_rays)
+            e_rays = e["primary"] + e["reflected"] + e["shadow"]
+            e_s = e["primary_s"] + e["reflected_s"] + e["shadow_s"]
+            # The harness's own peak when it answered (a C process); embreex's is the Python child's.
+            er = dict(e, peak_mb=e["peer_peak_mb"] or rss, child_peak_mb=rss, wall_s=wall, ns_per_ray=1e9 * e_s / e_rays)
             rounds.append({"whitted": sides, "embree": er})
             runpy.log("%-11s round %d: %s | Embree %.0f ns/ray, build %.3f s, %.0f MB" % (
                 name, k + 1, " | ".join("whitted%d %.0f ns/ray, build %.3f s, %.0f MB"
@@ -311,28 +606,27 @@ def main():
                 er["ns_per_ray"], er["build_s"], er["peak_mb"]))
         # Same rays? Counts from the last round (every round traces the same rays).
         w, e = rounds[-1]["whitted"][0], rounds[-1]["embree"]
-        mine = png_classes(pngs[0], scene)
         with open(classes, "rb") as fh:
             theirs = fh.read()
+        with open(classes + ".prim", "rb") as fh:
+            data = fh.read()
+            prim = struct.unpack("<%di" % (len(data) // 4), data)
+        mine = png_classes(pngs[0], scene, prim)
         images = []
         for png in pngs:
             with open(png, "rb") as fh:
                 images.append(fh.read())
-        check = {
-            "primary": [w["rays"]["primary"], e["primary"]],
-            "shadow": [w["rays"]["shadow"], e["shadow"]],
-            "secondary": w["rays"]["reflected"] + w["rays"]["transmitted"],
-            "hits": [sum(1 for c in mine if c != 0), e["hits"]],
-            "lit": [sum(1 for c in mine if c == 2), sum(1 for c in theirs if c == 2)],
-            "pixels_whose_class_differs": sum(1 for a, b in zip(mine, theirs) if a != b),
+        check = compare_rays(w, e, mine, theirs, len(mine))
+        check.update({
             "same_png_bytes": all(img == images[0] for img in images),
             "same_rays": all(x["rays"] == w["rays"] for x in rounds[-1]["whitted"]),
             # Node and object tests per ray of each binary: a render's wide BVH tests other nodes
             # (and may test other triangles first) than the binary tree, for the same answers.
             "tests_per_ray": [{k: round(v / max(1, sum(x["rays"].values())), 2) for k, v in x["tests"].items()}
                               for x in rounds[-1]["whitted"]],
-        }
-        results["scenes"].append({"scene": name, "triangles": e["triangles"], "rounds": rounds, "check": check})
+        })
+        results["scenes"].append({"scene": name, "peer": e["peer"], "primitives": e["primitives"], "rounds": rounds,
+                                  "check": check})
     results["machine"]["load_average_end"] = [round(x, 2) for x in os.getloadavg()]
     text = table(results)
     results["table"] = text
@@ -343,18 +637,23 @@ def main():
         fh.write("\n")
     print(text)
     runpy.log("\nresults: %s" % runpy.shown(path))
-    bad = [s["scene"] for s in results["scenes"] if s["check"]["primary"][0] != s["check"]["primary"][1]
-           or s["check"]["secondary"] or not s["check"]["same_png_bytes"] or not s["check"]["same_rays"]]
+    bad = ["%s (%s)" % (s["scene"], ", ".join(s["check"]["beyond_tolerance"])) for s in results["scenes"]
+           if s["check"]["beyond_tolerance"]]
+    bad += ["%s (the binaries' images or rays differ)" % s["scene"] for s in results["scenes"]
+            if not s["check"]["same_png_bytes"] or not s["check"]["same_rays"]]
     if bad:
-        sys.exit("embree.py: other rays than Embree's, or binaries whose images differ, on %s" % ", ".join(bad))
+        sys.exit("embree.py: other rays than Embree's beyond the tolerance %g, or binaries that differ: %s"
+                 % (MISMATCH_TOLERANCE, "; ".join(bad)))
 
 
 def table(results):
     m = results["machine"]
     names = ["whitted"] if len(results["binaries"]) == 1 else [
         "whitted%d (%s)" % (i, runpy.shown(b)) for i, b in enumerate(results["binaries"])]
-    lines = ["Embree 4.4 (embreex) against whitted (%s), one thread each (CPU %d), %d rounds; load average %s → %s."
-             % (", ".join(names), results["cpu"], results["runs"], m["load_average_start"], m["load_average_end"]),
+    peers = sorted({s["peer"] for s in results["scenes"]})
+    lines = ["%s against whitted (%s), one thread each (CPU %d), %d rounds; load average %s → %s."
+             % (" and ".join(peers), ", ".join(names), results["cpu"], results["runs"], m["load_average_start"],
+                m["load_average_end"]),
              "Medians; ratios = whitted / Embree per round, median [min–max].", "",
              "| scene | binary | whitted ns/ray | Embree ns/ray | ratio | whitted build s | Embree build s | ratio "
              "| whitted peak MB | Embree peak MB (Embree's own) | ratio |",
@@ -379,14 +678,17 @@ def table(results):
                     spread([x["whitted"][0]["trace_s"] / x["whitted"][i]["trace_s"] for x in r]),
                     spread([x["whitted"][0]["build_s"] / x["whitted"][i]["build_s"] for x in r]),
                     spread([x["whitted"][i]["peak_mb"] / x["whitted"][0]["peak_mb"] for x in r])))
-    lines += ["", "Same rays (whitted / Embree):"]
+    lines += ["", "Same rays (whitted / Embree; tolerance %g of each count and of the pixels):" % MISMATCH_TOLERANCE]
     for s in results["scenes"]:
         c = s["check"]
-        lines.append("- %s (%d triangles): primary %d / %d, shadow %d / %d, hits %d / %d, lit pixels %d / %d; "
-                     "pixels whose class (background, unlit or shadowed, lit) differs: %d; the binaries' PNGs %s, "
-                     "their ray counts %s; node / object tests per ray %s"
-                     % (s["scene"], s["triangles"], *c["primary"], *c["shadow"], *c["hits"], *c["lit"],
-                        c["pixels_whose_class_differs"], "byte for byte the same" if c["same_png_bytes"] else "DIFFER",
+        differ = "; ".join("%s %d" % kv for kv in sorted(c["differing_classes"].items())) or "none"
+        lines.append("- %s (%d primitives, %s): primary %d / %d, reflected %d / %d, shadow %d / %d, hits %d / %d, "
+                     "lit pixels %d / %d; pixels whose class (background, unlit or shadowed, lit, mirror) differs: "
+                     "%d (%s)%s; the binaries' PNGs %s, their ray counts %s; node / object tests per ray %s"
+                     % (s["scene"], s["primitives"], s["peer"], *c["primary"], *c["reflected"], *c["shadow"],
+                        *c["hits"], *c["lit"], c["pixels_whose_class_differs"], differ,
+                        "; BEYOND THE TOLERANCE: " + ", ".join(c["beyond_tolerance"]) if c["beyond_tolerance"] else "",
+                        "byte for byte the same" if c["same_png_bytes"] else "DIFFER",
                         "the same" if c["same_rays"] else "DIFFER",
                         ", ".join("whitted%d %.2f / %.2f" % (i, t.get("node", 0), t.get("object", 0))
                                   for i, t in enumerate(c["tests_per_ray"]))))
