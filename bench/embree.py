@@ -11,7 +11,8 @@ primitives, and traces the same rays through it on one thread. Two peers answer 
            a C program that holds Embree's true sphere primitive (RTC_GEOMETRY_TYPE_SPHERE_POINT:
            centre and radius, nothing tessellated) and answers batches of rays over a pipe. It
            takes triangles too: `--mesh-peer harness` runs the meshes through it (Embree 3
-           against 4, a cross-check). The script compiles it (`cc -O2 … -lembree3`) into WORK.
+           against 4, a cross-check). The script compiles it (`cc -O2 … -lembree3`) into WORK,
+           and bench/peak_rss.c too, which measures each process's peak memory.
 
 Either way this script makes every ray, in f64 as whitted does, and gives it to Embree in f32
 (Embree's precision); one set of rules for both peers:
@@ -37,7 +38,7 @@ counts the pixels whose class differs. f32 against f64 arithmetic flips a few on
 grazing light; a run fails when a ray count or the differing pixels exceed MISMATCH_TOLERANCE.
 
 Each round runs whitted (`render --threads 1 --json`) and this script's Embree child, one after the
-other in one command, each its own process (so its peak RSS is its own, from os.wait4), pinned to
+other in one command, each its own process (its peak RSS its own, from bench/peak_rss.c), pinned to
 the same single CPU (Embree's build would otherwise use every core through TBB; whitted's build
 runs in its one-thread pool; the harness also asks Embree for `threads=1`). The tables show the
 medians of the rounds, the ratios of each round (whitted / Embree) as median [min–max], and the
@@ -51,7 +52,7 @@ load average of the machine.
               (its default BVH build); embreex: timed around the first query, of one ray (the
               binding's copy of the arrays into Embree's buffers, `upload_s`, is kept apart)
     peak MB   the process's peak resident memory (ru_maxrss); embreex's includes Python, NumPy and
-              the mesh's arrays, the harness's is the C process alone (with its batch of rays);
+              the mesh's arrays, the harness's is the C process alone (VmHWM, with its batch of rays);
               in brackets what Embree itself added to the peak (its buffers and its BVH: the
               growth of the resident memory across the upload and the build)
 
@@ -78,8 +79,10 @@ import run as runpy  # noqa: E402  (the POV-Ray bench: its PNG reader, process m
 
 SCENES = ["mesh-100k", "mesh-1000k", "spheres-10k"]
 WORK = "/tmp/whitted-bench/embree"
-HARNESS_SOURCE = os.path.join(BENCH, "embree_harness.c")
-HARNESS_BINARY = os.path.join(WORK, "embree_harness")
+# The C programs this script compiles into WORK: the Embree 3 harness, and the wrapper that
+# measures a process's peak memory (bench/peak_rss.c says why).
+HARNESS = ("embree_harness", ["-lembree3"])
+PEAK_RSS = ("peak_rss", [])
 # How far a shadow or reflected ray's origin leaves the surface in Embree's run, relative to the
 # hit point's largest coordinate (at least 1): f32 hit points are off by about 1e-7 of that.
 EMBREE_OFFSET = 1e-4
@@ -430,15 +433,17 @@ def child(scene_path, classes_out, peer_name):
                           peer=peer.name, peer_peak_mb=peer.peak_mb, primitives=geom.count)))
 
 
-def harness_binary():
-    """bench/embree_harness.c compiled into WORK (again when the source is newer)."""
-    if os.path.exists(HARNESS_BINARY) and os.path.getmtime(HARNESS_BINARY) >= os.path.getmtime(HARNESS_SOURCE):
-        return HARNESS_BINARY
-    cmd = ["cc", "-O2", "-o", HARNESS_BINARY, HARNESS_SOURCE, "-lembree3"]
+def compiled(program):
+    """bench/NAME.c compiled into WORK (again when the source is newer); its path."""
+    name, libs = program
+    source, binary = os.path.join(BENCH, name + ".c"), os.path.join(WORK, name)
+    if os.path.exists(binary) and os.path.getmtime(binary) >= os.path.getmtime(source):
+        return binary
+    cmd = ["cc", "-O2", "-o", binary, source, *libs]
     runpy.log(" ".join(cmd))
     if subprocess.run(cmd).returncode != 0:
-        sys.exit("embree.py: the harness did not compile: apt-get install libembree-dev (Embree 3)")
-    return HARNESS_BINARY
+        sys.exit("embree.py: %s did not compile%s" % (source, " (apt-get install libembree-dev: Embree 3)" if libs else ""))
+    return binary
 
 
 # ----------------------------------------------------------------------------------------------
@@ -446,7 +451,9 @@ def harness_binary():
 
 
 def measured(cmd, cpu, timeout):
-    """Runs `cmd` on CPU `cpu`; (stdout, wall seconds, peak RSS MB) from os.wait4."""
+    """Runs `cmd` on CPU `cpu`; (stdout, wall seconds, peak RSS MB), the peak from peak_rss."""
+    peak_file = os.path.join(WORK, "peak_kb")
+    cmd = [compiled(PEAK_RSS), peak_file] + cmd
     r, w = os.pipe()
     start = time.perf_counter()
     pid = os.fork()
@@ -469,11 +476,13 @@ def measured(cmd, cpu, timeout):
             break
         chunks.append(b)
     os.close(r)
-    _, status, usage = os.wait4(pid, 0)
+    _, status, _ = os.wait4(pid, 0)
     wall = time.perf_counter() - start
     if os.waitstatus_to_exitcode(status) != 0:
         raise SystemExit("embree.py: %s failed (exit %d)" % (" ".join(cmd), os.waitstatus_to_exitcode(status)))
-    return b"".join(chunks).decode(), wall, usage.ru_maxrss / 1024.0
+    with open(peak_file) as fh:
+        peak_mb = int(fh.read()) / 1024.0
+    return b"".join(chunks).decode(), wall, peak_mb
 
 
 def rgb8(c):
@@ -569,8 +578,7 @@ def main():
             sys.exit("embree.py: the embreex package is missing: pip install embreex")
     runpy.ensure_scene_files([(s, s + ".json", []) for s in scenes], False, args.povray_dir)
     os.makedirs(WORK, exist_ok=True)
-    if "harness" in peers.values():
-        peers = {s: harness_binary() if p == "harness" else p for s, p in peers.items()}
+    peers = {s: compiled(HARNESS) if p == "harness" else p for s, p in peers.items()}
     load_start = os.getloadavg()
     results = {"machine": runpy.machine_info(binaries[0], None, load_start), "cpu": cpu, "binaries": binaries,
                "runs": args.runs, "embree_offset": EMBREE_OFFSET, "scenes": []}

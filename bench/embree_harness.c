@@ -17,7 +17,7 @@
  *        tfar); tnear is 0: embree.py has already moved each origin off its surface
  *   out  intersect: f64 seconds, then n i32 primID (-1: no hit) and n f32 tfar
  *        occluded:  f64 seconds, then n u8 (1: something lies in [0, tfar])
- *        end:       f64 peak_mb (this process's ru_maxrss), and the program exits
+ *        end:       f64 peak_mb (this process's VmHWM), and the program exits
  * The seconds time the queries alone (rtcIntersect1 / rtcOccluded1, one ray at a time, the way
  * whitted traces), not the reading of the batch nor the writing of the answers.
  *
@@ -28,7 +28,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <time.h>
 
 enum { KIND_TRIANGLES = 1, KIND_SPHERES = 2 };
@@ -61,14 +60,16 @@ static double now(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* This process's resident memory now (VmRSS), in MB. */
-static double resident_mb(void) {
+/* A field of /proc/self/status in kB, as MB: VmRSS (resident now) or VmHWM (the peak since exec;
+ * ru_maxrss would also count the memory of the Python process that started this one). */
+static double status_mb(const char *field) {
     FILE *fh = fopen("/proc/self/status", "r");
     char line[256];
+    size_t len = strlen(field);
     double mb = 0.0;
     if (!fh) return 0.0;
     while (fgets(line, sizeof line, fh))
-        if (strncmp(line, "VmRSS:", 6) == 0) mb = atof(line + 6) / 1024.0;
+        if (strncmp(line, field, len) == 0 && line[len] == ':') mb = atof(line + len + 1) / 1024.0;
     fclose(fh);
     return mb;
 }
@@ -170,7 +171,7 @@ int main(void) {
     rtcSetDeviceErrorFunction(dev, on_error, NULL);
     if (kind == KIND_SPHERES && !rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_POINT_GEOMETRY_SUPPORTED))
         die("this Embree was built without point geometry (spheres)");
-    double rss_before = resident_mb();
+    double rss_before = status_mb("VmRSS");
     RTCScene scene = rtcNewScene(dev);
     RTCGeometry g = kind == KIND_TRIANGLES ? triangles(dev, a, b)
                     : kind == KIND_SPHERES  ? spheres(dev, a)
@@ -181,16 +182,14 @@ int main(void) {
     double t0 = now();
     rtcCommitScene(scene);
     double build_s = now() - t0;
-    double embree_mb = resident_mb() - rss_before;
+    double embree_mb = status_mb("VmRSS") - rss_before;
     double version = (double)rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_VERSION);
     write_all(&build_s, sizeof build_s);
     write_all(&embree_mb, sizeof embree_mb);
     write_all(&version, sizeof version);
     fflush(stdout);
     serve(scene);
-    struct rusage usage;
-    getrusage(RUSAGE_SELF, &usage);
-    double peak_mb = (double)usage.ru_maxrss / 1024.0;
+    double peak_mb = status_mb("VmHWM");
     write_all(&peak_mb, sizeof peak_mb);
     fflush(stdout);
     rtcReleaseScene(scene);
