@@ -62,7 +62,8 @@ Usage (from the repository root; `cargo build --release` first; `pip install emb
     python3 bench/embree.py                          # the meshes and spheres-10k, 5 rounds
     python3 bench/embree.py --only spheres-10k --runs 3
     python3 bench/embree.py --only mesh-100k --mesh-peer harness --runs 1   # Embree 3 on a mesh
-Results: bench/results/DATE-COMMIT-embree.json (the raw rounds and the table), like run.py's.
+Results: bench/results/DATE-COMMIT-embree.json (the raw rounds and the table), like run.py's;
+DATE-COMMIT-embree-harness.json with --mesh-peer harness.
 """
 import argparse
 import json
@@ -640,7 +641,9 @@ def main():
     text = table(results)
     results["table"] = text
     os.makedirs(args.results, exist_ok=True)
-    path = runpy.results_path(args.results, results["machine"]).replace(".json", "-embree.json")
+    # The meshes through Embree 3 (the cross-check) get a file of their own beside the main run's.
+    suffix = "-embree.json" if args.mesh_peer == "embreex" else "-embree-harness.json"
+    path = runpy.results_path(args.results, results["machine"]).replace(".json", suffix)
     with open(path, "w") as fh:
         json.dump(results, fh, indent=1)
         fh.write("\n")
