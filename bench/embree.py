@@ -229,14 +229,13 @@ class Embreex:
     """Embree 4.4 through the embreex binding: triangle meshes only."""
 
     def __init__(self, geom):
+        import embreex
         import numpy as np
         from embreex import rtcore_scene
         from embreex.mesh_construction import TriangleMesh
 
         if geom.kind != "triangles":
             raise SystemExit("embree.py: embreex binds triangle meshes only (use the harness)")
-        import embreex
-
         self.name = "Embree %s (embreex)" % embreex.__version__
         self.es = rtcore_scene.EmbreeScene()
         rss_before = resident_mb()
