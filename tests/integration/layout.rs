@@ -417,6 +417,19 @@ fn no_label_of_any_lesson_figure_lies_on_an_object_outline_it_does_not_name() {
 /// of its markup, three letters or more (`max\_depth` → `max`, `depth`; `--aa adaptive` →
 /// `adaptive`), so that symbols (`CA`, the samples' names, `AH`, the nodes') are left out.
 fn words_of(d: &Drawing) -> Vec<String> {
+    let mut words = Vec::new();
+    for text in texts_of(d) {
+        words.extend(
+            text.split(|c: char| !c.is_alphabetic())
+                .filter(|w| w.chars().count() >= 3)
+                .map(str::to_lowercase),
+        );
+    }
+    words
+}
+
+/// Every text a figure prints, as markup: its labels, legend rows, title and caption.
+fn texts_of(d: &Drawing) -> Vec<&str> {
     let mut texts: Vec<&str> = d
         .items
         .iter()
@@ -428,15 +441,28 @@ fn words_of(d: &Drawing) -> Vec<String> {
     texts.extend(d.legend.iter().map(|e| e.label.as_str()));
     texts.extend(d.title.as_deref());
     texts.extend(d.caption.as_deref());
-    let mut words = Vec::new();
-    for text in texts {
-        words.extend(
-            text.split(|c: char| !c.is_alphabetic())
-                .filter(|w| w.chars().count() >= 3)
-                .map(str::to_lowercase),
-        );
+    texts
+}
+
+/// Subscripts and superscripts in one style on every slide: no text of any lesson figure, in
+/// either language, holds a Unicode sub- or superscript character (`t₁`, `θᵢ`, `r²`), which
+/// the font draws with its own glyph, larger and placed unlike the layout's scripts (`t_1`,
+/// `r^2`: the base character drawn smaller, lowered or raised) that every other figure writes.
+/// Superscripts too, since the layout has them (`(N·H)^n`, `4^{−level}`): `|O − C|²` beside
+/// `4^{−level}` would be two styles again. Before: the discriminant figure's "t₁ < t₂",
+/// "min(t₁, t₂)" and its caption's six "²" (1 figure × EN/RO).
+#[test]
+fn no_lesson_figure_prints_a_unicode_script_character() {
+    use whitted::canvas::text::is_script_character;
+    let mut found = Vec::new();
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            for text in texts_of(d).into_iter().filter(|t| t.chars().any(is_script_character)) {
+                found.push(format!("{name}: {text:?}"));
+            }
+        }
     }
-    words
+    assert!(found.is_empty(), "{} texts with Unicode scripts:\n{}", found.len(), found.join("\n"));
 }
 
 /// The Romanian word list: the words a Romanian slide may print that the English figures print
