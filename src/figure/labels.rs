@@ -236,6 +236,8 @@ pub enum Label {
     Threshold,
     /// K = 0: the corners, no subdivision.
     CornersOnly,
+    /// A slab figure's caption: whose bounding volume is tested, before the object's name.
+    VolumeOf,
     /// A ray meets the volume.
     MeetsVolume,
     /// A ray misses the volume.
@@ -592,6 +594,7 @@ impl Label {
             Self::ProgressSettings => ("settings", "variante"),
             Self::ProgressReference => ("the reference", "referința"),
             Self::Threshold => ("threshold", "pragul"),
+            Self::VolumeOf => ("the bounding volume of", "volumul încadrator al obiectului"),
             Self::MeetsVolume => ("meets the volume", "intersectează volumul"),
             Self::MissesVolume => ("misses the volume", "ratează volumul"),
             Self::AxisPlane => ("drawn in the plane", "desenat în planul"),
@@ -1002,6 +1005,7 @@ mod tests {
         Label::LevelSymbol,
         Label::LeafSymbol,
         Label::SamplingIs,
+        Label::VolumeOf,
     ];
 
     #[test]
