@@ -236,6 +236,8 @@ pub enum Label {
     Threshold,
     /// K = 0: the corners, no subdivision.
     CornersOnly,
+    /// A slab figure's caption: whose bounding volume is tested, before the object's name.
+    VolumeOf,
     /// A ray meets the volume.
     MeetsVolume,
     /// A ray misses the volume.
@@ -592,6 +594,7 @@ impl Label {
             Self::ProgressSettings => ("settings", "variante"),
             Self::ProgressReference => ("the reference", "referința"),
             Self::Threshold => ("threshold", "pragul"),
+            Self::VolumeOf => ("the bounding volume of", "volumul încadrator al obiectului"),
             Self::MeetsVolume => ("meets the volume", "intersectează volumul"),
             Self::MissesVolume => ("misses the volume", "ratează volumul"),
             Self::AxisPlane => ("drawn in the plane", "desenat în planul"),
@@ -703,20 +706,20 @@ impl Label {
                 "raza este tangentă la sferă",
             ),
             Self::DeltaTwo => (
-                "two roots t₁ < t₂",
-                "două rădăcini t₁ < t₂",
+                "two roots t_1 < t_2",
+                "două rădăcini t_1 < t_2",
             ),
             Self::Root => (
                 "r(t) at a root t",
                 "r(t) într-o rădăcină t",
             ),
             Self::Quadratic => (
-                "|O + t·D − C|² = r² gives t² + b·t + c = 0 with b = 2D·(O − C), c = |O − C|² − r², Δ = b² − 4c",
-                "din |O + t·D − C|² = r² rezultă t² + b·t + c = 0, cu b = 2D·(O − C), c = |O − C|² − r², Δ = b² − 4c",
+                "|O + t·D − C|^2 = r^2 gives t^2 + b·t + c = 0 with b = 2D·(O − C), c = |O − C|^2 − r^2, Δ = b^2 − 4c",
+                "din |O + t·D − C|^2 = r^2 rezultă t^2 + b·t + c = 0, cu b = 2D·(O − C), c = |O − C|^2 − r^2, Δ = b^2 − 4c",
             ),
             Self::NearestRoot => (
-                "the hit is r(min(t₁, t₂)), the least root t > 0",
-                "intersecția este r(min(t₁, t₂)), cea mai mică rădăcină t > 0",
+                "the hit is r(min(t_1, t_2)), the least root t > 0",
+                "intersecția este r(min(t_1, t_2)), cea mai mică rădăcină t > 0",
             ),
             Self::ThreeRays => (
                 "three rays along the camera's −w",
@@ -1002,6 +1005,7 @@ mod tests {
         Label::LevelSymbol,
         Label::LeafSymbol,
         Label::SamplingIs,
+        Label::VolumeOf,
     ];
 
     #[test]

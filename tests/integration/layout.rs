@@ -417,6 +417,19 @@ fn no_label_of_any_lesson_figure_lies_on_an_object_outline_it_does_not_name() {
 /// of its markup, three letters or more (`max\_depth` → `max`, `depth`; `--aa adaptive` →
 /// `adaptive`), so that symbols (`CA`, the samples' names, `AH`, the nodes') are left out.
 fn words_of(d: &Drawing) -> Vec<String> {
+    let mut words = Vec::new();
+    for text in texts_of(d) {
+        words.extend(
+            text.split(|c: char| !c.is_alphabetic())
+                .filter(|w| w.chars().count() >= 3)
+                .map(str::to_lowercase),
+        );
+    }
+    words
+}
+
+/// Every text a figure prints, as markup: its labels, legend rows, title and caption.
+fn texts_of(d: &Drawing) -> Vec<&str> {
     let mut texts: Vec<&str> = d
         .items
         .iter()
@@ -428,15 +441,28 @@ fn words_of(d: &Drawing) -> Vec<String> {
     texts.extend(d.legend.iter().map(|e| e.label.as_str()));
     texts.extend(d.title.as_deref());
     texts.extend(d.caption.as_deref());
-    let mut words = Vec::new();
-    for text in texts {
-        words.extend(
-            text.split(|c: char| !c.is_alphabetic())
-                .filter(|w| w.chars().count() >= 3)
-                .map(str::to_lowercase),
-        );
+    texts
+}
+
+/// Subscripts and superscripts in one style on every slide: no text of any lesson figure, in
+/// either language, holds a Unicode sub- or superscript character (`t₁`, `θᵢ`, `r²`), which
+/// the font draws with its own glyph, larger and placed unlike the layout's scripts (`t_1`,
+/// `r^2`: the base character drawn smaller, lowered or raised) that every other figure writes.
+/// Superscripts too, since the layout has them (`(N·H)^n`, `4^{−level}`): `|O − C|²` beside
+/// `4^{−level}` would be two styles again. Before: the discriminant figure's "t₁ < t₂",
+/// "min(t₁, t₂)" and its caption's six "²" (1 figure × EN/RO).
+#[test]
+fn no_lesson_figure_prints_a_unicode_script_character() {
+    use whitted::canvas::text::is_script_character;
+    let mut found = Vec::new();
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            for text in texts_of(d).into_iter().filter(|t| t.chars().any(is_script_character)) {
+                found.push(format!("{name}: {text:?}"));
+            }
+        }
     }
-    words
+    assert!(found.is_empty(), "{} texts with Unicode scripts:\n{}", found.len(), found.join("\n"));
 }
 
 /// The Romanian word list: the words a Romanian slide may print that the English figures print
@@ -856,6 +882,89 @@ fn every_lesson_heat_map_colours_counts_on_one_scale() {
         }
     }
     assert!(swatches.iter().any(|s| s.0 == 4 && s.1 == 4), "no map of 4 samples: {swatches:?}");
+}
+
+/// The least WCAG 2.1 contrast of normal-size text against what it is drawn on (level AA).
+const WCAG_AA: f64 = 4.5;
+
+/// The WCAG contrast ratio of two opaque colours, `(L₁ + 0.05)/(L₂ + 0.05)` with L₁ the lighter's
+/// relative luminance, each read back from its contrast on white, `1.05/(L + 0.05)`.
+fn contrast(a: whitted::canvas::Rgba, b: whitted::canvas::Rgba) -> f64 {
+    let luminance = |c: whitted::canvas::Rgba| 1.05 / c.contrast_on_white() - 0.05;
+    let (la, lb) = (luminance(a), luminance(b));
+    (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+}
+
+/// Brief of issue 32 item 3: every swatch of every lesson heat map's legend is told apart from
+/// its neighbours in the legend (CIE76 ΔE at least `MIN_SWATCH_DELTA_E`, its reason at the
+/// constant), in both languages; each swatch's text stands beside its swatch, on the legend's
+/// white panel, in a colour of AA contrast there; and no text of a heat map lies on the map's
+/// cells unless of AA contrast against the cell. Before: adaptive 2's and supersampling 3's top
+/// two swatches (19–23 and 24–25 samples) were ΔE 7.3 apart, every one of their five blue-green
+/// (4 figures failed: 2 maps × EN/RO; cost 3's least was 13.6).
+#[test]
+fn every_heat_map_legend_tells_its_swatches_apart_and_its_text_reads() {
+    use whitted::canvas::style::{TEXT, WHITE};
+    use whitted::canvas::LegendIcon;
+    use whitted::figure::kinds::heat_map::MIN_SWATCH_DELTA_E;
+    let (mut found, mut least, mut maps) = (Vec::new(), (f64::INFINITY, String::new()), 0);
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang).iter().filter(|(n, _)| n.contains("-heat-map (")) {
+            maps += 1;
+            let frame = d.frame();
+            let rows = &frame.legend.as_ref().expect("a heat map has a legend").rows;
+            let swatches: Vec<_> = d
+                .legend
+                .iter()
+                .zip(rows)
+                .filter_map(|(e, row)| match e.sample {
+                    LegendIcon::Swatch(colour) => Some((colour, row, e.label.as_str())),
+                    _ => None,
+                })
+                .collect();
+            for pair in swatches.windows(2) {
+                let delta = pair[0].0.delta_e76(pair[1].0);
+                if delta < least.0 {
+                    least = (delta, format!("{name}: {} / {}", pair[0].2, pair[1].2));
+                }
+                if delta < MIN_SWATCH_DELTA_E {
+                    found.push(format!("{name}: {} and {} are ΔE {delta:.1} apart", pair[0].2, pair[1].2));
+                }
+            }
+            for (_, row, label) in &swatches {
+                if row.label.origin.x < row.sample_to.x {
+                    found.push(format!("{name}: {label:?} starts over its swatch"));
+                }
+            }
+            let tf = d.transform();
+            let cells: Vec<_> = d
+                .items
+                .iter()
+                .filter(|i| i.tag == "cell")
+                .filter_map(|i| match &i.mark {
+                    Mark::Rect { min, max, fill: Some(fill) } => {
+                        let (a, b) = (tf.to_px(*min), tf.to_px(*max));
+                        Some((a.min(b), a.max(b), *fill))
+                    }
+                    _ => None,
+                })
+                .collect();
+            for item in &d.items {
+                let Mark::Text(text) = &item.mark else { continue };
+                let ink = Drawing::ink_box(text, &tf);
+                for (lo, hi, fill) in &cells {
+                    let over = ink.min.x < hi.x && lo.x < ink.max.x && ink.min.y < hi.y && lo.y < ink.max.y;
+                    if over && contrast(item.pen.color, *fill) < WCAG_AA {
+                        found.push(format!("{name}: {:?} over a cell of too little contrast", text.text));
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(maps, 8, "the lessons' heat maps × EN/RO");
+    assert!(TEXT.contrast_on_white() >= WCAG_AA && contrast(TEXT, WHITE) >= WCAG_AA, "legend text");
+    assert!(found.is_empty(), "{} misread swatches:\n{}", found.len(), found.join("\n"));
+    assert!(least.0 >= MIN_SWATCH_DELTA_E, "least ΔE {:.1} at {}", least.0, least.1);
 }
 
 /// The supersampling lesson draws the uniform method's own map (every pixel 4 samples) before

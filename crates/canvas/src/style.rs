@@ -64,11 +64,18 @@ impl Rgba {
 
     /// The contrast ratio of this colour, laid over a white page at its opacity, against the
     /// page: `(1 + 0.05) / (L + 0.05)` in WCAG 2.1's definition, where the relative luminance is
-    /// `L = 0.2126·R + 0.7152·G + 0.0722·B` of the linear channels, each `c/12.92` when the sRGB
-    /// value `c ≤ 0.04045` and `((c + 0.055)/1.055)^2.4` above. 1 for white (or transparent),
-    /// 21 for black.
+    /// `L = 0.2126·R + 0.7152·G + 0.0722·B` of the linear channels ([`Self::linear_on_white`]).
+    /// 1 for white (or transparent), 21 for black.
     #[must_use]
     pub fn contrast_on_white(self) -> f64 {
+        let [r, g, b] = self.linear_on_white();
+        let luminance = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        1.05 / (luminance + 0.05)
+    }
+
+    /// The linear channels of this colour laid over a white page at its opacity: each sRGB value
+    /// `c` decoded to `c/12.92` when `c ≤ 0.04045` and `((c + 0.055)/1.055)^2.4` above.
+    fn linear_on_white(self) -> [f64; 3] {
         let alpha = self.opacity();
         let linear = |byte: u8| {
             // Composited over white: the page shows through what the colour leaves.
@@ -79,8 +86,40 @@ impl Rgba {
                 ((c + 0.055) / 1.055).powf(2.4)
             }
         };
-        let luminance = 0.2126 * linear(self.r) + 0.7152 * linear(self.g) + 0.0722 * linear(self.b);
-        1.05 / (luminance + 0.05)
+        [linear(self.r), linear(self.g), linear(self.b)]
+    }
+
+    /// CIE L\*a\*b\* of this colour laid over white (sRGB, white point D65): `XYZ` from the
+    /// linear channels by sRGB's matrix, then `L* = 116·f(Y/Yn) − 16`,
+    /// `a* = 500·(f(X/Xn) − f(Y/Yn))`, `b* = 200·(f(Y/Yn) − f(Z/Zn))`, where `f(t) = t^(1/3)`
+    /// above `(6/29)³` and `t/(3·(6/29)²) + 4/29` below.
+    #[must_use]
+    pub fn lab(self) -> [f64; 3] {
+        const WHITE: [f64; 3] = [0.950_47, 1.0, 1.088_83];
+        const DELTA: f64 = 6.0 / 29.0;
+        let [r, g, b] = self.linear_on_white();
+        let xyz = [
+            0.412_4 * r + 0.357_6 * g + 0.180_5 * b,
+            0.212_6 * r + 0.715_2 * g + 0.072_2 * b,
+            0.019_3 * r + 0.119_2 * g + 0.950_5 * b,
+        ];
+        let f = |k: usize| {
+            let t = xyz[k] / WHITE[k];
+            if t > DELTA.powi(3) {
+                t.cbrt()
+            } else {
+                t / (3.0 * DELTA * DELTA) + 4.0 / 29.0
+            }
+        };
+        [116.0 * f(1) - 16.0, 500.0 * (f(0) - f(1)), 200.0 * (f(1) - f(2))]
+    }
+
+    /// The CIE76 colour difference of two colours: `ΔE*ab = |Lab₁ − Lab₂|`, the distance of
+    /// their [`Self::lab`] triples (about 2.3 is just noticeable side by side).
+    #[must_use]
+    pub fn delta_e76(self, other: Self) -> f64 {
+        let (a, b) = (self.lab(), other.lab());
+        a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
     }
 }
 
@@ -273,6 +312,20 @@ mod tests {
         let half = BLACK.with_alpha(0.5).contrast_on_white();
         assert!((half - Rgba::rgb(0x7F, 0x7F, 0x7F).contrast_on_white()).abs() < 0.01, "{half}");
         assert!(LIGHT_GREY.contrast_on_white() < 3.0 && DARK_GREY.contrast_on_white() > 3.0);
+    }
+
+    #[test]
+    fn lab_and_delta_e_follow_cie() {
+        let near = |a: [f64; 3], b: [f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 0.05);
+        assert!(near(WHITE.lab(), [100.0, 0.0, 0.0]), "{:?}", WHITE.lab());
+        assert!(near(BLACK.lab(), [0.0, 0.0, 0.0]), "{:?}", BLACK.lab());
+        // sRGB's red and green in CIE L*a*b* (D65), as the usual converters print them.
+        let red = Rgba::rgb(0xFF, 0, 0).lab();
+        assert!(near(red, [53.24, 80.09, 67.20]), "{red:?}");
+        let green = Rgba::rgb(0, 0xFF, 0).lab();
+        assert!(near(green, [87.73, -86.18, 83.18]), "{green:?}");
+        assert!((BLACK.delta_e76(WHITE) - 100.0).abs() < 0.05);
+        assert_eq!(BLUE.delta_e76(BLUE), 0.0);
     }
 }
 

@@ -219,6 +219,14 @@ pub fn has_glyph(c: char) -> bool {
         || script_base(c).is_some_and(|(_, base)| resolve(base, Weight::Regular).1 .0 != 0)
 }
 
+/// Whether `c` is a Unicode sub- or superscript character (`₁`, `ᵢ`, `²`): drawn with the font's
+/// own glyph when the font has one, so it looks unlike the markup's scripts (`t_1`, `r^2`: the
+/// base character smaller and moved); figure texts write the markup instead.
+#[must_use]
+pub fn is_script_character(c: char) -> bool {
+    script_base(c).is_some()
+}
+
 /// The base character and script of a Unicode sub- or superscript character (`₁` → `1` below).
 fn script_base(c: char) -> Option<(Script, char)> {
     let sub = |b| Some((Script::Sub, b));

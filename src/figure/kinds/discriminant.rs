@@ -9,21 +9,28 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Align, Drawing, LegendIcon, Pen, TextOpts};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign};
 use crate::figure::labels::{scene_lead, Label};
 use crate::figure::parts::{draw_objects, draw_ray, label, label_objects, legend_role};
 use crate::figure::plane::{PagePlane, Planar};
 use crate::figure::source::{node_events, DISCRIMINANT_OFFSETS, DISCRIMINANT_START};
 use crate::figure::style::{self, RayRole, TextSize};
 use crate::figure::FigureError;
-use crate::format::slide_number;
+use crate::format::{markup_escape, slide_number};
 use crate::record::event::Event;
 use crate::shape::Shape;
 
-/// How far past the centre the rays are drawn, in radii (they start 3 radii before it).
-const DRAWN_PAST: f64 = 3.0;
+/// How far past the centre the rays are drawn, in radii (they start 3 radii before it): room
+/// past the sphere for the longest Δ text (Romanian) above each ray's end.
+const DRAWN_PAST: f64 = 3.5;
+/// How far above its ray's end a Δ text sits, in reference pixels.
+const DELTA_RISE: f64 = 10.0;
+/// Where on the outline the sphere's name stands: low on the right (−45°), clear of the rays.
+const NAME_ANGLE: f64 = -std::f64::consts::FRAC_PI_4;
+/// How far outside the outline the sphere's name starts, in reference pixels.
+const NAME_GAP: f64 = 10.0;
 
-/// The subscripted name of root k of n: `t` alone, or `t₁`, `t₂`.
+/// The subscripted name of root k of n: `t` alone, or `t_1`, `t_2` (the layout's subscripts).
 fn root_name(k: usize, n: usize) -> String {
     if n == 1 {
         "t".to_owned()
@@ -117,8 +124,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         }
     }
 
-    // Words: each ray's Δ and what it means, above the ray past the sphere; the roots' values
-    // at their points; C and r.
+    // Words: each ray's Δ and what it means, above the ray's right end, past the sphere, ending
+    // where the ray ends: read along its own ray, with no leader (each text lies over the part
+    // of its ray that no other text or outline takes, and the next ray is half a radius away);
+    // the roots' values at their points; C and r.
     for r in &drawn {
         let (relation, words) = if r.roots.is_empty() {
             (" < 0", Label::DeltaMiss)
@@ -128,10 +137,10 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             (" > 0", Label::DeltaTwo)
         };
         let text = format!("Δ = {}{relation}: {}", slide_number(r.delta), input.t(words));
-        let at = r.from + (r.to - r.from) * 0.72;
-        let opts = TextOpts::LABEL.size(TextSize::Body).align(Align::ABOVE).offset(0.0, 10.0).avoid_overlap();
+        let above_end = Align { h: HAlign::Right, v: VAlign::Bottom };
+        let opts = TextOpts::LABEL.size(TextSize::Body).align(above_end).offset(0.0, DELTA_RISE);
         d.with_events(log.ray_events(r.node), |d| {
-            d.text("delta", at, &text, opts);
+            d.text("delta", r.to, &text, opts);
         });
         for (k, t) in r.roots.iter().enumerate() {
             let name = format!("{} = {}", root_name(k, r.roots.len()), slide_number(*t));
@@ -140,6 +149,17 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     label(d, c, "C");
     label(d, (c + rim) / 2.0, &format!("r = {}", slide_number(radius)));
-    label_objects(d, scene, &anchors, lang);
+    // The sphere's name just outside its outline, low on the right, where no ray runs (every ray
+    // passes above the centre); the other objects' names where every figure puts them.
+    let name = markup_escape(&scene.object_label(focus, lang));
+    let away = DVec2::from_angle(NAME_ANGLE);
+    let opts = TextOpts::NOTE
+        .color(style::DARK_GREY)
+        .align(Align { h: HAlign::Left, v: VAlign::Top })
+        .offset(away.x * NAME_GAP, away.y * NAME_GAP)
+        .avoid_overlap();
+    d.text(&format!("object-name:{focus}"), c + away * radius, &name, opts);
+    let others: Vec<(usize, DVec2)> = anchors.into_iter().filter(|(k, _)| *k != focus).collect();
+    label_objects(d, scene, &others, lang);
     Ok(())
 }

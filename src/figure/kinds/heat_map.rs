@@ -3,9 +3,11 @@
 //! shared by neighbours counted in each of them, while the caption counts the rays traced, each
 //! shared corner once — for one sampling
 //! mode, on a colour scale (viridis, readable with any common colour-vision deficiency) that
-//! every heat map shares, logarithmic from 1 to 81 samples, so that two maps compare: 1 with
-//! `center`, 4 with `corners`, 4 to (2^K + 1)² with `adaptive`, where the image changes. The counts
-//! are the render's own (`Rendered::rays_per_pixel`); rows count from the bottom.
+//! every heat map shares, so that two maps compare: ten bins of equal width on a logarithmic
+//! scale from 1 to 81 samples (1 with `center`, 4 with `corners`, 4 to (2^K + 1)² with
+//! `adaptive`, where the image changes), each bin one colour, the ten spread over the whole of
+//! viridis, so that neighbouring bins stay apart on a slide. The counts are the render's own
+//! (`Rendered::rays_per_pixel`); rows count from the bottom.
 
 use glam::DVec2;
 
@@ -18,24 +20,24 @@ use crate::figure::FigureError;
 use crate::format::slide_number;
 use crate::sample::Sampling;
 
-/// Up to this many distinct counts get a colour (and a legend line) each.
-const MAX_LISTED: usize = 6;
-/// Otherwise the counts fall into this many equal bins.
-const BINS: u32 = 5;
-
-/// Viridis at five stops, dark (few rays) to light (many).
-const VIRIDIS: [Rgba; 5] = [
+/// Viridis at nine stops (0, 1/8 … 1), dark (few rays) to light (many): its lightness grows
+/// evenly, so that order reads without hue.
+const VIRIDIS: [Rgba; 9] = [
     Rgba::rgb(0x44, 0x01, 0x54),
+    Rgba::rgb(0x47, 0x2D, 0x7B),
     Rgba::rgb(0x3B, 0x52, 0x8B),
+    Rgba::rgb(0x2C, 0x72, 0x8E),
     Rgba::rgb(0x21, 0x91, 0x8C),
+    Rgba::rgb(0x28, 0xAE, 0x80),
     Rgba::rgb(0x5E, 0xC9, 0x62),
+    Rgba::rgb(0xAD, 0xDC, 0x30),
     Rgba::rgb(0xFD, 0xE7, 0x25),
 ];
 
 /// The colour of `f` in [0, 1] on the scale (linear between the stops).
 fn scale_colour(f: f64) -> Rgba {
     let f = f.clamp(0.0, 1.0) * (VIRIDIS.len() - 1) as f64;
-    // f lies in [0, 4], so the index is exact.
+    // f lies in [0, 8], so the index is exact.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let k = (f.floor() as usize).min(VIRIDIS.len() - 2);
     let t = f - k as f64;
@@ -55,9 +57,28 @@ fn scale_colour(f: f64) -> Rgba {
 /// counts take the light end too.
 const SCALE_TOP: f64 = 81.0;
 
-/// Where `n` samples fall on the shared scale, in [0, 1]: `log n / log SCALE_TOP`.
-fn scale_place(n: f64) -> f64 {
-    (n.max(1.0).ln() / SCALE_TOP.ln()).clamp(0.0, 1.0)
+/// The shared scale's bins, by their least count: bin k holds the counts n with
+/// `SCALE_TOP^(k/10) ≤ n < SCALE_TOP^((k+1)/10)`, so its least count is `⌈81^(k/10)⌉` (the last
+/// bin runs on past 81). Ten bins of equal width on the logarithmic scale: a K = 2 map (4 to 25
+/// samples) spans five of them, a K = 3 map (4 to 81) seven, each in its own colour.
+const SCALE_BINS: [u32; 10] = [1, 2, 3, 4, 6, 9, 14, 22, 34, 53];
+
+/// The least CIE76 colour difference between neighbouring bins of the shared scale, and so
+/// between neighbouring swatches of any legend: about four times the just noticeable difference
+/// (ΔE ≈ 2.3, side by side), since a slide sets a map's small cells far from their swatch and a
+/// projector washes colours out; the top two swatches of the old scale (19–23 and 24–25 samples
+/// of a K = 2 map) were 7.3 apart and read as one.
+pub const MIN_SWATCH_DELTA_E: f64 = 10.0;
+
+/// The bin of the shared scale that `n` samples fall in.
+fn scale_bin(n: u32) -> usize {
+    SCALE_BINS.iter().rposition(|least| *least <= n).unwrap_or(0)
+}
+
+/// The colour of bin `k` of the shared scale: the bins spread evenly over the whole of viridis,
+/// the first at its dark end and the last at its light end.
+fn bin_colour(k: usize) -> Rgba {
+    scale_colour(k as f64 / (SCALE_BINS.len() - 1) as f64)
 }
 
 /// Draws the figure.
@@ -68,30 +89,9 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let counts = input.traces.counts.as_ref().ok_or_else(|| FigureError("no render was counted".into()))?;
     let cam = &input.scene.camera;
     let (nx, ny) = (cam.nx, cam.ny);
-    let lo = counts.per_pixel.iter().copied().min().unwrap_or(0);
-    let hi = counts.per_pixel.iter().copied().max().unwrap_or(0);
-    // Few distinct counts: one colour each. Many: BINS equal bins of counts, one colour each, so
-    // that the legend names every count that occurs and every colour drawn.
-    let mut distinct: Vec<u32> = counts.per_pixel.clone();
-    distinct.sort_unstable();
-    distinct.dedup();
-    let bins: Vec<(u32, u32)> = if distinct.len() <= MAX_LISTED {
-        distinct.iter().map(|n| (*n, *n)).collect()
-    } else {
-        let width = (hi - lo + 1).div_ceil(BINS);
-        (0..BINS)
-            .map(|k| (lo + k * width, (lo + (k + 1) * width - 1).min(hi)))
-            .filter(|(a, _)| *a <= hi)
-            .collect()
-    };
     // Every map on one scale (issue 32 item 3: maps a caption compares read alike): a count's
-    // place on it is log n / log SCALE_TOP, so 1 sample is the darkest and 81 the lightest in
-    // every figure; a bin of counts takes its middle's.
-    let shade = |k: usize| {
-        let (a, b) = bins[k];
-        scale_colour(scale_place(f64::from(a + b) / 2.0))
-    };
-    let colour = |n: u32| shade(bins.iter().position(|(a, b)| (*a..=*b).contains(&n)).unwrap_or(0));
+    // colour is its bin's on the shared scale, whatever else the map holds.
+    let colour = |n: u32| bin_colour(scale_bin(n));
 
     d.set_title(input.t(Label::TitleHeatMap));
     // The sampling as the command line writes it in English (`--aa adaptive`), in words in Romanian.
@@ -124,14 +124,16 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         input.t(Label::MeanPerPixel),
         slide_number(sum as f64 / pixels as f64),
     ));
-    // The legend is the scale: every count, or every bin of counts, that a pixel has.
+    // The legend is the scale where this map lies on it: every bin that a pixel's count falls
+    // in, named by the least and the most count of the map's pixels in it.
     let unit = input.t(Label::SamplesUnit);
-    for (k, (a, b)) in bins.iter().enumerate() {
-        if !counts.per_pixel.iter().any(|n| (*a..=*b).contains(n)) {
-            continue;
-        }
+    let mut held: Vec<(usize, u32)> = counts.per_pixel.iter().map(|n| (scale_bin(*n), *n)).collect();
+    held.sort_unstable();
+    held.dedup();
+    for bin in held.chunk_by(|x, y| x.0 == y.0) {
+        let (k, a, b) = (bin[0].0, bin[0].1, bin[bin.len() - 1].1);
         let range = if a == b { a.to_string() } else { format!("{a}–{b}") };
-        d.legend_entry(&format!("{range} {unit}"), Pen::NONE, LegendIcon::Swatch(shade(k)));
+        d.legend_entry(&format!("{range} {unit}"), Pen::NONE, LegendIcon::Swatch(bin_colour(k)));
     }
     d.legend_entry(
         &format!("{}: 1 … {}", input.t(Label::OneScale), slide_number(SCALE_TOP)),
@@ -164,4 +166,36 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     }
     d.rect("image", DVec2::ZERO, DVec2::new(width, height), style::object(), None);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_bins_are_equal_steps_of_the_logarithmic_scale() {
+        for (k, least) in SCALE_BINS.iter().enumerate() {
+            // ⌈81^(k/10)⌉, with room for the rounding of an exact power (81^(5/10) = 9).
+            let edge = SCALE_TOP.powf(k as f64 / SCALE_BINS.len() as f64);
+            // Both sides are small whole numbers, exact in f64.
+            #[allow(clippy::float_cmp)]
+            let same = f64::from(*least) == (edge - 1e-9).ceil();
+            assert!(same, "bin {k}: {least} against 81^({k}/10) = {edge}");
+        }
+        assert_eq!(scale_bin(1), 0);
+        assert_eq!(scale_bin(4), 3);
+        assert_eq!(scale_bin(25), 7);
+        assert_eq!(scale_bin(81), 9);
+        assert_eq!(scale_bin(289), 9);
+    }
+
+    #[test]
+    fn neighbouring_bins_differ_and_darken_towards_fewer_samples() {
+        for k in 1..SCALE_BINS.len() {
+            let (a, b) = (bin_colour(k - 1), bin_colour(k));
+            let delta = a.delta_e76(b);
+            assert!(delta >= MIN_SWATCH_DELTA_E, "bins {} and {k}: ΔE {delta:.1}", k - 1);
+            assert!(a.lab()[0] < b.lab()[0], "bin {k} is not lighter than bin {}", k - 1);
+        }
+    }
 }

@@ -178,8 +178,12 @@ pub fn draw<V: Planar>(
 
     d.set_title(input.t(title));
     let object = object_name(scene, ObjectRef { index: focus, triangle: None }, input.lang);
-    let mut caption =
-        format!("{}{object}", crate::figure::labels::scene_lead(&input.traces.scene_name, lang));
+    // The object named as the one whose volume the rays test: a bare name ("d") says nothing.
+    let mut caption = format!(
+        "{}{} {object}",
+        crate::figure::labels::scene_lead(&input.traces.scene_name, lang),
+        input.t(Label::VolumeOf)
+    );
     for t in &tested {
         let target = t.traced.targets.first().cloned().unwrap_or(Target::Ray);
         let verdict = if t.hit { Label::MeetsVolume } else { Label::MissesVolume };
