@@ -533,10 +533,15 @@ pub fn wrap_even(markup: &str, size: f64, weight: Weight, max_width: f64) -> Vec
 /// Symbols that bind the words on both sides: a line never ends or starts with one.
 const RELATIONS: [&str; 8] = ["=", "<", ">", "≤", "≥", "≠", "≈", "×"];
 
+/// The dot that separates a caption's items: it binds to the word before it, so a line may end
+/// with one and never starts with one.
+const SEPARATOR: &str = "·";
+
 /// `words` with every relation joined to its neighbours (`["K", "=", "2"]` → `["K = 2"]`), a
 /// name ending in a colon joined to the number after it (`["opened:", "6"]` → `["opened: 6"]`),
-/// and the words of a formula's open bracket joined up to its close (`["2D·(O", "−", "C),"]` →
-/// `["2D·(O − C),"]`: a formula's bracket is never cut, [`open_parentheses`]).
+/// the words of a formula's open bracket joined up to its close (`["2D·(O", "−", "C),"]` →
+/// `["2D·(O − C),"]`: a formula's bracket is never cut, [`open_parentheses`]), and the
+/// [`SEPARATOR`] joined to the word before it (`["40", "·", "grid"]` → `["40 ·", "grid"]`).
 fn unbreakable(words: Vec<String>) -> Vec<String> {
     let mut out: Vec<String> = Vec::new();
     let mut bind_next = false;
@@ -545,7 +550,7 @@ fn unbreakable(words: Vec<String>) -> Vec<String> {
         let value = word.starts_with(|c: char| c.is_ascii_digit())
             && out.last().is_some_and(|last| last.ends_with(':'));
         match out.last_mut() {
-            Some(last) if relation || bind_next || value => {
+            Some(last) if relation || bind_next || value || word == SEPARATOR => {
                 last.push(' ');
                 last.push_str(&word);
             }
@@ -838,7 +843,7 @@ mod tests {
     fn wrapping_keeps_a_relation_with_both_its_sides() {
         // Narrow enough to break at every space otherwise.
         let lines = wrap("pragul = 0.1, K = 2 · grila 16 × 10", 40.0, Weight::Regular, 10.0);
-        assert_eq!(lines, ["pragul = 0.1,", "K = 2", "·", "grila", "16 × 10"]);
+        assert_eq!(lines, ["pragul = 0.1,", "K = 2 ·", "grila", "16 × 10"]);
         assert_eq!(unbreakable(words("= a")), ["= a"], "a leading relation binds what follows");
     }
 
@@ -850,5 +855,15 @@ mod tests {
         assert_eq!(unbreakable(words("f(b c) d")), ["f(b c)", "d"]);
         assert_eq!(unbreakable(words("a (b c) d")), ["a", "(b", "c)", "d"], "a prose aside may wrap");
         assert_eq!(unbreakable(words("x) y")), ["x)", "y"], "a stray close opens nothing");
+    }
+
+    #[test]
+    fn no_wrapped_line_starts_with_the_separator() {
+        // The Romanian grid caption's second line began with "·".
+        assert_eq!(unbreakable(words("mult) · grila 7 × 4")), ["mult) ·", "grila", "7 × 4"]);
+        for width in [40.0, 80.0, 120.0, 200.0] {
+            let lines = wrap("a b · c d · e f · g", 20.0, Weight::Regular, width);
+            assert!(lines.iter().all(|l| !l.starts_with(SEPARATOR)), "{width}: {lines:?}");
+        }
     }
 }
