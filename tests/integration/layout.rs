@@ -7,7 +7,8 @@ use crate::support::lesson_files;
 use glam::DVec2;
 use std::path::Path;
 use std::sync::OnceLock;
-use whitted::canvas::{Drawing, Item, Mark};
+use whitted::canvas::label::RING_GAP;
+use whitted::canvas::{Drawing, Item, Mark, PxRect};
 use whitted::figure::clearance::{MIN_CLEARANCE_WIDTHS, NOTE_TAG, TOUCH_PX};
 use whitted::figure::plane::Outline;
 use whitted::figure::style::{MIN_NODE_CONTRAST, OBJECT_TAG, RAY_TAG};
@@ -360,6 +361,67 @@ fn no_label_of_any_lesson_figure_lies_on_an_object_outline_it_does_not_name() {
         }
     }
     assert!(found.is_empty(), "{} labels on outlines:\n{}", found.len(), found.join("\n"));
+}
+
+/// A leader in pixels, from its anchor to its label.
+type Segment = (DVec2, DVec2);
+
+/// How far outside its own box a box's name may stand without a leader, in reference pixels:
+/// two rings of label spots (`RING_GAP`), a tab just outside the box's edge.
+const TAB_REACH: f64 = 2.0 * RING_GAP;
+
+/// Issue 32 item 1 for the hierarchies: every box name (`node-name`, `N_{k}`) of every lesson
+/// figure reads as its own box's. Its ink crosses no named box's outline (it lies wholly inside
+/// or wholly outside each box that carries a name); without a leader it lies in its box or
+/// within `TAB_REACH` of it; with one, the leader starts inside its box. The names stacked at
+/// their boxes' upper left corners failed it 10 times, across a named box's edge (in each
+/// language bvh 1's N₀, N₆, N₇ and cost 1's N₂₆, N₃₀).
+#[test]
+fn every_box_name_of_a_lesson_hierarchy_reads_as_its_own_box() {
+    let (mut found, mut names) = (Vec::new(), 0);
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            let tf = d.frame().transform;
+            let rect_of = |k: &str| {
+                d.items.iter().find_map(|i| match i.mark {
+                    Mark::Rect { min, max, .. }
+                        if i.tag.starts_with("node-") && i.tag.rsplit(':').next() == Some(k) =>
+                    {
+                        let (a, b) = (tf.to_px(min), tf.to_px(max));
+                        Some(PxRect { min: a.min(b), max: a.max(b) })
+                    }
+                    _ => None,
+                })
+            };
+            let labels: Vec<(String, PxRect, Option<Segment>)> = d
+                .tagged("node-name")
+                .filter_map(|i| match &i.mark {
+                    Mark::Text(t) => {
+                        let k = t.text.trim_start_matches("N_{").trim_end_matches('}').to_owned();
+                        Some((k, Drawing::ink_box(t, &tf), Drawing::place_text(t, &tf).leader))
+                    }
+                    _ => None,
+                })
+                .collect();
+            let named: Vec<PxRect> = labels.iter().filter_map(|(k, _, _)| rect_of(k)).collect();
+            assert_eq!(named.len(), labels.len(), "{name}: a box name without its box");
+            for (k, ink, leader) in &labels {
+                names += 1;
+                let own = rect_of(k).unwrap();
+                let across = named.iter().any(|b| b.overlap(ink) > 0.0 && !b.contains_rect(ink));
+                let gap = (ink.min - own.max).max(own.min - ink.max).max(DVec2::ZERO).length();
+                let placed = match leader {
+                    None => gap <= tf.ref_px(TAB_REACH),
+                    Some((from, _)) => own.contains_point(*from),
+                };
+                if across || !placed {
+                    found.push(format!("{name}: N{k} (across an outline: {across}, {gap:.0} px out)"));
+                }
+            }
+        }
+    }
+    assert!(names > 40, "only {names} box names");
+    assert!(found.is_empty(), "{} box names read as another's:\n{}", found.len(), found.join("\n"));
 }
 
 /// Every word a figure prints (labels, legend, title, caption), lower-cased: the runs of letters
