@@ -276,7 +276,7 @@ impl Drawing {
 #[allow(clippy::float_cmp)]
 mod tests {
     use super::*;
-    use crate::label::LEADER_FROM;
+    use crate::label::{LEADER_FROM, NEAR_STEPS};
     use crate::{Align, Corner, HAlign, LegendIcon, LegendPlace, PxRect, TextOpts, VAlign};
 
     use crate::style::test_strokes::{BLUE_LINE, FILL, OUTLINE, RED_LINE};
@@ -471,23 +471,38 @@ mod tests {
     }
 
     #[test]
-    pub(super) fn stacked_names_of_boxes_sharing_a_corner_go_down_a_line_each_and_stay_in_their_box() {
+    pub(super) fn a_box_s_name_takes_the_corner_clear_of_the_ray_and_keeps_that_anchor() {
         let mut d = Drawing::slide();
         d.set_view(View::new(-2.0, 2.0, -1.0, 1.0).unwrap());
-        let corner = v(-1.0, 0.5);
-        let opts = TextOpts::NOTE.align(Align { h: HAlign::Left, v: VAlign::Top });
-        for name in ["A", "B", "C"] {
-            d.text("node-name", corner, name, opts.stack_down(-1.0));
-        }
-        // A box too short for a second line: its name stays at the corner, over A's.
-        d.text("node-name", corner, "D", opts.stack_down(0.49));
-        let tf = d.transform();
-        let boxes = d.text_boxes(&tf);
-        for k in 1..3 {
-            assert!(boxes[k].min.y >= boxes[k - 1].max.y, "{k}: {boxes:?}");
-            assert!(boxes[k].min.x == boxes[0].min.x, "{k}: alignment kept");
-        }
-        assert_eq!(boxes[3].min, boxes[0].min);
+        d.guard_lines("ray:");
+        let (lo, hi) = (v(-1.0, -0.5), v(0.0, 0.5));
+        d.rect("node", lo, hi, OUTLINE, None);
+        // A ray through the box's upper left corner and down its left side.
+        d.segment("ray:primary", v(-0.9, 1.0), v(-0.9, -1.0), BLUE_LINE);
+        let inside =
+            |h, v, dx, dy| TextOpts::NOTE.align(Align { h, v }).offset(dx, dy).avoid_overlap_with_leader();
+        // 8 px in from the corner, off the box's own edges (a placed label keeps 4 px clear).
+        let corners = [
+            (v(lo.x, hi.y), inside(HAlign::Left, VAlign::Top, 8.0, -6.0), &NEAR_STEPS[..]),
+            (hi, inside(HAlign::Right, VAlign::Top, -8.0, -6.0), &NEAR_STEPS[..]),
+        ];
+        d.text_at_cheapest("node-name", &corners, "N_{1}", |_, _| 0.0);
+        let Mark::Text(t) = &d.items[2].mark else { panic!() };
+        assert_eq!(t.anchor, hi, "the upper right corner, clear of the ray");
+        assert_eq!((t.offset, t.leader), (v(-8.0, -6.0), false), "inside, where asked: {t:?}");
+        // The caller's cost is weighed: with the right half of the picture barred, the name goes
+        // to a ring of the upper left corner, still off the ray.
+        d.items.pop();
+        let middle = d.transform().to_px(v(-0.5, 0.0)).x;
+        d.text_at_cheapest(
+            "node-name",
+            &corners,
+            "N_{1}",
+            |ink, _| if ink.max.x > middle { 100.0 } else { 0.0 },
+        );
+        let Mark::Text(t) = &d.items[2].mark else { panic!() };
+        assert_eq!(t.anchor, v(lo.x, hi.y), "{t:?}");
+        assert!(d.labels_on_lines("ray:").is_empty());
     }
 
     #[test]

@@ -225,13 +225,6 @@ pub enum Placement {
     /// Nudged to a free spot near its anchor when it would overlap an earlier label or cross a
     /// line ([`TextOpts::avoid_overlap`]).
     Clear,
-    /// Moved down a line at a time, keeping its alignment, until it overlaps no earlier label,
-    /// its bottom never below the world height `floor` ([`TextOpts::stack_down`]): the names of
-    /// nested boxes that share a corner, each kept inside its box.
-    StackDown {
-        /// The lowest world y the label may reach.
-        floor: f64,
-    },
 }
 
 impl TextOpts {
@@ -311,12 +304,6 @@ impl TextOpts {
     #[must_use]
     pub const fn far(self) -> Self {
         Self { far: true, ..self }
-    }
-    /// Stacked below the earlier labels it would overlap, no lower than world height `floor`
-    /// ([`Placement::StackDown`]).
-    #[must_use]
-    pub const fn stack_down(self, floor: f64) -> Self {
-        Self { placement: Placement::StackDown { floor }, ..self }
     }
 }
 

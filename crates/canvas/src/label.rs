@@ -1,7 +1,7 @@
 //! Label placement, `Drawing`'s label methods: [`Drawing::text`] puts a label where its
 //! [`TextOpts`] ask ([`Placement`], both beside the items): as given, clear of earlier labels,
-//! lines, leaders and other points' markers (with a leader when set far from its anchor), or
-//! stacked down inside a box. [`Drawing::place_text`] says where a label lands in pixels, for
+//! lines, leaders and other points' markers (with a leader when set far from its anchor), at
+//! the cheapest of several anchors (a box's corners). [`Drawing::place_text`] says where a label lands in pixels, for
 //! placement and for both back ends; the layout checks (`overlapping_labels`, `labels_on_lines`)
 //! read the labels placed.
 
@@ -126,6 +126,11 @@ pub const NEAR_STEPS: [f64; 4] = [1.0, 2.5, 4.5, 7.0];
 /// area: a name may go to the empty part, with its leader.
 pub const FAR_STEPS: [f64; 6] = [1.0, 2.5, 4.5, 7.0, 10.0, 14.0];
 
+/// No cost of the caller's own for any spot (see [`Drawing::place_clear`]).
+fn no_fit(_: &PxRect, _: bool) -> f64 {
+    0.0
+}
+
 /// A text item placed in canvas pixels.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlacedText {
@@ -140,29 +145,61 @@ pub struct PlacedText {
     pub leader: Option<(DVec2, DVec2)>,
 }
 
-/// How many lines down [`TextOpts::stack_down`] moves a label at most (then it takes the least
-/// covered of those lines).
-pub const STACK_LINES: usize = 6;
-
 impl Drawing {
     /// Adds a label at `anchor`. With [`TextOpts::avoid_overlap`], the label keeps the requested
     /// placement if its box is clear of earlier labels and lines and inside the plot area;
     /// otherwise it takes the first clear spot among candidates around the anchor (eight
-    /// directions, at growing distances), or the least bad one if none is clear. With
-    /// [`TextOpts::stack_down`] it moves down by its own height until no earlier label overlaps
-    /// it (at most [`STACK_LINES`] lines, never below its floor; if none is clear, to the least
-    /// covered).
+    /// directions, at growing distances), or the least bad one if none is clear.
     pub fn text(&mut self, tag: &str, anchor: DVec2, markup: &str, opts: TextOpts) -> &mut Self {
         let mut label = opts.label(markup, anchor);
         match opts.placement {
             Placement::AsGiven => {}
             Placement::Clear => {
                 let steps: &[f64] = if opts.far { &FAR_STEPS } else { &NEAR_STEPS };
-                self.place_clear(tag, &mut label, opts.leader, steps);
+                self.place_clear(tag, &mut label, opts.leader, steps, &no_fit);
                 self.placed_clear.push((self.items.len(), opts.far));
             }
-            Placement::StackDown { floor } => self.place_stacked(&mut label, floor),
         }
+        let style = Pen { color: opts.color, width: 0.0, dash: None };
+        self.push(tag, style, Mark::Text(label))
+    }
+
+    /// Adds a label placed clear ([`TextOpts::avoid_overlap`]) at whichever of `candidates` (an
+    /// anchor, the options asked there and the rings, in [`RING_GAP`]s, it may move out to)
+    /// gives it the cheapest spot: a box's name may stand at any of its corners or at its
+    /// middle, the one that leaves it clear of the other labels, the rays and the objects'
+    /// outlines. `fit` adds the caller's own cost of a spot, from its ink box (pixels) and
+    /// whether a leader joins it (a box's name read as another box's). The spots asked come
+    /// first: the first of them that costs nothing wins; when none does, the cheapest spot of
+    /// any candidate's rings (the first on a tie). The label keeps the anchor it was placed at,
+    /// which the layout checks measure it against; [`Drawing::settle_labels`] leaves it where
+    /// it is, as it cannot weigh `fit`.
+    pub fn text_at_cheapest(
+        &mut self,
+        tag: &str,
+        candidates: &[(DVec2, TextOpts, &[f64])],
+        markup: &str,
+        fit: impl Fn(&PxRect, bool) -> f64,
+    ) -> &mut Self {
+        let mut best: Option<(f64, Text, TextOpts)> = None;
+        // The spots asked, then each candidate's rings.
+        for rings in [false, true] {
+            for &(anchor, opts, steps) in candidates {
+                let mut label = opts.label(markup, anchor);
+                let steps = if rings { steps } else { &[] };
+                let cost = self.place_clear(tag, &mut label, opts.leader, steps, &fit);
+                if best.as_ref().is_none_or(|(least, _, _)| cost < *least) {
+                    best = Some((cost, label, opts));
+                }
+                if !rings && cost <= 0.0 {
+                    break;
+                }
+            }
+            if best.as_ref().is_some_and(|(least, _, _)| *least <= 0.0) {
+                break;
+            }
+        }
+        let Some((_, label, opts)) = best else { return self };
         let style = Pen { color: opts.color, width: 0.0, dash: None };
         self.push(tag, style, Mark::Text(label))
     }
@@ -505,13 +542,13 @@ impl Drawing {
             let before = std::mem::replace(&mut self.events, item.events.clone());
             if let Mark::Text(label) = &mut item.mark {
                 let steps: &[f64] = if far { &FAR_STEPS } else { &NEAR_STEPS };
-                self.place_clear(&tag, label, true, steps);
+                self.place_clear(&tag, label, true, steps, &no_fit);
                 self.items.insert(index, item);
                 // Still misplaced within the near rings: out to the far ones, joined.
                 if !far && self.misplaced(index, &tf) {
                     let mut item = self.items.remove(index);
                     if let Mark::Text(label) = &mut item.mark {
-                        self.place_clear(&tag, label, true, &FAR_STEPS);
+                        self.place_clear(&tag, label, true, &FAR_STEPS, &no_fit);
                     }
                     self.items.insert(index, item);
                 }
@@ -535,40 +572,20 @@ impl Drawing {
         }
     }
 
-    /// Moves `label` down, a line at a time, off the earlier labels and no lower than world
-    /// height `floor` (see [`Drawing::text`]).
-    pub(super) fn place_stacked(&self, label: &mut Text, floor: f64) {
-        let tf = self.placed_legend().transform;
-        let boxes = self.text_boxes(&tf);
-        // One line down: the label's own height and a gap of 2 reference pixels, so that
-        // labels on neighbouring lines never touch.
-        let line = Self::place_text(label, &tf).bbox.height() / tf.ref_px(1.0) + 2.0;
-        let start = label.offset;
-        let lowest = tf.to_px(DVec2::new(0.0, floor)).y;
-        // The first line clear of every earlier label, else the least covered one.
-        let mut best = (f64::INFINITY, start);
-        for k in 0..=STACK_LINES {
-            label.offset = start - DVec2::new(0.0, line * k as f64);
-            let b = Self::place_text(label, &tf).bbox;
-            if k > 0 && b.max.y > lowest {
-                break;
-            }
-            let covered: f64 = boxes.iter().map(|o| b.overlap(o)).sum();
-            if covered < best.0 {
-                best = (covered, label.offset);
-            }
-            if covered <= 0.0 {
-                break;
-            }
-        }
-        label.offset = best.1;
-    }
-
     /// Moves `label` to the clearest candidate spot `steps` gaps from its anchor (see
     /// [`Drawing::text`]), with a leader when `leader` and the spot is farther than
     /// [`LEADER_FROM`]. A spot costs [`COVER_COST`], [`LINE_COST`], [`OUTSIDE_COST`],
     /// [`LEADER_CROSSING_COST`] and [`RING_COST`] per what each counts; the cheapest wins.
-    pub(super) fn place_clear(&self, tag: &str, label: &mut Text, leader: bool, steps: &[f64]) {
+    /// `fit` adds a caller's cost of a spot (see [`Drawing::text_at_cheapest`]). Returns its
+    /// cost (0 for a spot clear of everything).
+    pub(super) fn place_clear(
+        &self,
+        tag: &str,
+        label: &mut Text,
+        leader: bool,
+        steps: &[f64],
+        fit: &dyn Fn(&PxRect, bool) -> f64,
+    ) -> f64 {
         let PlacedLegend { transform: tf, plot, .. } = self.placed_legend();
         let segments = self.segments(&tf);
         // The anchors of the other labels of its kind, elsewhere: a spot as near one of them as
@@ -653,12 +670,13 @@ impl Drawing {
                 + LEADER_CROSSING_COST * leader_over_labels as f64
                 + if not_its_own { OWNER_COST } else { 0.0 }
                 + OUTLINE_COST * outlines as f64
+                + fit(&ink, placed.leader.is_some())
         };
         let requested = with_leader(label.clone());
         let mut best = (cost(&requested), requested.offset, requested.align);
         if best.0 <= 0.0 {
             *label = requested;
-            return;
+            return best.0;
         }
         let diag = std::f64::consts::FRAC_1_SQRT_2;
         let directions = [
@@ -688,6 +706,7 @@ impl Drawing {
             }
         }
         *label = with_leader(Text { offset: best.1, align: best.2, ..requested });
+        best.0
     }
 }
 

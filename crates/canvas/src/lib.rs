@@ -18,7 +18,7 @@
 //!   a `Drawing` stores (`TextOpts`, `Align`, `Placement`, `LegendEntry`, `LegendPlace`).
 //! - `drawing`: the struct, its view and scale, and the builders of shapes (`line`, `arrow`,
 //!   `circle`, `dot`, `rect`, `polygon` …), `guard_lines`, `with_events`.
-//! - `label`: `text` and the placement of labels (`place_clear`, `place_stacked`, `place_text`),
+//! - `label`: `text` and the placement of labels (`place_clear`, `text_at_cheapest`, `place_text`),
 //!   with the layout checks.
 //! - `legend`: `legend_entry` and the legend's box (`placed_legend`).
 //! - `page`: `frame`, the page laid out once for both back ends (reads `legend`).

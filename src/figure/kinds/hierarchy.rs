@@ -12,7 +12,8 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::{Layout, TreeNode};
 use crate::bounds::aabb::Aabb;
-use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Mark, Pen, Text, TextOpts, VAlign, View};
+use crate::canvas::label::{NEAR_STEPS, OWNER_COST};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, PxRect, TextOpts, VAlign, View};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
 use crate::figure::plane::{Outline, PagePlane, Planar};
@@ -101,6 +102,22 @@ const DENSE_OBJECTS: usize = 15;
 /// A sphere drawn at least this wide (its radius, in shares of the view's width) carries its name
 /// inside, at its centre: beside a circle, in a group of circles, a name reads as its neighbour's.
 const NAME_INSIDE_RADIUS: f64 = 0.012;
+
+/// The corners of a box where its name may stand, in the order tried (a tie goes to the
+/// first): the label aligned into the box from each.
+const CORNERS: [(HAlign, VAlign); 4] = [
+    (HAlign::Left, VAlign::Top),
+    (HAlign::Right, VAlign::Top),
+    (HAlign::Left, VAlign::Bottom),
+    (HAlign::Right, VAlign::Bottom),
+];
+/// How far inside its corner a box's name stands, in reference pixels across and down: more
+/// than the 4 px a placed label keeps clear of lines, so that its own box's edges do not count.
+const NAME_INSET: DVec2 = DVec2::new(8.0, 6.0);
+
+/// The ring a box's name may move out to from a corner of its box without a leader: one
+/// [`RING_GAP`](crate::canvas::label::RING_GAP) (a tab just outside the box's edge, well within `LEADER_FROM`).
+const TAB_RING: [f64; 1] = [1.0];
 
 /// The entered nodes' colour.
 const ENTERED: Rgba = style::BLUISH_GREEN;
@@ -420,32 +437,12 @@ pub fn draw<V: Planar>(
             d.dot("hit", p, style::HIT);
         });
     }
-    // Node names at their boxes' upper-left corners, inside; a box sharing that corner with an
-    // ancestor (named first) gets its name on the next line down. Where the names would pile up
-    // (a dense tree, or an octree whose cells share their parent's corners), the picture names
-    // only the walk's frontier: the nodes it tested whose children it did not; the tree beside
-    // names the opened ones above them.
+    // Where the names would pile up (a dense tree, or an octree whose cells share their
+    // parent's corners), the picture names only the walk's frontier: the nodes it tested whose
+    // children it did not; the tree beside names the opened ones above them.
     let crowded = structure == "octree" || nodes.len() > DENSE_NODES;
     let was_tested = |k: usize| !fate[k].untested();
     let named = |k: usize| !crowded || (was_tested(k) && !nodes[k].children.iter().any(|c| was_tested(*c)));
-    // Each name's item and its box's upper right corner.
-    let mut names: Vec<(usize, DVec2)> = Vec::new();
-    for (k, n) in nodes.iter().enumerate() {
-        if !named(k) {
-            continue;
-        }
-        let (lo, hi) = drawn(n);
-        let opts = TextOpts::NOTE
-            .size(TextSize::Small)
-            .align(Align { h: HAlign::Left, v: VAlign::Top })
-            .offset(6.0, -4.0)
-            .color(fate_colour(fate[k]))
-            .stack_down(lo.y);
-        names.push((d.items.len(), DVec2::new(hi.x, hi.y)));
-        d.with_events(visits[k].iter().copied(), |d| {
-            d.text("node-name", DVec2::new(lo.x, hi.y), &node_name(k), opts);
-        });
-    }
     // A crowded scene's objects are named where the walk reached their leaf (and the hit's): the
     // others are not part of its point.
     let reached: Vec<usize> = nodes
@@ -459,7 +456,8 @@ pub fn draw<V: Planar>(
         .into_iter()
         .filter(|(o, _)| scene.objects.len() <= DENSE_OBJECTS || reached.contains(o))
         .collect();
-    // A name inside its circle unless a node's name is already there; then beside it.
+    // A name inside its circle unless another name is already there (overlapping circles);
+    // then beside it.
     let mut beside = Vec::new();
     for (o, anchor) in anchors {
         let centre = circle_of(scene, &plane, o).filter(|(_, r)| *r >= NAME_INSIDE_RADIUS * view.width());
@@ -476,40 +474,88 @@ pub fn draw<V: Planar>(
             beside.push((o, anchor));
         }
     }
+    let named: Vec<bool> = (0..nodes.len()).map(named).collect();
+    let rects: Vec<(DVec2, DVec2)> = nodes.iter().map(drawn).collect();
+    name_boxes(d, &nodes, &named, &rects, &fate, &visits);
     label_objects(d, scene, &beside, input.lang);
     tree(d, &nodes, &fate, &visits, input, column, &view);
-    // With the page laid out, a box's name that the ray crosses (an octree's small cells along
-    // it) moves to the box's upper right corner, inside it too, on the same line.
-    // (The ray's own events are the names' too: the layout check would let them lie there.)
-    let tf = d.transform();
-    let mut rays: Vec<(DVec2, DVec2)> = Vec::new();
-    for item in d.items.iter().filter(|i| i.tag.starts_with(style::RAY_TAG)) {
-        match &item.mark {
-            Mark::Line { points } => rays.extend(points.windows(2).map(|w| (tf.to_px(w[0]), tf.to_px(w[1])))),
-            Mark::Arrow { from, to, .. } => rays.push((tf.to_px(*from), tf.to_px(*to))),
-            _ => {}
-        }
-    }
-    let crosses = |t: &Text| {
-        let ink = Drawing::place_text(t, &tf).bbox;
-        rays.iter().any(|(p, q)| ink.length_inside(*p, *q) > 0.0)
-    };
-    // A box narrower than its name with the ray near both corners keeps it at the upper left
-    // (the layout test lists the octree lesson's two such names as open).
-    for &(at, corner) in &names {
-        let Mark::Text(t) = &mut d.items[at].mark else { continue };
-        if !crosses(t) {
-            continue;
-        }
-        let left = t.clone();
-        t.anchor = corner;
-        t.align = Align { h: HAlign::Right, v: VAlign::Top };
-        t.offset.x = -t.offset.x;
-        if crosses(t) {
-            *t = left;
-        }
-    }
     Ok(())
+}
+
+/// Names each named node's box (`named`, drawn at `rects`): inside its box at a corner (or at
+/// its middle) where the name keeps clear of the other names, the ray and the objects' outlines,
+/// anchored there; where its box has no room, just outside a corner (a tab, in the box of its
+/// nearest named ancestor), or out from its middle joined by a leader. A spot that reads as
+/// another box's name costs as much as one nearer another anchor: across a named box's
+/// outline, or, without a leader, with the innermost named box around it neither its own nor
+/// that ancestor's.
+fn name_boxes<V>(
+    d: &mut Drawing,
+    nodes: &[TreeNode<V>],
+    named: &[bool],
+    rects: &[(DVec2, DVec2)],
+    fate: &[Fate],
+    visits: &[Vec<usize>],
+) {
+    let tf = d.transform();
+    let boxes: Vec<PxRect> = rects
+        .iter()
+        .map(|(lo, hi)| {
+            let (a, b) = (tf.to_px(*lo), tf.to_px(*hi));
+            PxRect { min: a.min(b), max: a.max(b) }
+        })
+        .collect();
+    let mut parent: Vec<Option<usize>> = vec![None; nodes.len()];
+    for (k, n) in nodes.iter().enumerate() {
+        for &c in &n.children {
+            parent[c] = Some(k);
+        }
+    }
+    let named_ancestor = |k: usize| std::iter::successors(parent[k], |p| parent[*p]).find(|p| named[*p]);
+    let tab: &[f64] = &TAB_RING;
+    for k in (0..nodes.len()).filter(|k| named[*k]) {
+        let (lo, hi) = rects[k];
+        let opts = TextOpts::NOTE.size(TextSize::Small).color(fate_colour(fate[k])).avoid_overlap();
+        let mut candidates: Vec<(DVec2, TextOpts, &[f64])> = CORNERS
+            .iter()
+            .map(|&(h, v)| {
+                let (left, top) = (h == HAlign::Left, v == VAlign::Top);
+                let corner = DVec2::new(if left { lo.x } else { hi.x }, if top { hi.y } else { lo.y });
+                let inward = DVec2::new(if left { 1.0 } else { -1.0 }, if top { -1.0 } else { 1.0 });
+                let inset = NAME_INSET * inward;
+                (corner, opts.align(Align { h, v }).offset(inset.x, inset.y), tab)
+            })
+            .collect();
+        // Its middle, unless a smaller named box holds it (a leader from there is that one's).
+        let middle = (lo + hi) * 0.5;
+        let at = tf.to_px(middle);
+        let held = (0..nodes.len())
+            .any(|j| j != k && named[j] && area(&boxes[j]) < area(&boxes[k]) && boxes[j].contains_point(at));
+        if !held {
+            candidates.push((middle, opts.align(Align::CENTER).avoid_overlap_with_leader(), &NEAR_STEPS));
+        }
+        let ancestor = named_ancestor(k);
+        let reads_as_another = |ink: &PxRect, leader: bool| {
+            let around = (0..nodes.len()).filter(|j| named[*j] && boxes[*j].contains_rect(ink));
+            let innermost = around.min_by(|a, b| area(&boxes[*a]).total_cmp(&area(&boxes[*b])));
+            let across = (0..nodes.len())
+                .any(|j| named[j] && boxes[j].overlap(ink) > 0.0 && !boxes[j].contains_rect(ink));
+            let own = leader || innermost == Some(k) || innermost == ancestor;
+            if own && !across {
+                0.0
+            } else {
+                OWNER_COST
+            }
+        };
+        d.with_events(visits[k].iter().copied(), |d| {
+            d.text_at_cheapest("node-name", &candidates, &node_name(k), reads_as_another);
+        });
+    }
+}
+
+/// A pixel box's area.
+fn area(b: &PxRect) -> f64 {
+    b.width() * b.height()
 }
 
 /// Object `o`'s section on `plane` when it is a circle: its centre and radius.
