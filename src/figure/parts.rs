@@ -148,7 +148,8 @@ pub fn draw_objects<V: Planar>(
         let faint =
             Pen::solid(style::DARK_GREY.with_alpha(0.7), style::GRID_WIDTH).dashed(style::CONSTRUCTION_DASH);
         let mut anchor = None;
-        for ObjectOutline { outline, section } in V::outlines(&object.shape, plane) {
+        let outlines = V::outlines(&object.shape, plane);
+        for ObjectOutline { outline, section } in outlines.iter().cloned() {
             let (st, fill) = if section { (section_style, Some(style::OBJECT_FILL)) } else { (faint, None) };
             match outline {
                 Outline::Circle { center, radius } => {
@@ -174,13 +175,75 @@ pub fn draw_objects<V: Planar>(
                 }
             }
         }
+        let inside =
+            |a: &DVec2| clip.xmin() <= a.x && a.x <= clip.xmax() && clip.ymin() <= a.y && a.y <= clip.ymax();
+        // An anchor the view cuts off moves onto the longest visible piece of the outline, so
+        // that an object the view shows in part (the mirror cut by the border) is still named.
+        let anchor = anchor.filter(inside).or_else(|| {
+            outlines
+                .iter()
+                .filter_map(|o| longest_visible_piece(&o.outline, clip))
+                .reduce(|a, b| if a.0.distance(a.1) >= b.0.distance(b.1) { a } else { b })
+                .map(|(a, b)| (a + b) / 2.0)
+        });
         if let Some(a) = anchor {
-            if clip.xmin() <= a.x && a.x <= clip.xmax() && clip.ymin() <= a.y && a.y <= clip.ymax() {
-                anchors.push((index, a));
-            }
+            anchors.push((index, a));
         }
     }
     anchors
+}
+
+/// How many chords a circle's outline is cut into when its visible part is measured.
+const CIRCLE_CHORDS: usize = 64;
+
+/// The straight pieces of an outline on the page: its edges (a closed polygon's last one back
+/// to the first), a circle as [`CIRCLE_CHORDS`] chords; none for an unbounded line.
+#[must_use]
+pub fn outline_edges(outline: &Outline) -> Vec<(DVec2, DVec2)> {
+    let chain = |points: &[DVec2], closed: bool| {
+        let mut edges: Vec<(DVec2, DVec2)> = points.windows(2).map(|w| (w[0], w[1])).collect();
+        if closed && points.len() > 2 {
+            edges.push((points[points.len() - 1], points[0]));
+        }
+        edges
+    };
+    match outline {
+        Outline::Circle { center, radius } => {
+            let at = |k: usize| {
+                *center + DVec2::from_angle(std::f64::consts::TAU * k as f64 / CIRCLE_CHORDS as f64) * *radius
+            };
+            (0..CIRCLE_CHORDS).map(|k| (at(k), at(k + 1))).collect()
+        }
+        Outline::Polygon(points) => chain(points, true),
+        Outline::Path(points) => chain(points, false),
+        Outline::Line { .. } => Vec::new(),
+    }
+}
+
+/// The part of segment `a`–`b` inside `view`, or `None`.
+#[must_use]
+pub fn clip_segment(a: DVec2, b: DVec2, view: &View) -> Option<(DVec2, DVec2)> {
+    let (p, q) = clip_line(a, b - a, view)?;
+    let d = b - a;
+    let len2 = d.length_squared();
+    if len2 <= 0.0 {
+        return None;
+    }
+    let (tp, tq) = ((p - a).dot(d) / len2, (q - a).dot(d) / len2);
+    let (t0, t1) = (tp.min(tq).max(0.0), tp.max(tq).min(1.0));
+    (t0 < t1).then(|| (a + d * t0, a + d * t1))
+}
+
+/// The longest piece of `outline`'s edges ([`outline_edges`]) inside `view`; an unbounded
+/// line's piece is the line clipped to the view.
+fn longest_visible_piece(outline: &Outline, view: &View) -> Option<(DVec2, DVec2)> {
+    if let Outline::Line { point, dir } = outline {
+        return clip_line(*point, *dir, view);
+    }
+    outline_edges(outline)
+        .into_iter()
+        .filter_map(|(a, b)| clip_segment(a, b, view))
+        .max_by(|x, y| x.0.distance(x.1).total_cmp(&y.0.distance(y.1)))
 }
 
 /// The objects' names at the anchors of [`draw_objects`], clear of lines and labels.

@@ -9,6 +9,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 use whitted::canvas::{Drawing, Item, Mark};
 use whitted::figure::clearance::{MIN_CLEARANCE_WIDTHS, NOTE_TAG, TOUCH_PX};
+use whitted::figure::kinds::hierarchy::DENSE_OBJECTS;
 use whitted::figure::plane::Outline;
 use whitted::figure::style::{MIN_NODE_CONTRAST, OBJECT_TAG, RAY_TAG};
 use whitted::figure::{Lang, Options};
@@ -1283,4 +1284,54 @@ fn no_text_of_any_lesson_figure_runs_off_the_page() {
         }
     }
     assert!(found.is_empty(), "{} texts off the page:\n{}", found.len(), found.join("\n"));
+}
+
+/// The least length, in pixels at slide size, of an object's outline inside the plot area for
+/// the object to count as shown: a name's height, so a corner clipped off by the border is not.
+const MIN_VISIBLE_OUTLINE_PX: f64 = 24.0;
+
+/// How long a stretch of outline `o` (in pixels) lies inside `plot`.
+fn length_inside(o: &Outline, plot: &whitted::canvas::PxRect) -> f64 {
+    whitted::figure::parts::outline_edges(o).iter().map(|(a, b)| plot.length_inside(*a, *b)).sum()
+}
+
+/// Issue 32 item 1 (object names): every object whose outline a lesson figure shows, in both
+/// languages — at least `MIN_VISIBLE_OUTLINE_PX` of it inside the plot area — is named on the
+/// figure (`object-name:i` for `object:i`). Ray-casting 1 drew the mirror, cut by the view at the
+/// lower left, without its name: the name's anchor (the segment's middle) lay outside the view
+/// and was dropped; it now moves onto the visible part. An unbounded line counts by its drawn
+/// segment. A crowded scene (more than `DENSE_OBJECTS` objects drawn: the cost lesson's 40) names
+/// only the objects the walk reached, by design. Before: the mirror in ray-casting 1, and the
+/// interval charts' object (named `object-name:0`, the index in its one-object copy of the
+/// scene, not its own) in both languages: 6 figures.
+#[test]
+fn every_object_a_lesson_figure_shows_is_named() {
+    let mut found = Vec::new();
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            let plot = d.frame().plot;
+            let objects: std::collections::BTreeSet<&str> =
+                d.items.iter().filter(|i| i.tag.starts_with(OBJECT_TAG)).map(|i| i.tag.as_str()).collect();
+            if objects.len() > DENSE_OBJECTS {
+                continue;
+            }
+            let mut shown: Vec<String> = Vec::new();
+            for (tag, outline) in drawn_outlines(d) {
+                let Some(index) = tag.strip_prefix(OBJECT_TAG) else { continue };
+                if length_inside(&outline, &plot) >= MIN_VISIBLE_OUTLINE_PX
+                    && !shown.iter().any(|s| s == index)
+                {
+                    shown.push(index.to_owned());
+                }
+            }
+            for index in shown {
+                let named =
+                    d.tagged(&format!("object-name:{index}")).any(|i| matches!(i.mark, Mark::Text(_)));
+                if !named {
+                    found.push(format!("{name}: object {index} shown, not named"));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "{} objects unnamed:\n{}", found.len(), found.join("\n"));
 }
