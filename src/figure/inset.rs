@@ -7,7 +7,7 @@
 
 use glam::DVec2;
 
-use super::parts::{clip_line, clip_segment};
+use super::parts::clip_segment;
 use super::style::{self, Rgba};
 use crate::canvas::{Align, Corner, Drawing, HAlign, Inset, LegendPlace, Pen, TextOpts, VAlign, View};
 
@@ -87,15 +87,6 @@ impl Panel {
         }
     }
 
-    /// The magnification of lengths (1 in the main picture).
-    #[must_use]
-    pub fn scale(&self) -> f64 {
-        match self {
-            Self::Main { .. } => 1.0,
-            Self::Detail(inset) => inset.factor,
-        }
-    }
-
     /// Whether the name of what stands at page point `p` is printed in this panel: each name
     /// once, in the panel where it is legible (the inset's, for what its frame holds).
     #[must_use]
@@ -123,12 +114,6 @@ impl Panel {
                 clip_segment(a, b, &frame_view(inset)).map(|(p, q)| (inset.map(p), inset.map(q)))
             }
         }
-    }
-
-    /// The part of the unbounded line through `point` along `dir` this panel shows, drawn.
-    #[must_use]
-    pub fn line(&self, point: DVec2, dir: DVec2) -> Option<(DVec2, DVec2)> {
-        clip_line(point, dir, &self.clip()).map(|(a, b)| (self.map(a), self.map(b)))
     }
 }
 
