@@ -80,13 +80,22 @@ fn outlines(d: &Drawing) -> Vec<(usize, Outline)> {
         .collect()
 }
 
-/// Whether every panel of `d` draws its scene in the scene's own units: a 2D scene in its axes.
+/// Whether every panel of `d` draws its scene in the scene's own units: a 2D scene in its axes
+/// (an inset's panel in them magnified by its factor, [`crate::canvas::Inset`]).
 fn in_scene_units(d: &Drawing) -> bool {
     let unit = |a: DVec2, b: DVec2| (a - b).length() < 1e-9;
+    let scales: Vec<f64> = std::iter::once(1.0).chain(d.insets.iter().map(|i| i.factor)).collect();
     !d.scene_axes.is_empty()
-        && d.scene_axes
-            .iter()
-            .all(|p| p.axes.len() == 2 && unit(p.axes[0], DVec2::X) && unit(p.axes[1], DVec2::Y))
+        && d.scene_axes.iter().all(|p| {
+            p.axes.len() == 2
+                && scales.iter().any(|k| unit(p.axes[0], DVec2::X * *k) && unit(p.axes[1], DVec2::Y * *k))
+        })
+}
+
+/// Whether `points` are drawn in an inset's panel (magnified: a gap there is not in scene
+/// units, and the main picture notes the same miss).
+fn in_inset(d: &Drawing, points: &[DVec2]) -> bool {
+    points.first().is_some_and(|p| d.insets.iter().any(|i| i.in_panel(*p)))
 }
 
 /// Adds to `d` a note for each ray that passes an object's outline closer than
@@ -97,7 +106,13 @@ pub fn note_near_misses<V: Dim>(d: &mut Drawing, scene: &Scene<V>, lang: Lang) {
         return;
     }
     let px = d.transform().len_px(1.0);
-    let (rays, outlines) = (rays(d), outlines(d));
+    let rays: Vec<Ray> = rays(d).into_iter().filter(|r| !in_inset(d, &r.points)).collect();
+    let outlines: Vec<(usize, Outline)> = outlines(d)
+        .into_iter()
+        .filter(|(_, o)| {
+            !in_inset(d, &super::parts::outline_edges(o).iter().map(|e| e.0).collect::<Vec<_>>())
+        })
+        .collect();
     let mut noted: Vec<(usize, DVec2)> = Vec::new();
     for ray in &rays {
         let ends = [ray.points[0], ray.points[ray.points.len() - 1]];

@@ -74,6 +74,8 @@ pub enum Label {
     Normal,
     /// The view window.
     ViewWindow,
+    /// Caption tail of a figure with an inset (followed by its factor, `×3`).
+    InsetNote,
     /// The image (viewport).
     Image,
     /// The background (a miss).
@@ -488,6 +490,10 @@ impl Label {
             Self::Observer => ("observer O", "observatorul O"),
             Self::Normal => ("normal N", "normala N"),
             Self::ViewWindow => ("view window", "fereastra vizuală"),
+            Self::InsetNote => (
+                "the framed region, drawn again in the inset magnified",
+                "regiunea încadrată, redesenată alături în detaliu mărit",
+            ),
             Self::Image => ("image", "imaginea"),
             Self::Background => ("background", "fond"),
             Self::ChosenPixel => ("the pixel", "pixelul"),
@@ -941,6 +947,7 @@ mod tests {
         Label::Observer,
         Label::Normal,
         Label::ViewWindow,
+        Label::InsetNote,
         Label::Misses,
         Label::MissesBy,
         Label::Tir,

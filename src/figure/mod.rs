@@ -9,6 +9,7 @@
 //! indices (`Drawing::with_events`), so a page can light up what a narration step explains.
 
 pub mod clearance;
+pub mod inset;
 pub mod kinds;
 pub mod labels;
 pub mod lighting;

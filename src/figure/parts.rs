@@ -9,7 +9,7 @@ use super::labels::Label;
 use super::plane::{ObjectOutline, Outline, PagePlane, Planar};
 use super::style::{self, RayRole, Rgba, TextSize};
 use super::Lang;
-use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, TextOpts, VAlign, View};
+use crate::canvas::{Align, Drawing, HAlign, Inset, LegendIcon, Pen, TextOpts, VAlign, View};
 use crate::format::markup_escape;
 use crate::format::slide_number;
 use crate::image::to_byte;
@@ -136,7 +136,23 @@ pub fn draw_objects<V: Planar>(
     clip: &View,
     emphasis: &[(usize, Rgba)],
 ) -> Vec<(usize, DVec2)> {
-    d.record_axes(plane.point(V::ZERO), (0..V::DIM).map(|k| plane.dir(V::axis(k))));
+    draw_objects_through(d, scene, plane, clip, emphasis, None)
+}
+
+/// [`draw_objects`], or with `inset` the part of them inside its frame (`clip`, the frame),
+/// magnified into its panel ([`Inset::map`]): outlines clipped to the frame, then mapped; the
+/// names' anchors those of the frame's objects, mapped. The panel records its scene axes too.
+pub fn draw_objects_through<V: Planar>(
+    d: &mut Drawing,
+    scene: &Scene<V>,
+    plane: &PagePlane<V>,
+    clip: &View,
+    emphasis: &[(usize, Rgba)],
+    inset: Option<&Inset>,
+) -> Vec<(usize, DVec2)> {
+    let scale = inset.map_or(1.0, |i| i.factor);
+    let place = |p: DVec2| inset.map_or(p, |i| i.map(p));
+    d.record_axes(place(plane.point(V::ZERO)), (0..V::DIM).map(|k| plane.dir(V::axis(k)) * scale));
     let mut anchors = Vec::new();
     for (index, object) in scene.objects.iter().enumerate() {
         let tag = format!("object:{index}");
@@ -148,39 +164,182 @@ pub fn draw_objects<V: Planar>(
         let faint =
             Pen::solid(style::DARK_GREY.with_alpha(0.7), style::GRID_WIDTH).dashed(style::CONSTRUCTION_DASH);
         let mut anchor = None;
-        for ObjectOutline { outline, section } in V::outlines(&object.shape, plane) {
+        let outlines = V::outlines(&object.shape, plane);
+        for ObjectOutline { outline, section } in outlines.iter().cloned() {
             let (st, fill) = if section { (section_style, Some(style::OBJECT_FILL)) } else { (faint, None) };
-            match outline {
+            match &outline {
                 Outline::Circle { center, radius } => {
-                    let c = center;
-                    d.circle(&tag, c, radius, st, fill);
-                    anchor.get_or_insert(c + DVec2::new(radius * 0.72, radius * 0.72));
+                    anchor.get_or_insert(*center + DVec2::new(radius * 0.72, radius * 0.72));
                 }
-                Outline::Polygon(points) => {
-                    let pts: Vec<DVec2> = points;
-                    anchor.get_or_insert(top_point(&pts));
-                    d.polygon(&tag, pts, st, fill);
+                Outline::Polygon(pts) => {
+                    anchor.get_or_insert(top_point(pts));
                 }
-                Outline::Path(points) => {
-                    let pts: Vec<DVec2> = points;
+                Outline::Path(pts) => {
                     anchor.get_or_insert(pts.iter().copied().sum::<DVec2>() / pts.len().max(1) as f64);
-                    d.line(&tag, pts, st);
                 }
                 Outline::Line { point, dir } => {
-                    if let Some((a, b)) = clip_line(point, dir, clip) {
-                        d.segment(&tag, a, b, st);
+                    if let Some((a, b)) = clip_line(*point, *dir, clip) {
                         anchor.get_or_insert(a + (b - a) * 0.12);
                     }
                 }
             }
-        }
-        if let Some(a) = anchor {
-            if clip.xmin() <= a.x && a.x <= clip.xmax() && clip.ymin() <= a.y && a.y <= clip.ymax() {
-                anchors.push((index, a));
+            let drawn = match inset {
+                None => vec![outline],
+                Some(i) => detail_outlines(&outline, clip, i),
+            };
+            for outline in drawn {
+                match outline {
+                    Outline::Circle { center, radius } => {
+                        d.circle(&tag, center, radius, st, fill);
+                    }
+                    Outline::Polygon(pts) => {
+                        d.polygon(&tag, pts, st, fill);
+                    }
+                    Outline::Path(pts) => {
+                        d.line(&tag, pts, st);
+                    }
+                    Outline::Line { point, dir } => {
+                        if let Some((a, b)) = clip_line(point, dir, clip) {
+                            d.segment(&tag, a, b, st);
+                        }
+                    }
+                }
             }
+        }
+        let inside =
+            |a: &DVec2| clip.xmin() <= a.x && a.x <= clip.xmax() && clip.ymin() <= a.y && a.y <= clip.ymax();
+        // An anchor the view cuts off moves onto the longest visible piece of the outline, so
+        // that an object the view shows in part (the mirror cut by the border) is still named.
+        let anchor = anchor.filter(inside).or_else(|| {
+            outlines
+                .iter()
+                .filter_map(|o| longest_visible_piece(&o.outline, clip))
+                .reduce(|a, b| if a.0.distance(a.1) >= b.0.distance(b.1) { a } else { b })
+                .map(|(a, b)| (a + b) / 2.0)
+        });
+        if let Some(a) = anchor {
+            anchors.push((index, place(a)));
         }
     }
     anchors
+}
+
+/// An outline's part inside the frame `clip` of `inset`, magnified into its panel: a circle
+/// the frame holds whole stays a circle; a circle or polygon it cuts is cut to it (as a
+/// polygon of [`CIRCLE_CHORDS`] chords, clipped edge by edge against the frame, Sutherland–
+/// Hodgman); a path keeps its pieces inside; a line its chord across the frame.
+fn detail_outlines(outline: &Outline, clip: &View, inset: &Inset) -> Vec<Outline> {
+    let inside =
+        |p: DVec2| clip.xmin() <= p.x && p.x <= clip.xmax() && clip.ymin() <= p.y && p.y <= clip.ymax();
+    let polygon = |points: Vec<DVec2>| {
+        let cut = clip_polygon(&points, clip);
+        if cut.len() >= 3 {
+            vec![Outline::Polygon(cut.into_iter().map(|p| inset.map(p)).collect())]
+        } else {
+            Vec::new()
+        }
+    };
+    match outline {
+        Outline::Circle { center, radius } => {
+            let r = DVec2::splat(*radius);
+            if inside(*center - r) && inside(*center + r) {
+                vec![Outline::Circle { center: inset.map(*center), radius: radius * inset.factor }]
+            } else {
+                polygon(outline_edges(outline).into_iter().map(|(a, _)| a).collect())
+            }
+        }
+        Outline::Polygon(points) => polygon(points.clone()),
+        Outline::Path(_) => outline_edges(outline)
+            .into_iter()
+            .filter_map(|(a, b)| clip_segment(a, b, clip))
+            .map(|(a, b)| Outline::Path(vec![inset.map(a), inset.map(b)]))
+            .collect(),
+        Outline::Line { point, dir } => clip_line(*point, *dir, clip)
+            .map(|(a, b)| Outline::Path(vec![inset.map(a), inset.map(b)]))
+            .into_iter()
+            .collect(),
+    }
+}
+
+/// A polygon cut to `view` (Sutherland–Hodgman: against each of the view's four sides in
+/// turn, keeping the vertices inside and adding where an edge crosses the side).
+#[must_use]
+pub fn clip_polygon(points: &[DVec2], view: &View) -> Vec<DVec2> {
+    let sides: [(DVec2, f64); 4] = [
+        (DVec2::X, view.xmin()),
+        (DVec2::NEG_X, -view.xmax()),
+        (DVec2::Y, view.ymin()),
+        (DVec2::NEG_Y, -view.ymax()),
+    ];
+    let mut out = points.to_vec();
+    for (n, c) in sides {
+        // Inside where n·p ≥ c.
+        let input = std::mem::take(&mut out);
+        for (k, &p) in input.iter().enumerate() {
+            let q = input[(k + 1) % input.len()];
+            let (dp, dq) = (n.dot(p) - c, n.dot(q) - c);
+            if dp >= 0.0 {
+                out.push(p);
+            }
+            if (dp >= 0.0) != (dq >= 0.0) {
+                out.push(p + (q - p) * (dp / (dp - dq)));
+            }
+        }
+    }
+    out
+}
+
+/// How many chords a circle's outline is cut into when its visible part is measured.
+const CIRCLE_CHORDS: usize = 64;
+
+/// The straight pieces of an outline on the page: its edges (a closed polygon's last one back
+/// to the first), a circle as [`CIRCLE_CHORDS`] chords; none for an unbounded line.
+#[must_use]
+pub fn outline_edges(outline: &Outline) -> Vec<(DVec2, DVec2)> {
+    let chain = |points: &[DVec2], closed: bool| {
+        let mut edges: Vec<(DVec2, DVec2)> = points.windows(2).map(|w| (w[0], w[1])).collect();
+        if closed && points.len() > 2 {
+            edges.push((points[points.len() - 1], points[0]));
+        }
+        edges
+    };
+    match outline {
+        Outline::Circle { center, radius } => {
+            let at = |k: usize| {
+                *center + DVec2::from_angle(std::f64::consts::TAU * k as f64 / CIRCLE_CHORDS as f64) * *radius
+            };
+            (0..CIRCLE_CHORDS).map(|k| (at(k), at(k + 1))).collect()
+        }
+        Outline::Polygon(points) => chain(points, true),
+        Outline::Path(points) => chain(points, false),
+        Outline::Line { .. } => Vec::new(),
+    }
+}
+
+/// The part of segment `a`–`b` inside `view`, or `None`.
+#[must_use]
+pub fn clip_segment(a: DVec2, b: DVec2, view: &View) -> Option<(DVec2, DVec2)> {
+    let (p, q) = clip_line(a, b - a, view)?;
+    let d = b - a;
+    let len2 = d.length_squared();
+    if len2 <= 0.0 {
+        return None;
+    }
+    let (tp, tq) = ((p - a).dot(d) / len2, (q - a).dot(d) / len2);
+    let (t0, t1) = (tp.min(tq).max(0.0), tp.max(tq).min(1.0));
+    (t0 < t1).then(|| (a + d * t0, a + d * t1))
+}
+
+/// The longest piece of `outline`'s edges ([`outline_edges`]) inside `view`; an unbounded
+/// line's piece is the line clipped to the view.
+fn longest_visible_piece(outline: &Outline, view: &View) -> Option<(DVec2, DVec2)> {
+    if let Outline::Line { point, dir } = outline {
+        return clip_line(*point, *dir, view);
+    }
+    outline_edges(outline)
+        .into_iter()
+        .filter_map(|(a, b)| clip_segment(a, b, view))
+        .max_by(|x, y| x.0.distance(x.1).total_cmp(&y.0.distance(y.1)))
 }
 
 /// The objects' names at the anchors of [`draw_objects`], clear of lines and labels.
@@ -189,6 +348,36 @@ pub fn label_objects<V: Planar>(d: &mut Drawing, scene: &Scene<V>, anchors: &[(u
         let name = markup_escape(&scene.object_label(index, lang));
         let opts = TextOpts::NOTE.color(style::DARK_GREY).avoid_overlap_with_leader();
         d.text(&format!("object-name:{index}"), a, &name, opts);
+    }
+}
+
+/// Each object's name at the first of its candidate spots where, once placed, it lies on no
+/// ray or outline it does not name, on no other label, and reads as no other anchor's; at the
+/// first spot when none is so. For a picture where the one spot [`draw_objects`] picks may lie
+/// among many rays (an inset's magnified lens: the name tries the circle's compass points).
+pub fn label_objects_first_clear<V: Planar>(
+    d: &mut Drawing,
+    scene: &Scene<V>,
+    candidates: &[(usize, Vec<DVec2>)],
+    lang: Lang,
+) {
+    for (index, spots) in candidates {
+        let name = markup_escape(&scene.object_label(*index, lang));
+        let opts = TextOpts::NOTE.color(style::DARK_GREY).avoid_overlap_with_leader();
+        let tag = format!("object-name:{index}");
+        for (k, at) in spots.iter().enumerate() {
+            d.text(&tag, *at, &name, opts);
+            let last = d.items.len() - 1;
+            let involved = |pairs: Vec<(usize, usize)>| pairs.iter().any(|(a, b)| *a == last || *b == last);
+            let clear = !involved(d.labels_on_lines(style::RAY_TAG))
+                && !involved(d.labels_on_outlines(style::OBJECT_TAG))
+                && !involved(d.overlapping_labels())
+                && !involved(d.labels_nearer_another_anchor());
+            if clear || k + 1 == spots.len() {
+                break;
+            }
+            d.pop_item();
+        }
     }
 }
 

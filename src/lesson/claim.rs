@@ -132,6 +132,9 @@ pub enum Measure {
     /// `brute-force-growth`: brute force's object tests per ray at the `complexity` figure's
     /// largest n over those at its smallest (the lecture's O(n): about their ratio, 1000).
     BruteForceGrowth,
+    /// `inset-hits`: the hit points drawn in the figure's inset (the crowded spot magnified,
+    /// `figure::inset`): 0 without one.
+    InsetHits,
     /// `structure-growth`: the largest growth, over the same range of n, of all tests per ray of
     /// a hierarchy or grid (`bvh`, `grid`, `octree`).
     StructureGrowth,
@@ -139,7 +142,7 @@ pub enum Measure {
 
 impl Measure {
     /// The kinds' names in a lesson file, in this order.
-    pub const KINDS: [&'static str; 21] = [
+    pub const KINDS: [&'static str; 22] = [
         "events",
         "level",
         "shadows",
@@ -161,6 +164,7 @@ impl Measure {
         "changed-pixels",
         "brute-force-growth",
         "structure-growth",
+        "inset-hits",
     ];
 
     /// The claim's name with its parameter: `events voxel_step`, `shadows blocked`.
@@ -192,6 +196,7 @@ impl Measure {
                 "brute-force-growth (object tests per ray, largest n over smallest)".into()
             }
             Self::StructureGrowth => "structure-growth (all tests per ray, largest n over smallest)".into(),
+            Self::InsetHits => name(21),
         }
     }
 }
@@ -330,6 +335,7 @@ pub fn parse(value: Option<&Value>, path: &str, errors: &mut Vec<String>) -> Vec
             "changed-pixels" => Some(Measure::ChangedPixels),
             "brute-force-growth" => Some(Measure::BruteForceGrowth),
             "structure-growth" => Some(Measure::StructureGrowth),
+            "inset-hits" => Some(Measure::InsetHits),
             _ => {
                 errors.push(format!("{at}.kind: must be one of {}", Measure::KINDS.join(", ")));
                 None
@@ -442,6 +448,17 @@ pub fn measure<V: Planar>(
         Measure::MissMargin => miss_margin(drawing),
         Measure::Intervals => shortest_interval(drawing),
         Measure::FalseCrossings => count(false_crossings(drawing, log?, scene.objects.len())),
+        Measure::InsetHits => count(
+            drawing
+                .tagged("hit")
+                .filter(|i| match i.mark {
+                    crate::canvas::Mark::Dot { center, .. } => {
+                        drawing.insets.iter().any(|k| k.in_panel(center))
+                    }
+                    _ => false,
+                })
+                .count(),
+        ),
         Measure::OffCentre => {
             let cam = &scene.camera;
             let off = |k: usize, n: usize| ((k as f64 + 0.5) / n as f64 - 0.5).abs() * 100.0;

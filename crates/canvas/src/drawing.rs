@@ -5,7 +5,7 @@
 
 use glam::DVec2;
 
-use super::items::{Item, LegendEntry, LegendPlace, Mark};
+use super::items::{Inset, Item, LegendEntry, LegendPlace, Mark};
 use super::style::{self, Pen, Rgba};
 use super::view::View;
 
@@ -60,6 +60,10 @@ pub struct Drawing {
     /// ([`Drawing::record_axes`]), in the order the panels were drawn; empty for a drawing of no
     /// scene (a chart, a tree). Metadata for tests and readers: no back end draws it.
     pub scene_axes: Vec<SceneAxes>,
+    /// The magnified details ([`Inset`](crate::Inset), [`Drawing::add_inset`]): each a frame of
+    /// the world drawn larger in a panel. Labels anchored in a panel stay in it; the others
+    /// keep out of it.
+    pub insets: Vec<Inset>,
     /// The events of the items added now ([`Drawing::with_events`]).
     pub(super) events: Vec<usize>,
     /// The labels placed clear, as indices into `items`, each with whether it may go far
@@ -90,6 +94,7 @@ impl Drawing {
             guard: None,
             outline_guard: None,
             scene_axes: Vec::new(),
+            insets: Vec::new(),
             events: Vec::new(),
             placed_clear: Vec::new(),
         }
@@ -161,6 +166,13 @@ impl Drawing {
     /// the drawing's components of the scene's unit axes.
     pub fn record_axes(&mut self, origin: DVec2, axes: impl IntoIterator<Item = DVec2>) -> &mut Self {
         self.scene_axes.push(SceneAxes { origin, axes: axes.into_iter().collect() });
+        self
+    }
+
+    /// Records a magnified detail ([`Inset`]); labels placed clear from now on keep to their
+    /// side of its panel: a label anchored in the panel stays in it, any other keeps out of it.
+    pub fn add_inset(&mut self, inset: Inset) -> &mut Self {
+        self.insets.push(inset);
         self
     }
 
@@ -283,6 +295,17 @@ mod tests {
 
     pub(super) fn v(x: f64, y: f64) -> DVec2 {
         DVec2::new(x, y)
+    }
+
+    #[test]
+    pub(super) fn an_inset_maps_its_frame_onto_its_panel_scaled_by_its_factor() {
+        let inset = Inset::new((DVec2::new(1.0, 1.0), DVec2::new(0.0, 0.0)), 3.5, DVec2::new(10.0, 0.0));
+        assert_eq!(inset.map(DVec2::new(0.5, 0.5)), DVec2::new(10.0, 0.0));
+        assert_eq!(inset.map(DVec2::new(1.0, 1.0)), inset.panel.1);
+        assert_eq!(inset.map(DVec2::new(0.0, 0.0)), inset.panel.0);
+        assert!((inset.panel.1.x - inset.panel.0.x - 3.5).abs() < 1e-12);
+        assert!(inset.in_frame(DVec2::new(0.2, 0.9)) && !inset.in_frame(DVec2::new(1.2, 0.9)));
+        assert!(inset.in_panel(DVec2::new(11.0, 1.0)) && !inset.in_panel(DVec2::new(0.5, 0.5)));
     }
 
     #[test]

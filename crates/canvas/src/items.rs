@@ -2,13 +2,16 @@
 //! [`Mark`] in world coordinates; a label is a [`Text`]; an arrow laid out in pixels for the
 //! back ends is an [`ArrowPx`]. Beside them, what a [`Drawing`](crate::Drawing) stores or is
 //! asked for and its parts read: a label's options ([`TextOpts`], [`Align`], [`Placement`]) and the
-//! legend's rows and place ([`LegendEntry`], [`LegendIcon`], [`LegendPlace`], [`Corner`]). So this
+//! legend's rows and place ([`LegendEntry`], [`LegendIcon`], [`LegendPlace`], [`Corner`]), and a
+//! magnified detail ([`Inset`]: a frame of the world drawn larger in a panel, whose border
+//! label placement keeps each label on its side of). So this
 //! file imports no part of `Drawing`, and every part can import it.
 
 use glam::DVec2;
 
 use super::style::{self, Pen, Rgba, TextSize};
 use super::text::Weight;
+use super::view::{PxRect, Transform};
 
 /// A text item: markup (see [`text`](crate::text)) placed at a world anchor.
 #[derive(Clone, Debug, PartialEq)]
@@ -364,4 +367,55 @@ pub enum LegendPlace {
     /// shortened to make room. A wide picture (two panels side by side) keeps more of its size
     /// this way than beside a column.
     Below,
+}
+
+/// A magnified detail: the world rectangle `frame` drawn `factor` times larger in `panel`
+/// (`panel`'s sides are `factor` times `frame`'s, centre on centre).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inset {
+    /// The region magnified: lower-left and upper-right world corners.
+    pub frame: (DVec2, DVec2),
+    /// Where it is drawn magnified: lower-left and upper-right world corners.
+    pub panel: (DVec2, DVec2),
+    /// The magnification, `panel`'s width over `frame`'s.
+    pub factor: f64,
+}
+
+impl Inset {
+    /// The inset magnifying `frame` (any two opposite corners) `factor` times, its panel
+    /// centred on `panel_centre`.
+    #[must_use]
+    pub fn new(frame: (DVec2, DVec2), factor: f64, panel_centre: DVec2) -> Self {
+        let (lo, hi) = (frame.0.min(frame.1), frame.0.max(frame.1));
+        let half = (hi - lo) * factor / 2.0;
+        Self { frame: (lo, hi), panel: (panel_centre - half, panel_centre + half), factor }
+    }
+
+    /// Where world point `p` of the frame is drawn in the panel:
+    /// `q = c_panel + factor · (p − c_frame)`, `c` each rectangle's centre.
+    #[must_use]
+    pub fn map(&self, p: DVec2) -> DVec2 {
+        let frame_centre = (self.frame.0 + self.frame.1) / 2.0;
+        let panel_centre = (self.panel.0 + self.panel.1) / 2.0;
+        panel_centre + (p - frame_centre) * self.factor
+    }
+
+    /// Whether world point `p` lies in the frame (edges included).
+    #[must_use]
+    pub fn in_frame(&self, p: DVec2) -> bool {
+        p.cmpge(self.frame.0).all() && p.cmple(self.frame.1).all()
+    }
+
+    /// Whether world point `p` lies in the panel (edges included).
+    #[must_use]
+    pub fn in_panel(&self, p: DVec2) -> bool {
+        p.cmpge(self.panel.0).all() && p.cmple(self.panel.1).all()
+    }
+
+    /// The panel in pixels under `tf`.
+    #[must_use]
+    pub fn panel_px(&self, tf: &Transform) -> PxRect {
+        let (a, b) = (tf.to_px(self.panel.0), tf.to_px(self.panel.1));
+        PxRect { min: a.min(b), max: a.max(b) }
+    }
 }

@@ -204,6 +204,15 @@ impl Drawing {
         self.push(tag, style, Mark::Text(label))
     }
 
+    /// Removes the last item (a label tried and refused) and its record as placed clear, so
+    /// that [`Drawing::settle_labels`] does not move another in its place.
+    pub fn pop_item(&mut self) -> Option<Item> {
+        let item = self.items.pop()?;
+        let index = self.items.len();
+        self.placed_clear.retain(|(k, _)| *k != index);
+        Some(item)
+    }
+
     /// Where a text item lands in pixels under `tf`: its baseline origin, box and size.
     #[must_use]
     pub fn place_text(label: &Text, tf: &Transform) -> PlacedText {
@@ -633,9 +642,20 @@ impl Drawing {
             _ => None,
         }));
         let pad = tf.ref_px(4.0);
-        let area = self.label_area.map_or(plot, |(lo, hi)| {
-            let (a, b) = (tf.to_px(lo), tf.to_px(hi));
-            PxRect { min: a.min(b), max: a.max(b) }
+        // An inset's panel holds the labels anchored in it, and no other ([`Inset`]).
+        let (mut home, mut elsewhere) = (None, Vec::new());
+        for inset in &self.insets {
+            if inset.in_panel(label.anchor) {
+                home = Some(inset.panel_px(&tf));
+            } else {
+                elsewhere.push(inset.panel_px(&tf));
+            }
+        }
+        let area = home.unwrap_or_else(|| {
+            self.label_area.map_or(plot, |(lo, hi)| {
+                let (a, b) = (tf.to_px(lo), tf.to_px(hi));
+                PxRect { min: a.min(b), max: a.max(b) }
+            })
         });
         let with_leader = |mut candidate: Text| {
             candidate.leader = leader && candidate.offset.length() > LEADER_FROM;
@@ -648,7 +668,11 @@ impl Drawing {
             let overlap: f64 = boxes.iter().map(|o| b.overlap(o)).sum::<f64>() / area_px;
             let crossings = segments.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
             let guarded_crossings = guarded.iter().filter(|(a, c)| b.meets_segment(*a, *c)).count();
-            let outside = if area.contains_rect(&b) { 0.0 } else { 1.0 };
+            let outside = if area.contains_rect(&b) && elsewhere.iter().all(|p| p.overlap(&b) <= 0.0) {
+                0.0
+            } else {
+                1.0
+            };
             let ink = Self::ink_box(candidate, &tf);
             let not_its_own = rivals.iter().any(|r| reads_as(&ink, own, placed.leader, *r, &tf));
             let outlines = foreign.iter().filter(|o| o.iter().any(|(a, c)| b.meets_segment(*a, *c))).count()

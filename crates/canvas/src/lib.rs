@@ -41,7 +41,7 @@ pub mod view;
 
 pub use drawing::{Drawing, SceneAxes};
 pub use items::{
-    Align, ArrowPx, Corner, HAlign, Item, LegendEntry, LegendIcon, LegendPlace, Mark, Placement, Text,
+    Align, ArrowPx, Corner, HAlign, Inset, Item, LegendEntry, LegendIcon, LegendPlace, Mark, Placement, Text,
     TextOpts, VAlign,
 };
 pub use label::PlacedText;

@@ -96,8 +96,8 @@ impl Fate {
 const DENSE_NODES: usize = 15;
 
 /// Above this many objects a scene is crowded: its picture names only the objects of the leaves
-/// the walk reached.
-const DENSE_OBJECTS: usize = 15;
+/// the walk reached (the rule that every object a figure shows is named stops here).
+pub const DENSE_OBJECTS: usize = 15;
 
 /// A sphere drawn at least this wide (its radius, in shares of the view's width) carries its name
 /// inside, at its centre: beside a circle, in a group of circles, a name reads as its neighbour's.

@@ -7,22 +7,30 @@
 use glam::DVec2;
 
 use super::Input;
-use crate::canvas::{Drawing, LegendIcon, Pen};
+use crate::canvas::{Drawing, LegendIcon, Pen, View};
+use crate::figure::inset::{self, Panel};
 use crate::figure::labels::Label;
 use crate::figure::parts::{
-    self, camera_plane, draw_light, draw_objects, draw_observer, draw_ray, exit_point, label, label_objects,
-    legend_normal, legend_points, legend_role, plane_note, shadow_block_t, Names,
+    self, camera_plane, draw_light, draw_objects_through, draw_observer, draw_ray, exit_point, label,
+    label_objects, legend_normal, legend_points, legend_role, plane_note, shadow_block_t, Names,
 };
-use crate::figure::plane::Planar;
+use crate::figure::plane::{Outline, PagePlane, Planar};
 use crate::figure::source::{first_hit, Target};
 use crate::figure::style::{self, RayRole};
 use crate::figure::FigureError;
-use crate::format::markup_escape;
+use crate::format::{markup_escape, slide_number};
 use crate::record::event::Event;
+use crate::scene::Scene;
 
 /// The drawn length of a normal N, as a share of the view's smaller side: long enough that its
 /// dashes read at slide size beside a ray that leaves along it.
 const NORMAL_SHARE: f64 = 0.12;
+
+/// The margin around the points the view is fitted to, a share of their larger extent.
+const FIT_MARGIN: f64 = 0.06;
+
+/// Where a ray's name stands, as a share of the way from its origin to its end on the page.
+const RAY_NAME_AT: f64 = 0.3;
 
 /// Draws the figure.
 ///
@@ -132,72 +140,173 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             points.push(s.from + unit * 0.35 * span);
         }
     }
-    d.fit_view(&points, 0.06);
+    d.fit_view(&points, FIT_MARGIN);
     let view = d.view;
 
-    let anchors = draw_objects(d, scene, &plane, &view, &[]);
-    for s in &segments {
-        let role = parts::role(log.nodes[s.node].start.kind);
-        let to = s.to.unwrap_or_else(|| exit_point(s.from, s.dir, &view));
-        d.with_events(log.ray_events(s.node), |d| draw_ray(d, role, s.from, to));
-    }
-    for s in &shadows {
-        let role = s.role;
-        d.with_events([s.event], |d| {
-            d.segment(role.tag(), s.from, s.to, role.style());
-        });
-    }
-    // The facing normal N at every hit, dashed.
+    // The names' anchors: where each hit's and each ray's name will stand. When they crowd one
+    // spot at slide size, that spot is drawn again, magnified, beside the picture.
+    let ray_anchor = |s: &Segment, clip: &View| {
+        let to = s.to.unwrap_or_else(|| exit_point(s.from, s.dir, clip));
+        s.from + (to - s.from) * RAY_NAME_AT
+    };
+    let mut anchors: Vec<DVec2> = segments.iter().filter_map(|s| s.to).collect();
+    anchors.extend(segments.iter().map(|s| ray_anchor(s, &view)));
+    // The caption says the inset and its factor: set with the longest factor while the inset
+    // is planned (it may take a line from the plot), then with the one chosen.
+    let caption = d.caption.clone().unwrap_or_default();
+    let with_inset =
+        |factor: f64| format!("{caption} · {} ×{}", input.t(Label::InsetNote), slide_number(factor));
+    d.set_caption(&with_inset(inset::FACTORS[1]));
+    let planned = inset::plan(d, &points, FIT_MARGIN, &anchors);
+    d.set_caption(&planned.map_or(caption.clone(), |p| with_inset(p.inset.factor)));
+    let main = Panel::Main { clip: planned.map_or(view, |p| p.main), inset: planned.map(|p| p.inset) };
+    // Where the rays that leave the scene stop, in every panel: the main picture's border.
+    let main_clip = planned.map_or(view, |p| p.main);
+    let mut panels = vec![main];
+    panels.extend(planned.map(|p| Panel::Detail(p.inset)));
+
+    // Every panel's lines first, then every panel's names, so that each name keeps clear of
+    // every line.
     let normal_len = NORMAL_SHARE * view.width().min(view.height());
-    for (node, n) in log.nodes.iter().enumerate() {
-        let Some(hit) = n.end.as_ref().and_then(|e| e.hit) else { continue };
-        let facing = if hit.entering { hit.normal } else { -hit.normal };
-        let at = plane.point(hit.point);
-        if let Some(dir) = plane.dir(facing).try_normalize() {
-            d.with_events(log.ended_by(node), |d| {
-                d.segment("normal", at, at + dir * normal_len, style::normal());
-            });
+    let mut object_anchors = Vec::new();
+    for panel in &panels {
+        let clip = panel.clip();
+        let inset = match panel {
+            Panel::Detail(i) => Some(i),
+            Panel::Main { .. } => None,
+        };
+        object_anchors.push(draw_objects_through(d, scene, &plane, &clip, &[], inset));
+        for s in &segments {
+            let role = parts::role(log.nodes[s.node].start.kind);
+            let to = s.to.unwrap_or_else(|| exit_point(s.from, s.dir, &main_clip));
+            if let Some((a, b)) = panel.segment(s.from, to) {
+                d.with_events(log.ray_events(s.node), |d| draw_ray(d, role, a, b));
+            }
+        }
+        for s in &shadows {
+            let role = s.role;
+            if let Some((a, b)) = panel.segment(s.from, s.to) {
+                d.with_events([s.event], |d| {
+                    d.segment(role.tag(), a, b, role.style());
+                });
+            }
+        }
+        // The facing normal N at every hit, dashed.
+        for (node, n) in log.nodes.iter().enumerate() {
+            let Some(hit) = n.end.as_ref().and_then(|e| e.hit) else { continue };
+            let facing = if hit.entering { hit.normal } else { -hit.normal };
+            let at = plane.point(hit.point);
+            if let Some(dir) = plane.dir(facing).try_normalize() {
+                if let Some((a, b)) = panel.segment(at, at + dir * normal_len) {
+                    d.with_events(log.ended_by(node), |d| {
+                        d.segment("normal", a, b, style::normal());
+                    });
+                }
+            }
+        }
+        if let Some((a, b)) = window {
+            if let Some((a, b)) = panel.segment(a, b) {
+                d.segment("window", a, b, style::view_window());
+            }
+            let eye = plane.point(cam.eye);
+            if panel.shows(eye) {
+                draw_observer(d, panel.map(eye));
+            }
+        }
+        for s in &shadows {
+            if let Some(b) = s.block.filter(|b| panel.shows(*b)) {
+                d.with_events([s.event], |d| {
+                    d.marker("occluder-point", panel.map(b), style::DOT_RADIUS, s.role.color(), Pen::NONE);
+                });
+            }
+        }
+        for (k, l) in scene.lights.iter().enumerate() {
+            let at = plane.point(l.position);
+            if panel.shows(at) {
+                draw_light(d, k, panel.map(at));
+            }
+        }
+        for s in &segments {
+            if let Some(to) = s.to.filter(|to| panel.shows(*to)) {
+                d.with_events(log.ended_by(s.node), |d| {
+                    d.dot("hit", panel.map(to), style::HIT);
+                });
+            }
         }
     }
-    if let Some((a, b)) = window {
-        d.segment("window", a, b, style::view_window());
-        draw_observer(d, plane.point(cam.eye));
-    }
-    for s in &shadows {
-        if let Some(b) = s.block {
-            d.with_events([s.event], |d| {
-                d.marker("occluder-point", b, style::DOT_RADIUS, s.role.color(), Pen::NONE);
-            });
-        }
-    }
-    for (k, l) in scene.lights.iter().enumerate() {
-        draw_light(d, k, plane.point(l.position));
-    }
-    for s in &segments {
-        if let Some(to) = s.to {
-            d.with_events(log.ended_by(s.node), |d| {
-                d.dot("hit", to, style::HIT);
-            });
-        }
+    if let Some(p) = planned {
+        inset::draw_frame(d, &p.inset, &format!("×{}", slide_number(p.inset.factor)));
     }
 
-    // Labels last, so they keep clear of every line.
-    if window.is_some() {
-        label(d, plane.point(cam.eye), "O");
-    }
-    for (k, l) in scene.lights.iter().enumerate() {
-        let name = if scene.lights.len() == 1 { "S".to_owned() } else { parts::sub("S", k + 1) };
-        label(d, plane.point(l.position), &name);
-    }
-    for s in &segments {
-        if let (Some(to), Some(name)) = (s.to, names.hit_name(s.node)) {
-            d.with_events(log.ended_by(s.node), |d| label(d, to, &name));
+    // Labels last, so they keep clear of every line; each name once, in the panel where it
+    // is legible (the inset's, for what its frame holds).
+    for (panel, objects) in panels.iter().zip(&object_anchors) {
+        let eye = plane.point(cam.eye);
+        if window.is_some() && panel.shows(eye) && panel.names(eye) {
+            label(d, panel.map(eye), "O");
         }
-        let to = s.to.unwrap_or_else(|| exit_point(s.from, s.dir, &view));
-        d.with_events(log.ray_events(s.node), |d| {
-            parts::ray_label(d, s.from + (to - s.from) * 0.3, &names.ray[s.node]);
-        });
+        for (k, l) in scene.lights.iter().enumerate() {
+            let at = plane.point(l.position);
+            if panel.shows(at) && panel.names(at) {
+                let name = if scene.lights.len() == 1 { "S".to_owned() } else { parts::sub("S", k + 1) };
+                label(d, panel.map(at), &name);
+            }
+        }
+        for s in &segments {
+            if let (Some(to), Some(name)) = (s.to, names.hit_name(s.node)) {
+                if panel.shows(to) && panel.names(to) {
+                    d.with_events(log.ended_by(s.node), |d| label(d, panel.map(to), &name));
+                }
+            }
+            let at = ray_anchor(s, &main_clip);
+            if panel.names(at) {
+                d.with_events(log.ray_events(s.node), |d| {
+                    parts::ray_label(d, panel.map(at), &names.ray[s.node]);
+                });
+            }
+        }
+        // An object's name once: in the main picture unless its spot lies in the frame; in the
+        // inset, where rays crowd, at the first clear spot of its outline.
+        match panel {
+            Panel::Main { .. } => {
+                let named: Vec<(usize, DVec2)> =
+                    objects.iter().copied().filter(|(_, a)| panel.names(*a)).collect();
+                label_objects(d, scene, &named, input.lang);
+            }
+            Panel::Detail(inset) => {
+                let main = &object_anchors[0];
+                let in_main = |o: usize| main.iter().any(|(k, a)| *k == o && panels[0].names(*a));
+                let spots: Vec<(usize, Vec<DVec2>)> = objects
+                    .iter()
+                    .filter(|(o, _)| !in_main(*o))
+                    .map(|(o, at)| {
+                        let mut spots = vec![*at];
+                        spots.extend(
+                            compass_points(scene, &plane, *o)
+                                .into_iter()
+                                .filter(|p| inset.in_frame(*p))
+                                .map(|p| inset.map(p)),
+                        );
+                        (*o, spots)
+                    })
+                    .collect();
+                parts::label_objects_first_clear(d, scene, &spots, input.lang);
+            }
+        }
     }
-    label_objects(d, scene, &anchors, input.lang);
     Ok(())
+}
+
+/// The eight compass points of object `index`'s circle outlines on `plane` (none for other
+/// outlines), diagonals first: spots to name it by.
+fn compass_points<V: Planar>(scene: &Scene<V>, plane: &PagePlane<V>, index: usize) -> Vec<DVec2> {
+    const ANGLES_DEG: [f64; 8] = [45.0, -45.0, 135.0, -135.0, 0.0, 90.0, 180.0, -90.0];
+    V::outlines(&scene.objects[index].shape, plane)
+        .into_iter()
+        .filter_map(|o| match o.outline {
+            Outline::Circle { center, radius } => Some((center, radius)),
+            _ => None,
+        })
+        .flat_map(|(c, r)| ANGLES_DEG.map(|a| c + DVec2::from_angle(a.to_radians()) * r))
+        .collect()
 }

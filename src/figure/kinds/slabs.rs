@@ -294,7 +294,12 @@ pub fn draw<V: Planar>(
             }
         });
     }
+    let first_name = d.items.len();
     parts::label_objects(d, &one, &anchors, input.lang);
+    // Its name too: `object-name:K` names `object:K`.
+    for item in &mut d.items[first_name..] {
+        item.tag = format!("object-name:{focus}");
+    }
 
     // The per-slab intervals on a t axis, one block per ray, in the column on the right.
     let width = view.xmax() - column.x;
