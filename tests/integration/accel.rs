@@ -86,14 +86,6 @@ fn assert_agree<V: Dim>(scene: &Scene<V>, rays: &[Ray<V>]) {
     }
     let other = render_centers(scene, &wide, scene.max_depth, None).image;
     assert!(other.pixels == image.pixels, "the wide BVH: the image differs");
-    // Two rays walked at once (`Accel::nearest_pair`): each its own answer, the counts of two walks.
-    for pair in rays.windows(2) {
-        let (mut one, mut two) = (Stats::default(), Stats::default());
-        let single = [&pair[0], &pair[1]].map(|r| wide.nearest(scene, r, &mut one, &mut NoRecorder));
-        let both = wide.nearest_pair(scene, (&pair[0], &pair[1]), &mut two, &mut NoRecorder);
-        assert_eq!(both, single, "two rays at once on {pair:?}");
-        assert_eq!(two, one, "two rays at once: the counts on {pair:?}");
-    }
 }
 
 // ---------------------------------------------------------------------------------------------
