@@ -224,18 +224,9 @@ fn center_rows<V: Dim>(
         .map_init(
             || tracer(scene, accel, config.max_depth),
             |tracer, (j, row)| {
-                // Two neighbouring pixels at a time, their primary rays walked at once
-                // (`Tracer::trace_primary_pair`): the same colours and counts, less waiting.
-                for (k, pair) in row.chunks_mut(2).enumerate() {
-                    let ray = |i: usize| {
-                        let (u, v) = cam.pixel_center(i, j);
-                        cam.primary_ray(u, v)
-                    };
-                    match pair {
-                        [a, b] => [*a, *b] = tracer.trace_primary_pair(&ray(2 * k), &ray(2 * k + 1)),
-                        [a] => *a = tracer.trace_primary(&ray(2 * k), &[]),
-                        _ => {}
-                    }
+                for (i, pixel) in row.iter_mut().enumerate() {
+                    let (u, v) = cam.pixel_center(i, j);
+                    *pixel = tracer.trace_primary(&cam.primary_ray(u, v), &[]);
                 }
                 if let Some(progress) = config.progress {
                     progress(1);

@@ -342,65 +342,6 @@ impl<V: Dim> Bvh<V> {
         self.prims[start..start + leaf.count as usize].iter().any(|p| visitor.visit(*p, stats, rec))
     }
 
-    /// The root box's test of a walk: `None` when the ray misses it or it lies beyond the
-    /// visitor's bound; else the root's entry and the ray's reciprocals if the test needed them.
-    /// A ray that starts in the closed root box (a secondary or shadow ray of most scenes)
-    /// meets it: every slab's interval then holds t = 0, so t_in ≤ 0 ≤ t_out, the culling test
-    /// passes and nothing is pruned. When no recorder wants the interval, the node test is
-    /// counted without computing it, and the ray's reciprocals wait for an inner node.
-    #[inline(always)]
-    fn enter<R: Recorder<V>, W: Visitor<V>>(
-        &self,
-        ray: &Ray<V>,
-        visitor: &W,
-        stats: &mut Stats,
-        rec: &mut R,
-    ) -> Option<(f64, Option<RecipRay<V>>)> {
-        if !R::ENABLED && self.root_box.holds(ray.origin) {
-            stats.tests.node += 1;
-            return Some((0.0, None));
-        }
-        let r = RecipRay::new(ray);
-        let root =
-            node_visit("bvh", r.box_interval(self.root_box.min, self.root_box.max), (0, 0), stats, rec);
-        if !root.hit {
-            return None;
-        }
-        if beyond(root.t_in, visitor.bound()) {
-            node_skip("bvh", 0, root.t_in, visitor.bound(), rec);
-            return None;
-        }
-        Some((root.t_in, Some(r)))
-    }
-
-    /// [`Bvh::walk`] of two rays, each with its own visitor, when no recorder listens: through
-    /// the wide copy both at once ([`WideBvh::walk_pair`]), each getting exactly its own walk's
-    /// answer and counts; otherwise one after the other.
-    pub fn walk_pair<R: Recorder<V>, W: Visitor<V>>(
-        &self,
-        (ray_a, ray_b): (&Ray<V>, &Ray<V>),
-        (va, vb): (&mut W, &mut W),
-        stats: &mut Stats,
-        rec: &mut R,
-    ) {
-        let wide = match &self.wide {
-            Some(wide) if !R::ENABLED && !self.prims.is_empty() => wide,
-            _ => {
-                self.walk(ray_a, va, stats, rec);
-                self.walk(ray_b, vb, stats, rec);
-                return;
-            }
-        };
-        let a = self.enter(ray_a, va, stats, rec).map(|(_, r)| r.unwrap_or_else(|| RecipRay::new(ray_a)));
-        let b = self.enter(ray_b, vb, stats, rec).map(|(_, r)| r.unwrap_or_else(|| RecipRay::new(ray_b)));
-        match (a, b) {
-            (Some(a), Some(b)) => wide.walk_pair(&self.prims, (&a, &b), (va, vb), stats, rec),
-            (Some(a), None) => wide.walk(&self.prims, &a, va, stats, rec),
-            (None, Some(b)) => wide.walk(&self.prims, &b, vb, stats, rec),
-            (None, None) => {}
-        }
-    }
-
     /// Front-to-back traversal, handing the primitives of every leaf reached to the visitor.
     pub fn walk<R: Recorder<V>, W: Visitor<V>>(
         &self,
@@ -412,8 +353,26 @@ impl<V: Dim> Bvh<V> {
         if self.prims.is_empty() {
             return;
         }
-        let Some((root_t_in, recip)) = self.enter(ray, visitor, stats, rec) else {
-            return;
+        // A ray that starts in the closed root box (a secondary or shadow ray of most scenes)
+        // meets it: every slab's interval then holds t = 0, so t_in ≤ 0 ≤ t_out, the culling test
+        // passes and nothing is pruned. When no recorder wants the interval, the node test is
+        // counted without computing it, and the ray's reciprocals wait for an inner node.
+        let mut recip = None;
+        let root_t_in = if !R::ENABLED && self.root_box.holds(ray.origin) {
+            stats.tests.node += 1;
+            0.0
+        } else {
+            let r = recip.insert(RecipRay::new(ray));
+            let root =
+                node_visit("bvh", r.box_interval(self.root_box.min, self.root_box.max), (0, 0), stats, rec);
+            if !root.hit {
+                return;
+            }
+            if beyond(root.t_in, visitor.bound()) {
+                node_skip("bvh", 0, root.t_in, visitor.bound(), rec);
+                return;
+            }
+            root.t_in
         };
         if self.root.count > 0 {
             // A tree that is one leaf (a small scene): its primitives, without the stack.

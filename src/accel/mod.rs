@@ -120,9 +120,6 @@ impl Prim {
     }
 }
 
-/// A shadow segment: the ray and its length `d_L`.
-pub type Segment<'a, V> = (&'a Ray<V>, f64);
-
 /// The structure itself.
 #[derive(Clone, Debug)]
 enum Structure<V: Dim> {
@@ -254,48 +251,6 @@ impl<V: Dim> Accel<V> {
         }
     }
 
-    /// [`Accel::search`] of two rays, each with its own visitor: the planes of each, then the
-    /// BVH's walk of both at once ([`bvh::Bvh::walk_pair`]) when neither is done; every other
-    /// structure walks them one after the other. Each visitor ends as its own search leaves it.
-    fn search_pair<R: Recorder<V>, W: Visitor<V>>(
-        &self,
-        scene: &Scene<V>,
-        rays: (&Ray<V>, &Ray<V>),
-        (va, vb): (&mut W, &mut W),
-        stats: &mut Stats,
-        rec: &mut R,
-    ) {
-        let Structure::Bvh(b) = &self.structure else {
-            self.search(scene, rays.0, va, stats, rec);
-            self.search(scene, rays.1, vb, stats, rec);
-            return;
-        };
-        let planes = |visitor: &mut W, stats: &mut Stats, rec: &mut R| {
-            self.unbounded.iter().any(|(prim, plane)| visitor.visit_plane(*prim, plane, stats, rec))
-        };
-        match (planes(va, stats, rec), planes(vb, stats, rec)) {
-            (false, false) => b.walk_pair(rays, (va, vb), stats, rec),
-            (false, true) => b.walk(rays.0, va, stats, rec),
-            (true, false) => b.walk(rays.1, vb, stats, rec),
-            (true, true) => {}
-        }
-    }
-
-    /// [`Accel::nearest`] of two rays, walked at once where the structure can
-    /// ([`Accel::search_pair`]): the answers and counts of two calls of [`Accel::nearest`].
-    #[inline]
-    pub fn nearest_pair<R: Recorder<V>>(
-        &self,
-        scene: &Scene<V>,
-        (a, b): (&Ray<V>, &Ray<V>),
-        stats: &mut Stats,
-        rec: &mut R,
-    ) -> [Option<(ObjectRef, SurfaceHit<V>)>; 2] {
-        let (mut va, mut vb) = (Nearest::new(scene, a), Nearest::new(scene, b));
-        self.search_pair(scene, (a, b), (&mut va, &mut vb), stats, rec);
-        [va.found(), vb.found()]
-    }
-
     /// The nearest hit with `t > 0`; equal t goes to the smaller object index, then the smaller
     /// triangle index (§6).
     #[inline]
@@ -328,24 +283,6 @@ impl<V: Dim> Accel<V> {
         let mut visitor = Shadow::new(scene, ray, d_l);
         self.search(scene, ray, &mut visitor, stats, rec);
         visitor.report(on);
-    }
-
-    /// [`Accel::occluders`] of two segments `(ray, d_L)`, walked at once where the structure can
-    /// ([`Accel::search_pair`]); each segment's occluders go to `on` with its index (0 or 1),
-    /// in the order and with the counts of two calls of [`Accel::occluders`].
-    #[inline]
-    pub fn occluders_pair<R: Recorder<V>>(
-        &self,
-        scene: &Scene<V>,
-        ((a, d_a), (b, d_b)): (Segment<'_, V>, Segment<'_, V>),
-        stats: &mut Stats,
-        rec: &mut R,
-        mut on: impl FnMut(usize, ObjectRef) -> bool,
-    ) {
-        let (mut va, mut vb) = (Shadow::new(scene, a, d_a), Shadow::new(scene, b, d_b));
-        self.search_pair(scene, (a, b), (&mut va, &mut vb), stats, rec);
-        va.report(|object| on(0, object));
-        vb.report(|object| on(1, object));
     }
 }
 

@@ -211,10 +211,10 @@ impl WideBvh {
         (t_in, t_out)
     }
 
-    /// Front-to-back walk from the root, whose box the ray met (not beyond the visitor's
-    /// bound), handing every leaf's primitives (of `prims`, the binary tree's) to the visitor;
-    /// `r` is the ray. The nearest hit child of a node is walked next without going through the
-    /// stack.
+    /// Front-to-back walk from the root, whose box the ray met at `root_t_in` (not beyond the
+    /// visitor's bound), handing every leaf's primitives (of `prims`, the binary tree's) to the
+    /// visitor; `r` is the ray. The nearest hit child of a node is walked next without going
+    /// through the stack.
     pub(crate) fn walk<V: Dim, R: Recorder<V>, W: Visitor<V>>(
         &self,
         prims: &[Prim],
@@ -223,104 +223,57 @@ impl WideBvh {
         stats: &mut Stats,
         rec: &mut R,
     ) {
-        let mut at = Cursor::default();
-        while !self.step(prims, r, &mut at, visitor, stats, rec) {}
-    }
-
-    /// [`WideBvh::walk`] of two rays at once, a step of one then a step of the other, until both
-    /// are done: each step is a chain of dependent loads and comparisons that one ray cannot
-    /// overlap, and the other ray's independent chain fills the wait. Each ray keeps its own
-    /// cursor, stack and visitor, so each gets exactly the answer and the counts of its own walk.
-    pub(crate) fn walk_pair<V: Dim, R: Recorder<V>, W: Visitor<V>>(
-        &self,
-        prims: &[Prim],
-        (ra, rb): (&RecipRay<V>, &RecipRay<V>),
-        (va, vb): (&mut W, &mut W),
-        stats: &mut Stats,
-        rec: &mut R,
-    ) {
-        let (mut a, mut b) = (Cursor::default(), Cursor::default());
+        let mut stack: ArrayVec<(Child, f64), STACK_SIZE> = ArrayVec::new();
+        let mut child = Child { start: 0, count: 0 };
         loop {
-            if self.step(prims, ra, &mut a, va, stats, rec) {
-                while !self.step(prims, rb, &mut b, vb, stats, rec) {}
-                return;
-            }
-            if self.step(prims, rb, &mut b, vb, stats, rec) {
-                while !self.step(prims, ra, &mut a, va, stats, rec) {}
-                return;
-            }
-        }
-    }
-
-    /// One step of a walk at `at`: the current child's leaf handed to the visitor, or its node's
-    /// hit children sorted (the nearest next, the others stacked), then the next child taken;
-    /// true when the walk is over.
-    #[inline(always)]
-    fn step<V: Dim, R: Recorder<V>, W: Visitor<V>>(
-        &self,
-        prims: &[Prim],
-        r: &RecipRay<V>,
-        at: &mut Cursor,
-        visitor: &mut W,
-        stats: &mut Stats,
-        rec: &mut R,
-    ) -> bool {
-        let child = at.child;
-        if child.count > 0 {
-            let start = child.start as usize;
-            if prims[start..start + child.count as usize].iter().any(|p| visitor.visit(*p, stats, rec)) {
-                return true;
-            }
-        } else {
-            let node = &self.nodes[child.start as usize];
-            stats.tests.node += u64::from(node.len);
-            let (t_in, t_out) = Self::intervals(node, r);
-            let bound = visitor.bound();
-            // The hit lanes, farthest entry first (an insertion sort of at most WIDTH).
-            let mut hit_t = [0.0; WIDTH];
-            let mut hit_c = [Child::default(); WIDTH];
-            let mut n = 0;
-            for lane in 0..WIDTH {
-                let t = t_in[lane];
-                if culling_hit(t, t_out[lane]) && !beyond(t, bound) {
-                    let mut k = n;
-                    while k > 0 && hit_t[k - 1] < t {
-                        hit_t[k] = hit_t[k - 1];
-                        hit_c[k] = hit_c[k - 1];
-                        k -= 1;
+            if child.count > 0 {
+                let start = child.start as usize;
+                if prims[start..start + child.count as usize].iter().any(|p| visitor.visit(*p, stats, rec)) {
+                    return;
+                }
+            } else {
+                let node = &self.nodes[child.start as usize];
+                stats.tests.node += u64::from(node.len);
+                let (t_in, t_out) = Self::intervals(node, r);
+                let bound = visitor.bound();
+                // The hit lanes, farthest entry first (an insertion sort of at most WIDTH).
+                let mut hit_t = [0.0; WIDTH];
+                let mut hit_c = [Child::default(); WIDTH];
+                let mut n = 0;
+                for lane in 0..WIDTH {
+                    let t = t_in[lane];
+                    if culling_hit(t, t_out[lane]) && !beyond(t, bound) {
+                        let mut at = n;
+                        while at > 0 && hit_t[at - 1] < t {
+                            hit_t[at] = hit_t[at - 1];
+                            hit_c[at] = hit_c[at - 1];
+                            at -= 1;
+                        }
+                        hit_t[at] = t;
+                        hit_c[at] = Child { start: node.start[lane], count: u32::from(node.count[lane]) };
+                        n += 1;
                     }
-                    hit_t[k] = t;
-                    hit_c[k] = Child { start: node.start[lane], count: u32::from(node.count[lane]) };
-                    n += 1;
+                }
+                if n > 0 {
+                    for k in 0..n - 1 {
+                        stack.push((hit_c[k], hit_t[k]));
+                    }
+                    child = hit_c[n - 1];
+                    continue;
                 }
             }
-            if n > 0 {
-                for k in 0..n - 1 {
-                    at.stack.push((hit_c[k], hit_t[k]));
+            // The next pending child whose entry the bound has not passed since it was pushed.
+            loop {
+                let Some((next, t_in)) = stack.pop() else {
+                    return;
+                };
+                if !beyond(t_in, visitor.bound()) {
+                    child = next;
+                    break;
                 }
-                at.child = hit_c[n - 1];
-                return false;
-            }
-        }
-        // The next pending child whose entry the bound has not passed since it was pushed.
-        loop {
-            let Some((next, t_in)) = at.stack.pop() else {
-                return true;
-            };
-            if !beyond(t_in, visitor.bound()) {
-                at.child = next;
-                return false;
             }
         }
     }
-}
-
-/// Where a walk is: the child it visits next (the root node first) and the pending children
-/// with their entries.
-#[derive(Default)]
-struct Cursor {
-    child: Child,
-    stack: ArrayVec<(Child, f64), STACK_SIZE>,
 }
 
 #[cfg(test)]

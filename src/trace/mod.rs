@@ -8,7 +8,7 @@ use crate::accel::Accel;
 use crate::geom::offset::{offset_distance, spawn_origin};
 use crate::geom::optics::{indices, reflect, refract, Refraction};
 use crate::geom::ray::Ray;
-use crate::record::event::{Event, NodeHit, ObjectRef, RayKind};
+use crate::record::event::{Event, NodeHit, RayKind};
 use crate::record::stats::Stats;
 use crate::record::{RayEnd, RayStart, Recorder};
 use crate::scene::material::{Material, Rgb};
@@ -54,38 +54,8 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
         self.trace(ray, RayKind::Primary, 1, uv)
     }
 
-    /// Traces two primary rays (level 1, no window points), their nearest hits searched at once
-    /// ([`Accel::nearest_pair`]) and, when both hit, their shadow rays too
-    /// ([`Tracer::local_pair`]), when no recorder listens: the colours and counts of two calls
-    /// of [`Tracer::trace_primary`], in either order. With a recorder, those two calls.
-    pub fn trace_primary_pair(&mut self, a: &Ray<V>, b: &Ray<V>) -> [Rgb; 2] {
-        if R::ENABLED {
-            return [self.trace_primary(a, &[]), self.trace_primary(b, &[])];
-        }
-        self.open(a, RayKind::Primary, 1, &[]);
-        self.open(b, RayKind::Primary, 1, &[]);
-        match self.accel.nearest_pair(self.scene, (a, b), &mut self.stats, &mut self.recorder) {
-            [Some((oa, ha)), Some((ob, hb))] => {
-                let sa = self.shading(a, oa, ha);
-                let sb = self.shading(b, ob, hb);
-                let [la, lb] = self.local_pair(&sa, &sb);
-                [self.close(&sa, oa, la, 1), self.close(&sb, ob, lb, 1)]
-            }
-            [ha, hb] => [self.shade(a, 1, ha), self.shade(b, 1, hb)],
-        }
-    }
-
     /// `TraceRay(R, n)`: the nearest hit (none → the background), then `ShadePoint`.
     fn trace(&mut self, ray: &Ray<V>, kind: RayKind, level: u32, uv: &[f64]) -> Rgb {
-        self.open(ray, kind, level, uv);
-        let found = self.accel.nearest(self.scene, ray, &mut self.stats, &mut self.recorder);
-        self.shade(ray, level, found)
-    }
-
-    /// A ray of `kind` at `level` begins: counted, opened in the recorder (a primary ray with its
-    /// window point `uv`).
-    #[inline(always)]
-    fn open(&mut self, ray: &Ray<V>, kind: RayKind, level: u32, uv: &[f64]) {
         match kind {
             RayKind::Primary => self.stats.rays.primary += 1,
             RayKind::Reflected => self.stats.rays.reflected += 1,
@@ -99,29 +69,13 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
                 uv: uv.to_vec(),
             });
         }
-    }
-
-    /// The rest of `TraceRay(R, n)` once the nearest hit is `found`: the background, or
-    /// `ShadePoint`; the ray closed in the recorder.
-    #[inline(always)]
-    fn shade(&mut self, ray: &Ray<V>, level: u32, found: Option<(ObjectRef, SurfaceHit<V>)>) -> Rgb {
-        let Some((object, hit)) = found else {
+        let Some((object, hit)) = self.accel.nearest(self.scene, ray, &mut self.stats, &mut self.recorder)
+        else {
             let color = self.scene.background;
             self.recorder.event(|| Event::Miss { color });
             self.recorder.close_ray(|| RayEnd { hit: None, local: None, color });
             return color;
         };
-        let at = self.shading(ray, object, hit);
-        let local = self.local(&at);
-        self.close(&at, object, local, level)
-    }
-
-    /// What shading needs of the hit `hit` of `object` by `ray`, the hit recorded.
-    #[inline(always)]
-    fn shading<'a>(&mut self, ray: &'a Ray<V>, object: ObjectRef, hit: SurfaceHit<V>) -> Shading<'a, V>
-    where
-        's: 'a,
-    {
         // §3: entering iff D·N ≤ 0 (a tangent counts as entering); N_f faces the incoming ray.
         let entering = ray.dir.dot(hit.normal) <= 0.0;
         let n_f = if entering { hit.normal } else { -hit.normal };
@@ -136,14 +90,9 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
         let hit_object = &scene.objects[object.index];
         let delta = offset_distance(hit.point, ray.origin, hit.t, hit_object.scale);
         let material = &scene.materials[hit_object.material];
-        Shading { ray, hit, entering, n_f, delta, material }
-    }
-
-    /// `ShadePoint`'s sum once `I_local` is `local`: the secondary rays added, the ray closed.
-    #[inline(always)]
-    fn close(&mut self, at: &Shading<'_, V>, object: ObjectRef, local: Rgb, level: u32) -> Rgb {
-        let color = local + self.secondary(at, level);
-        let (hit, entering) = (at.hit, at.entering);
+        let at = Shading { ray, hit, entering, n_f, delta, material };
+        let local = self.local(&at);
+        let color = local + self.secondary(&at, level);
         self.recorder.close_ray(|| RayEnd {
             hit: Some(NodeHit { object, t: hit.t, point: hit.point, normal: hit.normal, entering }),
             local: Some(local),

@@ -86,29 +86,6 @@ fn assert_agree<V: Dim>(scene: &Scene<V>, rays: &[Ray<V>]) {
     }
     let other = render_centers(scene, &wide, scene.max_depth, None).image;
     assert!(other.pixels == image.pixels, "the wide BVH: the image differs");
-    // Two rays walked at once (`Accel::nearest_pair`): each its own answer, the counts of two walks.
-    for pair in rays.windows(2) {
-        let (mut one, mut two) = (Stats::default(), Stats::default());
-        let single = [&pair[0], &pair[1]].map(|r| wide.nearest(scene, r, &mut one, &mut NoRecorder));
-        let both = wide.nearest_pair(scene, (&pair[0], &pair[1]), &mut two, &mut NoRecorder);
-        assert_eq!(both, single, "two rays at once on {pair:?}");
-        assert_eq!(two, one, "two rays at once: the counts on {pair:?}");
-        // And as shadow segments (`Accel::occluders_pair`), of two lengths.
-        let (d, mut single, mut both) = ([2.5, 7.0], [vec![], vec![]], [vec![], vec![]]);
-        for k in 0..2 {
-            wide.occluders(scene, &pair[k], d[k], &mut one, &mut NoRecorder, |o| {
-                single[k].push(o);
-                true
-            });
-        }
-        let segments = ((&pair[0], d[0]), (&pair[1], d[1]));
-        wide.occluders_pair(scene, segments, &mut two, &mut NoRecorder, |k, o| {
-            both[k].push(o);
-            true
-        });
-        assert_eq!(both, single, "two segments at once on {pair:?}");
-        assert_eq!(two, one, "two segments at once: the counts on {pair:?}");
-    }
 }
 
 // ---------------------------------------------------------------------------------------------
