@@ -207,10 +207,11 @@ fn kid<V: Vector, T: Split<V>>(
     Kid { offset, len, depth, area: bounds.surface(), bounds, split }
 }
 
-/// Room reserved for the wide nodes of `n` primitives: a wide node has up to [`WIDTH`]
-/// children and a leaf up to [`MAX_LEAF`] primitives (a guess that may grow, not a bound).
+/// Room reserved for the wide nodes of `n` primitives, so that the list never moves: at most
+/// one a binary inner node, i.e. fewer than the leaves, and a leaf of one primitive is rare
+/// (in practice about `n / 6`; only the pages written count in memory).
 fn wide_capacity(n: usize) -> usize {
-    n / (WIDTH - 1) / 2 + 1
+    n / 2 + 1
 }
 
 /// Appends the wide node of the binary inner node over `items` (at `base` of the whole list, at

@@ -164,7 +164,8 @@ impl<V: Dim> Accel<V> {
 
     fn build_in(scene: &Scene<V>, options: &AccelOptions, for_render: bool) -> Self {
         let mut unbounded = Vec::new();
-        let mut prims = Vec::new();
+        // Sized once: a million triangles' list grown by doubling copied itself.
+        let mut prims = Vec::with_capacity(scene.objects.iter().map(|o| o.shape.parts()).sum());
         for (index, object) in scene.objects.iter().enumerate() {
             let object_index = u32::try_from(index).expect("fewer than 2^32 objects");
             if object.shape.bounds().is_none() {
