@@ -16,7 +16,9 @@
 //! - **Centroids doubled**, `c = min + max`: binning needs only their order, not the halving.
 //! - **Two passes a level**: the binning pass gives both sides' boxes (the union of their bins),
 //!   and the partition (in place, without a branch) gives both sides' centroid boxes as it
-//!   moves the records; the exact build reads its items a third time for the boxes.
+//!   moves the records; the exact build reads its items a third time for the boxes. In a large
+//!   group the partition compares each coordinate with the split bin's last one
+//!   ([`last_of_bin`]) instead of computing its bin.
 //! - **Fewer bins for small groups**: 4 for at most 4 records, 8 for at most 8 (the bins' sweep
 //!   is most of a small group's cost), else [`BINS`].
 //!
