@@ -376,10 +376,24 @@ fn best_split<V: Vector>(
     if items.len() > ALL_AXES_BELOW {
         let axis = used.iter().position(|&u| u)?;
         axes.push(axis);
-        all.extend((0..n_bins).map(|_| Bin::EMPTY));
-        for r in items {
-            all[bins_of(r.centroid2(), group.c_lo, scale, n_bins)[axis]].add(r);
+        // Two sets of bins, the records taken in pairs: neighbouring records (a mesh's triangles
+        // in file order) often share a bin, and each update of a bin waits for the last one.
+        // Merged after: the same boxes and counts, and the same costs (sums of quarters below
+        // 2²² are exact in f32 in any order).
+        all.extend((0..2 * n_bins).map(|_| Bin::EMPTY));
+        let bin = |r: &Record| bins_of(r.centroid2(), group.c_lo, scale, n_bins)[axis];
+        let mut pairs = items.chunks_exact(2);
+        for pair in &mut pairs {
+            all[bin(&pair[0])].add(&pair[0]);
+            all[n_bins + bin(&pair[1])].add(&pair[1]);
         }
+        for r in pairs.remainder() {
+            all[bin(r)].add(r);
+        }
+        for k in 0..n_bins {
+            all[k] = all[k].merge(&all[n_bins + k]);
+        }
+        all.truncate(n_bins);
     } else {
         axes.extend((0..V::DIM).filter(|&a| used[a]));
         all.extend((0..axes.len() * n_bins).map(|_| Bin::EMPTY));
