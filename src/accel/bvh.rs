@@ -130,6 +130,9 @@ pub(super) trait Split<V>: Copy + Send + Sync {
 const PARALLEL_MIN: usize = 1 << 16;
 /// How many levels fork (at most 2^PARALLEL_DEPTH tasks).
 const PARALLEL_DEPTH: u32 = 3;
+/// Whether the build may fork at all: not in the WebAssembly module, which runs on one thread,
+/// so that the forks' code stays out of it (its size budget, 3 MB).
+const FORKS: bool = !cfg!(target_arch = "wasm32");
 
 /// Appends the subtree over `items` (at `base` of the whole list; `group` their group) to
 /// `out`, depth first: an inner node's `start` is the index of its right child in `out`, a
@@ -153,7 +156,7 @@ fn build_into<V: Vector, T: Split<V>>(
     let (left_items, right_items) = items.split_at_mut(mid);
     // With one thread (a pinned benchmark), no fork: the tree is the same, without the copy of
     // the right subtree's list.
-    let fork = n >= PARALLEL_MIN && depth < PARALLEL_DEPTH && rayon::current_num_threads() > 1;
+    let fork = FORKS && n >= PARALLEL_MIN && depth < PARALLEL_DEPTH && rayon::current_num_threads() > 1;
     let right_start = if fork {
         // The left subtree goes straight into `out`, the right one into its own list, appended
         // after. Reserved here, on the calling thread, so that the memory comes from the
@@ -207,6 +210,24 @@ fn kid<V: Vector, T: Split<V>>(
     Kid { offset, len, depth, area: bounds.surface(), bounds, split }
 }
 
+/// An inner child's subtree for [`run_jobs`]: its lane, its items, its depth, its place in the
+/// whole list, its split, and the list its wide nodes go to.
+type Job<'a, T, G> = (usize, &'a mut [T], u32, usize, (usize, G, G), Vec<WideNode>);
+
+/// Builds each job's subtree into its own list, halves of the jobs in parallel.
+fn run_jobs<V: Vector, T: Split<V>>(jobs: &mut [Job<'_, T, T::Group>]) {
+    match jobs {
+        [] => {}
+        [(_, items, depth, base, split, out)] => {
+            wide_into::<V, T>(out, items, *base, *depth, *split);
+        }
+        _ => {
+            let (a, b) = jobs.split_at_mut(jobs.len() / 2);
+            rayon::join(|| run_jobs::<V, T>(a), || run_jobs::<V, T>(b));
+        }
+    }
+}
+
 /// Room reserved for the wide nodes of `n` primitives, so that the list never moves: at most
 /// one a binary inner node, i.e. fewer than the leaves, and a leaf of one primitive is rare
 /// (in practice about `n / 6`; only the pages written count in memory).
@@ -258,7 +279,7 @@ fn wide_into<V: Vector, T: Split<V>>(
         };
         (k.bounds.min, k.bounds.max, link)
     })));
-    let fork = n >= PARALLEL_MIN && rayon::current_num_threads() > 1;
+    let fork = FORKS && n >= PARALLEL_MIN && rayon::current_num_threads() > 1;
     if fork {
         // Each inner child's items, apart: the children's ranges are disjoint.
         let mut order: ArrayVec<usize, WIDTH> = (0..kids.len()).collect();
@@ -276,15 +297,8 @@ fn wide_into<V: Vector, T: Split<V>>(
             }
         }
         jobs.sort_unstable_by_key(|job| job.0);
-        let subtrees: Vec<(usize, Vec<WideNode>)> = {
-            use rayon::prelude::*;
-            jobs.into_par_iter()
-                .map(|(lane, mine, d, b, split, mut out)| {
-                    wide_into(&mut out, mine, b, d, split);
-                    (lane, out)
-                })
-                .collect()
-        };
+        run_jobs::<V, T>(&mut jobs);
+        let subtrees = jobs.into_iter().map(|(lane, _, _, _, _, out)| (lane, out));
         for (lane, subtree) in subtrees {
             let at = to_u32(nodes.len());
             nodes[index].set_start(lane, at);
