@@ -21,7 +21,7 @@
 //! A tree that is one leaf (a small scene) is visited without the stack.
 
 use super::binned;
-use super::wide::{Binary, Child, WideBvh};
+use super::wide::{Binary, Child, WideBvh, WideNode, WIDTH};
 use super::{beyond, node_skip, node_visit, prim_bounds, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
 use crate::geom::ray::Ray;
@@ -130,6 +130,9 @@ pub(super) trait Split<V>: Copy + Send + Sync {
 const PARALLEL_MIN: usize = 1 << 16;
 /// How many levels fork (at most 2^PARALLEL_DEPTH tasks).
 const PARALLEL_DEPTH: u32 = 3;
+/// Whether the build may fork at all: not in the WebAssembly module, which runs on one thread,
+/// so that the forks' code stays out of it (its size budget, 3 MB).
+const FORKS: bool = !cfg!(target_arch = "wasm32");
 
 /// Appends the subtree over `items` (at `base` of the whole list; `group` their group) to
 /// `out`, depth first: an inner node's `start` is the index of its right child in `out`, a
@@ -153,7 +156,7 @@ fn build_into<V: Vector, T: Split<V>>(
     let (left_items, right_items) = items.split_at_mut(mid);
     // With one thread (a pinned benchmark), no fork: the tree is the same, without the copy of
     // the right subtree's list.
-    let fork = n >= PARALLEL_MIN && depth < PARALLEL_DEPTH && rayon::current_num_threads() > 1;
+    let fork = FORKS && n >= PARALLEL_MIN && depth < PARALLEL_DEPTH && rayon::current_num_threads() > 1;
     let right_start = if fork {
         // The left subtree goes straight into `out`, the right one into its own list, appended
         // after. Reserved here, on the calling thread, so that the memory comes from the
@@ -181,6 +184,141 @@ fn build_into<V: Vector, T: Split<V>>(
     out[index] = Built { bounds, start: to_u32(right_start), count: 0 };
 }
 
+/// A child of a wide node in [`wide_into`]: `len` items at `offset` in the node's, their group's
+/// box and its surface (which decides which child opens first, as in the collapse), the child's
+/// depth in the binary tree, and its split (`None`: a leaf).
+struct Kid<V, G> {
+    offset: usize,
+    len: usize,
+    depth: u32,
+    bounds: Aabb<V>,
+    area: f64,
+    split: Option<(usize, G, G)>,
+}
+
+/// The binary node over `items[offset .. offset + len]` (group `group`, at `depth`), split as
+/// [`build_into`] splits it.
+fn kid<V: Vector, T: Split<V>>(
+    items: &mut [T],
+    offset: usize,
+    len: usize,
+    depth: u32,
+    group: T::Group,
+) -> Kid<V, T::Group> {
+    let bounds = T::bounds(&group);
+    let split = if len == 1 { None } else { T::split(&mut items[offset..offset + len], depth, &group) };
+    Kid { offset, len, depth, area: bounds.surface(), bounds, split }
+}
+
+/// An inner child's subtree for [`run_jobs`]: its lane, its items, its depth, its place in the
+/// whole list, its split, and the list its wide nodes go to.
+type Job<'a, T, G> = (usize, &'a mut [T], u32, usize, (usize, G, G), Vec<WideNode>);
+
+/// Builds each job's subtree into its own list, halves of the jobs in parallel.
+fn run_jobs<V: Vector, T: Split<V>>(jobs: &mut [Job<'_, T, T::Group>]) {
+    match jobs {
+        [] => {}
+        [(_, items, depth, base, split, out)] => {
+            wide_into::<V, T>(out, items, *base, *depth, *split);
+        }
+        _ => {
+            let (a, b) = jobs.split_at_mut(jobs.len() / 2);
+            rayon::join(|| run_jobs::<V, T>(a), || run_jobs::<V, T>(b));
+        }
+    }
+}
+
+/// Room reserved for the wide nodes of `n` primitives, so that the list never moves: at most
+/// one a binary inner node, i.e. fewer than the leaves, and a leaf of one primitive is rare
+/// (in practice about `n / 6`; only the pages written count in memory).
+fn wide_capacity(n: usize) -> usize {
+    n / 2 + 1
+}
+
+/// Appends the wide node of the binary inner node over `items` (at `base` of the whole list, at
+/// `depth`, split into `left` of `mid` items and `right`) and, after it, the wide nodes of its
+/// inner children, depth first; returns its index. The children are those of
+/// [`WideBvh::collapse`]: the node's two, then, while fewer than [`WIDTH`], the inner child of
+/// largest surface (the first on a tie) replaced by its two, each split when it is made. Since
+/// a group's split depends only on its records and depth, and both builds hand every group the
+/// same records in the same order, the nodes are the collapse's, node for node. Large groups
+/// build their inner children's subtrees in parallel ([`PARALLEL_MIN`]); the nodes are the same
+/// on any number of threads.
+fn wide_into<V: Vector, T: Split<V>>(
+    nodes: &mut Vec<WideNode>,
+    items: &mut [T],
+    base: usize,
+    depth: u32,
+    (mid, left, right): (usize, T::Group, T::Group),
+) -> u32 {
+    let n = items.len();
+    let mut kids: ArrayVec<Kid<V, T::Group>, WIDTH> = ArrayVec::new();
+    kids.push(kid(items, 0, mid, depth + 1, left));
+    kids.push(kid(items, mid, n - mid, depth + 1, right));
+    while kids.len() < WIDTH {
+        let Some(open) = (0..kids.len()).filter(|&k| kids[k].split.is_some()).reduce(|a, b| {
+            if kids[b].area > kids[a].area {
+                b
+            } else {
+                a
+            }
+        }) else {
+            break;
+        };
+        let opened = kids.remove(open);
+        let Some((m, l, r)) = opened.split else { unreachable!("an inner child was chosen") };
+        kids.push(kid(items, opened.offset, m, opened.depth + 1, l));
+        kids.push(kid(items, opened.offset + m, opened.len - m, opened.depth + 1, r));
+    }
+    let index = nodes.len();
+    nodes.push(WideNode::new(kids.iter().map(|k| {
+        let link = if k.split.is_some() {
+            Child { start: 0, count: 0 }
+        } else {
+            Child { start: to_u32(base + k.offset), count: to_u32(k.len) }
+        };
+        (k.bounds.min, k.bounds.max, link)
+    })));
+    let fork = FORKS && n >= PARALLEL_MIN && rayon::current_num_threads() > 1;
+    if fork {
+        // Each inner child's items, apart: the children's ranges are disjoint.
+        let mut order: ArrayVec<usize, WIDTH> = (0..kids.len()).collect();
+        order.sort_unstable_by_key(|&k| kids[k].offset);
+        let mut jobs = Vec::new();
+        let (mut rest, mut at) = (&mut *items, 0);
+        for &k in &order {
+            let (_, tail) = std::mem::take(&mut rest).split_at_mut(kids[k].offset - at);
+            let (mine, tail) = tail.split_at_mut(kids[k].len);
+            (rest, at) = (tail, kids[k].offset + kids[k].len);
+            if let Some(split) = kids[k].split.take() {
+                // Reserved on the calling thread, as in `build_into`.
+                let out = Vec::with_capacity(wide_capacity(mine.len()));
+                jobs.push((k, mine, kids[k].depth, base + kids[k].offset, split, out));
+            }
+        }
+        jobs.sort_unstable_by_key(|job| job.0);
+        run_jobs::<V, T>(&mut jobs);
+        let subtrees = jobs.into_iter().map(|(lane, _, _, _, _, out)| (lane, out));
+        for (lane, subtree) in subtrees {
+            let at = to_u32(nodes.len());
+            nodes[index].set_start(lane, at);
+            nodes.extend(subtree.into_iter().map(|mut node| {
+                node.shift(at);
+                node
+            }));
+        }
+    } else {
+        for (lane, k) in kids.into_iter().enumerate() {
+            if let Some(split) = k.split {
+                let at =
+                    wide_into(nodes, &mut items[k.offset..k.offset + k.len], base + k.offset, k.depth, split);
+                nodes[index].set_start(lane, at);
+            }
+        }
+    }
+    to_u32(index)
+}
+
 /// Room on a walk's stack of pending `(link, depth, t_in)`: a walk keeps at most one pending
 /// (farther) child per level below the root, and the depth is at most `BALANCE_DEPTH + 33`.
 const STACK_SIZE: usize = BALANCE_DEPTH as usize + 40;
@@ -188,9 +326,11 @@ const STACK_SIZE: usize = BALANCE_DEPTH as usize + 40;
 impl<V: Dim> Bvh<V> {
     /// Builds the tree over `prims` (their boxes from the scene): more than
     /// [`binned::LARGE`] of them by the compact build of [`super::binned`], fewer (every lesson
-    /// scene) by the exact one.
+    /// scene) by the exact one. With `for_render`, the tree is the one a render walks: with its
+    /// wide copy ([`Bvh::widen`]); a large tree then has the wide nodes alone, built directly
+    /// ([`Bvh::wide_from_items`]), without the binary nodes that only a recorder reads.
     #[must_use]
-    pub fn build(scene: &Scene<V>, prims: Vec<Prim>) -> Self {
+    pub fn build(scene: &Scene<V>, prims: Vec<Prim>, for_render: bool) -> Self {
         let cost = |p: Prim| {
             #[allow(clippy::cast_possible_truncation)] // 0.25 and 1 are exact in f32
             let cost = scene.objects[p.object()].shape.test_cost() as f32;
@@ -198,7 +338,11 @@ impl<V: Dim> Bvh<V> {
         };
         if prims.len() > binned::LARGE {
             if let Some(records) = binned::records(prims.iter().map(|&p| (prim_bounds(scene, p), cost(p)))) {
-                return Self::from_items(prims, records);
+                return if for_render {
+                    Self::wide_from_items(prims, records)
+                } else {
+                    Self::from_items(prims, records)
+                };
             }
         }
         let items = prims
@@ -206,16 +350,24 @@ impl<V: Dim> Bvh<V> {
             .enumerate()
             .map(|(i, &p)| Item { bounds: prim_bounds(scene, p), prim: to_u32(i), cost: cost(p) })
             .collect();
-        Self::from_items(prims, items)
+        let mut tree = Self::from_items(prims, items);
+        if for_render {
+            tree.widen();
+        }
+        tree
     }
 
     /// Builds the tree over primitives with the given boxes (each costing one triangle test),
     /// as [`Bvh::build`] does.
     #[must_use]
-    pub fn from_boxes(prims: Vec<Prim>, boxes: Vec<Aabb<V>>) -> Self {
+    pub fn from_boxes(prims: Vec<Prim>, boxes: Vec<Aabb<V>>, for_render: bool) -> Self {
         if boxes.len() > binned::LARGE {
             if let Some(records) = binned::records(boxes.iter().map(|&b| (b, 1.0))) {
-                return Self::from_items(prims, records);
+                return if for_render {
+                    Self::wide_from_items(prims, records)
+                } else {
+                    Self::from_items(prims, records)
+                };
             }
         }
         let items = boxes
@@ -223,7 +375,39 @@ impl<V: Dim> Bvh<V> {
             .enumerate()
             .map(|(i, bounds)| Item { bounds, prim: to_u32(i), cost: 1.0 })
             .collect();
-        Self::from_items(prims, items)
+        let mut tree = Self::from_items(prims, items);
+        if for_render {
+            tree.widen();
+        }
+        tree
+    }
+
+    /// The render's tree over primitives given as builder records, built straight into wide
+    /// nodes: the very nodes, lanes and primitive order that [`Bvh::from_items`] then
+    /// [`Bvh::widen`] give (every group is split by the same call on the same records; see
+    /// [`wide_into`]), without the binary nodes in between. Such a tree has no binary nodes:
+    /// [`Bvh::walk`] takes the wide walk even for a recorder (no `node_visit` events), and
+    /// [`Bvh::tree`] shows the root alone.
+    fn wide_from_items<T: Split<V>>(prims: Vec<Prim>, mut items: Vec<T>) -> Self {
+        let n = prims.len();
+        if n == 0 {
+            return Self::from_items(prims, items);
+        }
+        let group = T::group(&items);
+        let root_box = T::bounds(&group);
+        let split = if n == 1 { None } else { T::split(&mut items, 0, &group) };
+        let (root, wide) = match split {
+            None => (Link { start: 0, count: to_u32(n), id: 0 }, None),
+            Some(split) => {
+                let mut nodes = Vec::with_capacity(wide_capacity(n));
+                wide_into(&mut nodes, &mut items, 0, 0, split);
+                (Link { start: 0, count: 0, id: 0 }, Some(WideBvh::from_nodes(nodes)))
+            }
+        };
+        let order: Vec<u32> = items.iter().map(T::prim).collect();
+        drop(items);
+        let prims = order.iter().map(|&i| prims[i as usize]).collect();
+        Self { root_box, root, nodes: Vec::new(), prims, wide }
     }
 
     /// Builds the tree over primitives given as builder records (box and index into `prims`).
@@ -270,7 +454,7 @@ impl<V: Dim> Bvh<V> {
     /// ([`WideBvh`]); the binary tree, its numbers and its recorded walk stay as they are. A
     /// tree that is one leaf has no inner node to widen.
     pub fn widen(&mut self) {
-        if self.root.count > 0 || self.prims.is_empty() {
+        if self.root.count > 0 || self.prims.is_empty() || self.wide.is_some() {
             return;
         }
         let nodes = &self.nodes;
@@ -295,7 +479,8 @@ impl<V: Dim> Bvh<V> {
         self.wide.as_ref()
     }
 
-    /// Number of nodes (leaves and inner nodes).
+    /// Number of nodes (leaves and inner nodes) of the binary tree; 1 (the root) for a render's
+    /// tree built without one ([`Bvh::wide_from_items`]).
     #[must_use]
     pub fn node_count(&self) -> usize {
         if self.prims.is_empty() {
@@ -305,12 +490,17 @@ impl<V: Dim> Bvh<V> {
         }
     }
 
-    /// The nodes for drawing, by their `node_visit` number (depth-first order, the root 0).
+    /// The nodes for drawing, by their `node_visit` number (depth-first order, the root 0); the
+    /// root alone, holding every primitive, for a render's tree without binary nodes.
     #[must_use]
     pub fn tree(&self) -> Vec<TreeNode<V>> {
         let mut out = vec![None; self.node_count()];
         if out.is_empty() {
             return Vec::new();
+        }
+        if self.nodes.is_empty() && self.root.count == 0 {
+            let all = self.prims.clone();
+            return vec![TreeNode { bounds: self.root_box, depth: 0, children: Vec::new(), prims: all }];
         }
         let mut stack = vec![(self.root, self.root_box, 0u32)];
         while let Some((link, bounds, depth)) = stack.pop() {
@@ -380,8 +570,9 @@ impl<V: Dim> Bvh<V> {
             return;
         }
         let r = recip.unwrap_or_else(|| RecipRay::new(ray));
-        if !R::ENABLED {
-            if let Some(wide) = &self.wide {
+        if let Some(wide) = &self.wide {
+            // A render's tree without binary nodes is walked wide even when a recorder listens.
+            if !R::ENABLED || self.nodes.is_empty() {
                 wide.walk(&self.prims, &r, visitor, stats, rec);
                 return;
             }
@@ -629,8 +820,8 @@ mod tests {
     fn build_is_deterministic_and_covers_every_primitive_once() {
         let prims: Vec<Prim> = (0..1000).map(|i| Prim { object: i, part: 0 }).collect();
         let boxes: Vec<Aabb<DVec3>> = (0..1000).map(cube).collect();
-        let a = Bvh::from_boxes(prims.clone(), boxes.clone());
-        let b = Bvh::from_boxes(prims, boxes.clone());
+        let a = Bvh::from_boxes(prims.clone(), boxes.clone(), false);
+        let b = Bvh::from_boxes(prims, boxes.clone(), false);
         assert_eq!(a.nodes, b.nodes);
         assert_eq!(a.prims, b.prims);
         assert_sound(&a, &boxes);
@@ -650,14 +841,26 @@ mod tests {
                 Aabb::new(p, p + DVec3::new(0.01, 0.02 / 3.0, 0.1 / 7.0))
             })
             .collect();
-        let build = |threads| {
+        let build = |threads, for_render| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            pool.install(|| Bvh::from_boxes(prims.clone(), boxes.clone()))
+            pool.install(|| Bvh::from_boxes(prims.clone(), boxes.clone(), for_render))
         };
-        let (a, b) = (build(1), build(2));
+        let (mut a, b) = (build(1, false), build(2, false));
         assert_eq!(a.nodes, b.nodes);
         assert_eq!(a.prims, b.prims);
         assert_sound(&a, &boxes);
+        // The render's tree built straight into wide nodes is the binary tree's collapse, node
+        // for node, on any number of threads, and has no binary nodes.
+        a.widen();
+        let collapsed = a.wide().expect("a wide tree");
+        assert!(collapsed.node_count() > 1000, "{} wide nodes", collapsed.node_count());
+        for threads in [1, 2] {
+            let direct = build(threads, true);
+            assert!(direct.nodes.is_empty(), "{threads} threads: no binary node");
+            assert_eq!(direct.wide(), Some(collapsed), "{threads} threads");
+            assert_eq!((direct.root_box, direct.root), (a.root_box, a.root), "{threads} threads");
+            assert_eq!(direct.prims, a.prims, "{threads} threads");
+        }
     }
 
     #[test]
@@ -681,9 +884,9 @@ mod tests {
             }
         };
         let prims = vec![Prim { object: 0, part: 0 }, Prim { object: 1, part: 0 }];
-        let spheres = Bvh::build(&scene("sphere"), prims.clone());
+        let spheres = Bvh::build(&scene("sphere"), prims.clone(), false);
         assert_eq!((spheres.nodes.len(), spheres.root.count), (0, 2), "one leaf of both spheres");
-        let triangles = Bvh::build(&scene("triangle"), prims);
+        let triangles = Bvh::build(&scene("triangle"), prims, false);
         assert_eq!((triangles.nodes.len(), triangles.root.count), (1, 0), "a root over two leaves");
     }
 
@@ -691,7 +894,7 @@ mod tests {
     fn identical_boxes_split_at_the_median() {
         let prims: Vec<Prim> = (0..100).map(|i| Prim { object: i, part: 0 }).collect();
         let boxes = vec![Aabb::new(DVec3::ZERO, DVec3::ONE); 100];
-        let t = Bvh::from_boxes(prims, boxes);
+        let t = Bvh::from_boxes(prims, boxes, false);
         assert!(t.nodes.iter().flat_map(|n| n.links).all(|l| l.count as usize <= MAX_LEAF));
     }
 }

@@ -149,8 +149,23 @@ impl<V: Dim> Accel<V> {
     /// Builds the structure `options` describe over `scene`.
     #[must_use]
     pub fn build_with(scene: &Scene<V>, options: &AccelOptions) -> Self {
+        Self::build_in(scene, options, false)
+    }
+
+    /// Builds the structure `options` describe over `scene` as a render walks it, without a
+    /// recorder: the answers of [`Accel::build_with`] then [`Accel::for_render`], the same wide
+    /// nodes, but a BVH of more than [`binned::LARGE`] primitives is built straight into its
+    /// wide nodes, without the binary tree that only the recorded walk and the figures read (a
+    /// recorder walking it sees no `node_visit` event; `layout` shows its root alone).
+    #[must_use]
+    pub fn build_for_render(scene: &Scene<V>, options: &AccelOptions) -> Self {
+        Self::build_in(scene, options, true)
+    }
+
+    fn build_in(scene: &Scene<V>, options: &AccelOptions, for_render: bool) -> Self {
         let mut unbounded = Vec::new();
-        let mut prims = Vec::new();
+        // Sized once: a million triangles' list grown by doubling copied itself.
+        let mut prims = Vec::with_capacity(scene.objects.iter().map(|o| o.shape.parts()).sum());
         for (index, object) in scene.objects.iter().enumerate() {
             let object_index = u32::try_from(index).expect("fewer than 2^32 objects");
             if object.shape.bounds().is_none() {
@@ -168,7 +183,7 @@ impl<V: Dim> Accel<V> {
         let structure = match options.kind {
             AccelKind::None => Structure::List,
             AccelKind::Bounds => Structure::Bounds(volumes::Volumes::build(scene, &prims, options.volume)),
-            AccelKind::Bvh => Structure::Bvh(bvh::Bvh::build(scene, prims)),
+            AccelKind::Bvh => Structure::Bvh(bvh::Bvh::build(scene, prims, for_render)),
             AccelKind::Grid => Structure::Grid(grid::Grid::build(scene, &prims, options.grid.as_deref())),
             AccelKind::Octree => Structure::Octree(octree::Octree::build(scene, &prims)),
         };
@@ -178,6 +193,7 @@ impl<V: Dim> Accel<V> {
     /// the walk takes when no recorder listens; every answer is the same, bit for bit, and the
     /// recorded walk (the traces' `node_visit` events, the figures) keeps the binary tree. Only
     /// the count of node tests differs (one per child box of a wide node).
+    /// [`Accel::build_for_render`] gives the same wide tree in one step.
     #[must_use]
     pub fn for_render(mut self) -> Self {
         if let Structure::Bvh(b) = &mut self.structure {

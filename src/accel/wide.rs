@@ -5,7 +5,8 @@
 //! **Collapse**: a wide node starts from a binary inner node's two children and, while it has
 //! fewer than [`WIDTH`], replaces its inner child of largest surface by that child's two
 //! children. A leaf is a leaf of the binary tree: a range of the binary tree's primitives, which
-//! are already in leaf order (no copy).
+//! are already in leaf order (no copy). A large scene's render builds the same nodes without the
+//! binary tree ([`super::bvh`]'s `wide_into`, opening children in the same order).
 //!
 //! **Boxes in `f32`, rounded outward**: each child box's `min` is rounded down and its `max` up
 //! (`f32::next_down`, `f32::next_up` where the nearest `f32` falls inside), so the stored box
@@ -61,8 +62,46 @@ pub(crate) struct WideNode {
     len: u32,
 }
 
+impl WideNode {
+    /// The node of the given lanes (at most [`WIDTH`]): each child's box, rounded outward to
+    /// `f32`, and its reference; the lanes left hold the empty box.
+    pub(crate) fn new<V: crate::geom::Vector>(lanes: impl Iterator<Item = (V, V, Child)>) -> Self {
+        let mut wide = WideNode {
+            min: [[f32::INFINITY; WIDTH]; 3],
+            max: [[f32::NEG_INFINITY; WIDTH]; 3],
+            start: [0; WIDTH],
+            count: [0; WIDTH],
+            len: 0,
+        };
+        for (lane, (min, max, link)) in lanes.enumerate() {
+            for axis in 0..V::DIM {
+                wide.min[axis][lane] = down_to_f32(min[axis]);
+                wide.max[axis][lane] = up_to_f32(max[axis]);
+            }
+            wide.start[lane] = link.start;
+            wide.count[lane] = u16::try_from(link.count).expect("a leaf holds at most MAX_LEAF primitives");
+            wide.len += 1;
+        }
+        wide
+    }
+
+    /// Points lane `lane` at inner node `node`.
+    pub(crate) fn set_start(&mut self, lane: usize, node: u32) {
+        self.start[lane] = node;
+    }
+
+    /// Moves every inner child's index by `offset` (a subtree appended at `offset`).
+    pub(crate) fn shift(&mut self, offset: u32) {
+        for lane in 0..self.len as usize {
+            if self.count[lane] == 0 {
+                self.start[lane] += offset;
+            }
+        }
+    }
+}
+
 /// The collapsed tree: node 0 is the root (the binary root's box is tested by the caller).
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct WideBvh {
     nodes: Vec<WideNode>,
 }
@@ -139,23 +178,7 @@ impl WideBvh {
             kids.extend(children(opened.link.start));
         }
         let index = nodes.len();
-        let mut wide = WideNode {
-            min: [[f32::INFINITY; WIDTH]; 3],
-            max: [[f32::NEG_INFINITY; WIDTH]; 3],
-            start: [0; WIDTH],
-            count: [0; WIDTH],
-            len: u32::try_from(kids.len()).unwrap_or(0),
-        };
-        for (lane, kid) in kids.iter().enumerate() {
-            for axis in 0..V::DIM {
-                wide.min[axis][lane] = down_to_f32(kid.min[axis]);
-                wide.max[axis][lane] = up_to_f32(kid.max[axis]);
-            }
-            wide.start[lane] = kid.link.start;
-            wide.count[lane] =
-                u16::try_from(kid.link.count).expect("a leaf holds at most MAX_LEAF primitives");
-        }
-        nodes.push(wide);
+        nodes.push(WideNode::new(kids.iter().map(|kid| (kid.min, kid.max, kid.link))));
         for (lane, kid) in kids.iter().enumerate() {
             if kid.link.count == 0 {
                 let at = Self::collapse_into(nodes, kid.link.start, children);
@@ -163,6 +186,12 @@ impl WideBvh {
             }
         }
         u32::try_from(index).expect("fewer than 2^32 nodes")
+    }
+
+    /// The tree of `nodes`, node 0 its root, made elsewhere in the collapse's order (the
+    /// BVH's direct build, [`super::bvh`]).
+    pub(crate) fn from_nodes(nodes: Vec<WideNode>) -> Self {
+        Self { nodes }
     }
 
     /// Number of wide nodes.

@@ -59,7 +59,7 @@ pub fn run<V: Dim>(scene: &Scene<V>, job: &Job<'_>) -> Result<Outcome, Failure> 
     check_fits(scene, &config, rayon::current_num_threads())
         .map_err(|e| Failure::input(format!("render: {e}")))?;
     let build = Stopwatch::start();
-    let accel = Accel::build_with(scene, job.accel).for_render();
+    let accel = Accel::build_for_render(scene, job.accel);
     let build_seconds = build.seconds();
     let watch = Stopwatch::start();
     let rendered = render(scene, &accel, &config);

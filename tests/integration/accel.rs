@@ -79,13 +79,24 @@ fn assert_agree<V: Dim>(scene: &Scene<V>, rays: &[Ray<V>]) {
         let other = render_centers(scene, &accel, scene.max_depth, None).image;
         assert!(other.pixels == image.pixels, "{options:?}: the image differs");
     }
-    // The render's wide BVH, walked when no recorder listens.
-    let wide = Accel::build(scene, AccelKind::Bvh).for_render();
+    // The render's wide BVH, walked when no recorder listens: collapsed from the binary tree,
+    // and built straight into wide nodes (for large scenes; the collapse for the others).
+    let collapsed = Accel::build(scene, AccelKind::Bvh).for_render();
+    let direct = Accel::build_for_render(scene, &AccelOptions::of(AccelKind::Bvh));
+    assert_eq!(direct.wide_nodes(), collapsed.wide_nodes(), "the same wide tree");
     for (ray, want) in rays.iter().zip(&expected) {
-        assert_eq!(&answers(scene, &wide, ray), want, "the wide BVH on {ray:?}");
+        // A recorder walking the direct build (no binary nodes) takes the wide walk.
+        let found = direct.nearest(scene, ray, &mut Stats::default(), &mut EventLog::new());
+        let found = found.map(|(o, h)| (o.index, o.triangle, h.t.to_bits()));
+        assert_eq!(found, want.0, "the direct wide BVH with a recorder on {ray:?}");
     }
-    let other = render_centers(scene, &wide, scene.max_depth, None).image;
-    assert!(other.pixels == image.pixels, "the wide BVH: the image differs");
+    for wide in [collapsed, direct] {
+        for (ray, want) in rays.iter().zip(&expected) {
+            assert_eq!(&answers(scene, &wide, ray), want, "the wide BVH on {ray:?}");
+        }
+        let other = render_centers(scene, &wide, scene.max_depth, None).image;
+        assert!(other.pixels == image.pixels, "the wide BVH: the image differs");
+    }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -294,7 +294,7 @@ fn band_of<V: Dim>(
             "request.{field}: the image has {len} {field}, got first {first}"
         )));
     }
-    let accel = whitted::accel::Accel::build_with(s, &options.accel.options(V::DIM)?).for_render();
+    let accel = whitted::accel::Accel::build_for_render(s, &options.accel.options(V::DIM)?);
     // File row f is image row j = Ny − 1 − f: the band's rows from the bottom.
     let range = if flat {
         first..first.saturating_add(count)
