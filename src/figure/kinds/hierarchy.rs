@@ -634,7 +634,9 @@ fn name_boxes<V>(
         };
         // The middle first; the other points only for a name that finds no spot there clear of
         // the ray and the objects (a leader across one, or its ink on one).
-        let middle = usize::from(leader_from.first().is_some_and(|(from, _, _)| *from == (lo + hi) * 0.5));
+        let middle = usize::from(
+            leader_from.first().is_some_and(|(from, _, _)| *from == lo + (hi - lo) * LEADER_FROM_SHARES[0]),
+        );
         candidates.extend(leader_from.iter().take(middle).cloned());
         d.with_events(visits[k].iter().copied(), |d| {
             d.text_at_cheapest("node-name", &candidates, &node_name(k), reads_as_another);
