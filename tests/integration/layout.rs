@@ -12,7 +12,7 @@ use whitted::canvas::{Drawing, Item, Mark, PxRect};
 use whitted::figure::clearance::{MIN_CLEARANCE_WIDTHS, NOTE_TAG, TOUCH_PX};
 use whitted::figure::kinds::hierarchy::DENSE_OBJECTS;
 use whitted::figure::plane::Outline;
-use whitted::figure::style::{MIN_NODE_CONTRAST, OBJECT_TAG, RAY_TAG};
+use whitted::figure::style::{MIN_NODE_CONTRAST, OBJECT_TAG, OBJECT_WIDTH, RAY_TAG};
 use whitted::figure::{Lang, Options};
 use whitted::lesson;
 use whitted::request::figure::{figure, Request};
@@ -423,6 +423,41 @@ fn every_box_name_of_a_lesson_hierarchy_reads_as_its_own_box() {
     }
     assert!(names > 40, "only {names} box names");
     assert!(found.is_empty(), "{} box names read as another's:\n{}", found.len(), found.join("\n"));
+}
+
+/// Issue 32 item 1 for the hierarchies' leaders: a box name joined to its box by a leader
+/// (`node-name`, an octree's cell too small for its name) is read along that line, so the line
+/// crosses nothing it could be taken to point at. In every lesson figure, in both languages, no
+/// such leader meets a ray's stroke or an object's outline (its centre line within half the
+/// stroke's width). Before: 4 (octree 1's N₃₄ through triangle d and N₃₆ across the ray, × EN/RO).
+#[test]
+fn no_box_name_s_leader_crosses_a_ray_or_an_object_outline() {
+    let (mut found, mut leaders) = (Vec::new(), 0);
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            let tf = d.transform();
+            let rays = drawn_rays(d);
+            let outlines = drawn_outlines(d);
+            let outline_half = tf.ref_px(OBJECT_WIDTH) / 2.0;
+            for item in d.tagged("node-name") {
+                let Mark::Text(t) = &item.mark else { continue };
+                let Some((a, b)) = Drawing::place_text(t, &tf).leader else { continue };
+                leaders += 1;
+                for (tag, line, width) in &rays {
+                    if Outline::Path(line.clone()).gap(a, b) <= width / 2.0 {
+                        found.push(format!("{name}: {}'s leader crosses {tag}", t.text));
+                    }
+                }
+                for (tag, outline) in &outlines {
+                    if outline.gap(a, b) <= outline_half {
+                        found.push(format!("{name}: {}'s leader crosses {tag}", t.text));
+                    }
+                }
+            }
+        }
+    }
+    assert!(leaders > 0, "no box name has a leader: the rule measures nothing");
+    assert!(found.is_empty(), "{} leaders cross a ray or an outline:\n{}", found.len(), found.join("\n"));
 }
 
 /// Every word a figure prints (labels, legend, title, caption), lower-cased: the runs of letters

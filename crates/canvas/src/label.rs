@@ -126,8 +126,11 @@ pub const NEAR_STEPS: [f64; 4] = [1.0, 2.5, 4.5, 7.0];
 /// area: a name may go to the empty part, with its leader.
 pub const FAR_STEPS: [f64; 6] = [1.0, 2.5, 4.5, 7.0, 10.0, 14.0];
 
+/// A label's leader in pixels: from its anchor to the point just short of its box.
+pub type Leader = (DVec2, DVec2);
+
 /// No cost of the caller's own for any spot (see [`Drawing::place_clear`]).
-fn no_fit(_: &PxRect, _: bool) -> f64 {
+fn no_fit(_: &PxRect, _: Option<Leader>) -> f64 {
     0.0
 }
 
@@ -168,8 +171,9 @@ impl Drawing {
     /// anchor, the options asked there and the rings, in [`RING_GAP`]s, it may move out to)
     /// gives it the cheapest spot: a box's name may stand at any of its corners or at its
     /// middle, the one that leaves it clear of the other labels, the rays and the objects'
-    /// outlines. `fit` adds the caller's own cost of a spot, from its ink box (pixels) and
-    /// whether a leader joins it (a box's name read as another box's). The spots asked come
+    /// outlines. `fit` adds the caller's own cost of a spot, from its ink box and the leader
+    /// that joins it to its anchor, if any (pixels): a box's name read as another box's, a
+    /// leader across a ray. The spots asked come
     /// first: the first of them that costs nothing wins; when none does, the cheapest spot of
     /// any candidate's rings (the first on a tie). The label keeps the anchor it was placed at,
     /// which the layout checks measure it against; [`Drawing::settle_labels`] leaves it where
@@ -179,7 +183,7 @@ impl Drawing {
         tag: &str,
         candidates: &[(DVec2, TextOpts, &[f64])],
         markup: &str,
-        fit: impl Fn(&PxRect, bool) -> f64,
+        fit: impl Fn(&PxRect, Option<Leader>) -> f64,
     ) -> &mut Self {
         let mut best: Option<(f64, Text, TextOpts)> = None;
         // The spots asked, then each candidate's rings.
@@ -593,7 +597,7 @@ impl Drawing {
         label: &mut Text,
         leader: bool,
         steps: &[f64],
-        fit: &dyn Fn(&PxRect, bool) -> f64,
+        fit: &dyn Fn(&PxRect, Option<Leader>) -> f64,
     ) -> f64 {
         let PlacedLegend { transform: tf, plot, .. } = self.placed_legend();
         let segments = self.segments(&tf);
@@ -694,7 +698,7 @@ impl Drawing {
                 + LEADER_CROSSING_COST * leader_over_labels as f64
                 + if not_its_own { OWNER_COST } else { 0.0 }
                 + OUTLINE_COST * outlines as f64
-                + fit(&ink, placed.leader.is_some())
+                + fit(&ink, placed.leader)
         };
         let requested = with_leader(label.clone());
         let mut best = (cost(&requested), requested.offset, requested.align);

@@ -12,8 +12,8 @@ use glam::DVec2;
 use super::Input;
 use crate::accel::{Layout, TreeNode};
 use crate::bounds::aabb::Aabb;
-use crate::canvas::label::{NEAR_STEPS, OWNER_COST};
-use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Pen, PxRect, TextOpts, VAlign, View};
+use crate::canvas::label::{Leader, NEAR_STEPS, OWNER_COST};
+use crate::canvas::{Align, Drawing, HAlign, LegendIcon, Mark, Pen, PxRect, TextOpts, VAlign, View};
 use crate::figure::labels::{self, Label};
 use crate::figure::parts::{self, draw_objects, draw_ray, label_objects};
 use crate::figure::plane::{Outline, PagePlane, Planar};
@@ -118,6 +118,35 @@ const NAME_INSET: DVec2 = DVec2::new(8.0, 6.0);
 /// The ring a box's name may move out to from a corner of its box without a leader: one
 /// [`RING_GAP`](crate::canvas::label::RING_GAP) (a tab just outside the box's edge, well within `LEADER_FROM`).
 const TAB_RING: [f64; 1] = [1.0];
+
+/// Where in its box a box name's leader may start, as shares of the box across and up, in the
+/// order tried (a tie goes to the first): its middle, then, for a name that finds no spot from
+/// there clear of the ray and the objects, the middles of the box's outer ninths, so that a
+/// leader can leave a small cell on either side of the ray through it.
+const LEADER_FROM_SHARES: [DVec2; 9] = [
+    DVec2::new(0.5, 0.5),
+    DVec2::new(1.0 / 6.0, 0.5),
+    DVec2::new(5.0 / 6.0, 0.5),
+    DVec2::new(0.5, 1.0 / 6.0),
+    DVec2::new(0.5, 5.0 / 6.0),
+    DVec2::new(1.0 / 6.0, 1.0 / 6.0),
+    DVec2::new(5.0 / 6.0, 1.0 / 6.0),
+    DVec2::new(1.0 / 6.0, 5.0 / 6.0),
+    DVec2::new(5.0 / 6.0, 5.0 / 6.0),
+];
+/// What a box name's leader costs per ray or object outline it meets: more than a name that
+/// reads as another box's ([`OWNER_COST`]) and lies on a ray
+/// ([`GUARDED_LINE_COST`](crate::canvas::label::GUARDED_LINE_COST)) at once, since a leader
+/// across a line reads as pointing at that line, and the reader follows it.
+const LEADER_ACROSS_COST: f64 = OWNER_COST + crate::canvas::label::GUARDED_LINE_COST;
+/// How far, in reference pixels, a box name's leader keeps from the strokes it must not cross,
+/// beyond their half widths.
+const LEADER_CLEARANCE: f64 = 2.0;
+
+/// How far, in reference pixels, an object's name keeps from where a box name's leader starts:
+/// a ring of label spots ([`RING_GAP`](crate::canvas::label::RING_GAP)), so that the leader
+/// does not read as pointing at the name.
+const LEADER_END_CLEARANCE: f64 = crate::canvas::label::RING_GAP;
 
 /// The entered nodes' colour.
 const ENTERED: Rgba = style::BLUISH_GREEN;
@@ -476,8 +505,56 @@ pub fn draw<V: Planar>(
     }
     let named: Vec<bool> = (0..nodes.len()).map(named).collect();
     let rects: Vec<(DVec2, DVec2)> = nodes.iter().map(drawn).collect();
-    name_boxes(d, &nodes, &named, &rects, &fate, &visits);
-    label_objects(d, scene, &beside, input.lang);
+    // What a box name's leader must not cross, with its stroke's width: the ray and the objects.
+    let ray = Outline::Path(vec![start, end]);
+    let mut strokes = vec![Stroke { outline: ray, width: RayRole::Primary.style().width, object: None }];
+    for (k, o) in scene.objects.iter().enumerate() {
+        let outlines = V::outlines(&o.shape, &plane).into_iter();
+        strokes.extend(outlines.map(|ol| Stroke {
+            outline: ol.outline,
+            width: style::OBJECT_WIDTH,
+            object: Some(k),
+        }));
+    }
+    name_boxes(d, &nodes, &named, &rects, &fate, &visits, &strokes);
+    // The other objects' names around the boxes' names, their leaders across no ray nor other
+    // object where a spot allows (triangle d's name beside the hit, not across the ray); one
+    // that finds no spot clear of the other labels and lines is placed clear as any object's
+    // name, and settled with them.
+    let tf = d.transform();
+    // The boxes' names' leaders, which an object's name must not cover (it would read as the
+    // box's name, at the end of its leader).
+    let leaders: Vec<(DVec2, DVec2)> = d
+        .tagged("node-name")
+        .filter_map(|i| match &i.mark {
+            Mark::Text(t) => Drawing::place_text(t, &tf).leader,
+            _ => None,
+        })
+        .collect();
+    let (clear, beside_end) = (tf.ref_px(LEADER_CLEARANCE), tf.ref_px(LEADER_END_CLEARANCE));
+    for &(o, anchor) in &beside {
+        let others: Vec<&Stroke> = strokes.iter().filter(|s| s.object != Some(o)).collect();
+        let name = markup_escape(&scene.object_label(o, input.lang));
+        let opts = TextOpts::NOTE.color(style::DARK_GREY).avoid_overlap_with_leader();
+        let tag = format!("object-name:{o}");
+        d.text_at_cheapest(&tag, &[(anchor, opts, &NEAR_STEPS)], &name, |ink, leader| {
+            let covered = leaders
+                .iter()
+                .filter(|(a, b)| {
+                    ink.inflate(clear).meets_segment(*a, *b) || ink.inflate(beside_end).contains_point(*a)
+                })
+                .count();
+            leader_across(others.iter().copied(), leader, &tf) + LEADER_ACROSS_COST * covered as f64
+        });
+        let last = d.items.len() - 1;
+        let on_another = d.overlapping_labels().iter().any(|(a, b)| *a == last || *b == last);
+        let on_a_line = d.labels_on_lines(style::RAY_TAG).iter().any(|(a, _)| *a == last)
+            || d.labels_on_outlines(style::OBJECT_TAG).iter().any(|(a, _)| *a == last);
+        if on_another || on_a_line {
+            d.items.pop();
+            label_objects(d, scene, &[(o, anchor)], input.lang);
+        }
+    }
     tree(d, &nodes, &fate, &visits, input, column, &view);
     Ok(())
 }
@@ -488,7 +565,11 @@ pub fn draw<V: Planar>(
 /// nearest named ancestor), or out from its middle joined by a leader. A spot that reads as
 /// another box's name costs as much as one nearer another anchor: across a named box's
 /// outline, or, without a leader, with the innermost named box around it neither its own nor
-/// that ancestor's.
+/// that ancestor's. A leader that meets one of `strokes` (world outlines, with their stroke
+/// widths in reference pixels: the ray, the objects) reads as pointing at what it crosses: it
+/// costs [`LEADER_ACROSS_COST`] per stroke, and the leader may start at any of its box's
+/// [`LEADER_FROM_SHARES`] (beside the ray that runs through a small cell) rather than only at
+/// its middle.
 fn name_boxes<V>(
     d: &mut Drawing,
     nodes: &[TreeNode<V>],
@@ -496,6 +577,7 @@ fn name_boxes<V>(
     rects: &[(DVec2, DVec2)],
     fate: &[Fate],
     visits: &[Vec<usize>],
+    strokes: &[Stroke],
 ) {
     let tf = d.transform();
     let boxes: Vec<PxRect> = rects
@@ -526,31 +608,78 @@ fn name_boxes<V>(
                 (corner, opts.align(Align { h, v }).offset(inset.x, inset.y), tab)
             })
             .collect();
-        // Its middle, unless a smaller named box holds it (a leader from there is that one's).
-        let middle = (lo + hi) * 0.5;
-        let at = tf.to_px(middle);
-        let held = (0..nodes.len())
-            .any(|j| j != k && named[j] && area(&boxes[j]) < area(&boxes[k]) && boxes[j].contains_point(at));
-        if !held {
-            candidates.push((middle, opts.align(Align::CENTER).avoid_overlap_with_leader(), &NEAR_STEPS));
-        }
+        // Its middle and the other points a leader may start from, unless a smaller named box
+        // holds them (a leader from there is that one's).
+        let leader_from: Vec<(DVec2, TextOpts, &[f64])> = LEADER_FROM_SHARES
+            .iter()
+            .map(|share| lo + (hi - lo) * *share)
+            .filter(|from| {
+                let at = tf.to_px(*from);
+                !(0..nodes.len()).any(|j| {
+                    j != k && named[j] && area(&boxes[j]) < area(&boxes[k]) && boxes[j].contains_point(at)
+                })
+            })
+            .map(|from| (from, opts.align(Align::CENTER).avoid_overlap_with_leader(), &NEAR_STEPS[..]))
+            .collect();
         let ancestor = named_ancestor(k);
-        let reads_as_another = |ink: &PxRect, leader: bool| {
+        let reads_as_another = |ink: &PxRect, leader: Option<Leader>| {
+            let across_a_stroke = leader_across(strokes, leader, &tf);
+            let leader = leader.is_some();
             let around = (0..nodes.len()).filter(|j| named[*j] && boxes[*j].contains_rect(ink));
             let innermost = around.min_by(|a, b| area(&boxes[*a]).total_cmp(&area(&boxes[*b])));
             let across = (0..nodes.len())
                 .any(|j| named[j] && boxes[j].overlap(ink) > 0.0 && !boxes[j].contains_rect(ink));
             let own = leader || innermost == Some(k) || innermost == ancestor;
-            if own && !across {
-                0.0
-            } else {
-                OWNER_COST
-            }
+            across_a_stroke + if own && !across { 0.0 } else { OWNER_COST }
         };
+        // The middle first; the other points only for a name that finds no spot there clear of
+        // the ray and the objects (a leader across one, or its ink on one).
+        let middle = usize::from(
+            leader_from.first().is_some_and(|(from, _, _)| *from == lo + (hi - lo) * LEADER_FROM_SHARES[0]),
+        );
+        candidates.extend(leader_from.iter().take(middle).cloned());
         d.with_events(visits[k].iter().copied(), |d| {
             d.text_at_cheapest("node-name", &candidates, &node_name(k), reads_as_another);
+            let last = d.items.len() - 1;
+            let Mark::Text(t) = &d.items[last].mark else { return };
+            let leader = Drawing::place_text(t, &tf).leader;
+            let on_a_line = d.labels_on_lines(style::RAY_TAG).iter().any(|(a, _)| *a == last)
+                || d.labels_on_outlines(style::OBJECT_TAG).iter().any(|(a, _)| *a == last);
+            if on_a_line || leader_across(strokes, leader, &tf) > 0.0 {
+                d.items.pop();
+                candidates.extend(leader_from.iter().skip(middle).cloned());
+                d.text_at_cheapest("node-name", &candidates, &node_name(k), reads_as_another);
+            }
         });
     }
+}
+
+/// A line on the page a box name's leader must not cross: the ray, or an object's outline.
+struct Stroke {
+    /// Where it runs, in world units on the page.
+    outline: Outline,
+    /// Its stroke's width, in reference pixels.
+    width: f64,
+    /// The object it outlines, if any.
+    object: Option<usize>,
+}
+
+/// What a label's `leader` (pixels under `tf`, if it has one) costs for the `strokes` it meets
+/// (its centre line within their half widths and [`LEADER_CLEARANCE`]): [`LEADER_ACROSS_COST`]
+/// each.
+fn leader_across<'a>(
+    strokes: impl IntoIterator<Item = &'a Stroke>,
+    leader: Option<Leader>,
+    tf: &crate::canvas::Transform,
+) -> f64 {
+    let Some((a, b)) = leader else { return 0.0 };
+    let (a, b) = (tf.to_world(a), tf.to_world(b));
+    let per_world = tf.len_px(1.0);
+    let met = strokes
+        .into_iter()
+        .filter(|s| s.outline.gap(a, b) * per_world <= tf.ref_px(s.width / 2.0 + LEADER_CLEARANCE))
+        .count();
+    LEADER_ACROSS_COST * met as f64
 }
 
 /// A pixel box's area.
