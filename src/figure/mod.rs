@@ -203,6 +203,10 @@ pub fn draw<V: Planar>(
     d.guard_lines(style::RAY_TAG);
     // No label may sit on another object's outline (issue 32 item 1).
     d.guard_outlines(style::OBJECT_TAG);
+    // No label may be touched by a mapping arrow's head (issue 32, pixel-uv 2), nor lie on a
+    // normal, even its own point's (issue 32, shadows 1's "I₁").
+    d.guard_strictly(style::MAPPING_TAG);
+    d.guard_strictly(style::NORMAL_TAG);
     let input = kinds::Input { traces, scene, lang: opts.lang };
     let mut drawn = kinds::draw(kind, &input, d)?;
     // What each step lights beyond the kinds' own tags (issue 30 item 3); moves nothing.

@@ -42,6 +42,13 @@ pub const RAY_TAG: &str = "ray:";
 /// The tag prefix of every object's outline (`object:2`): labels keep off the outlines of the
 /// objects they do not name ([`crate::canvas::Drawing::guard_outlines`]).
 pub const OBJECT_TAG: &str = "object:";
+/// The tag of the arrow that maps one panel's point onto another's (pixel-uv's pixel centre →
+/// window point): labels keep off its shaft and its head
+/// ([`crate::canvas::Drawing::guard_strictly`]).
+pub const MAPPING_TAG: &str = "mapping";
+/// The tag of a surface normal drawn from a point: labels keep off it, even the point's own
+/// name ([`crate::canvas::Drawing::guard_strictly`]).
+pub const NORMAL_TAG: &str = "normal";
 
 /// The least contrast against the white page ([`Rgba::contrast_on_white`]) that a tree node's
 /// ring or fill must reach to be seen: 3:1, what WCAG 2.1 (success criterion 1.4.11, "Non-text

@@ -12,7 +12,7 @@ use whitted::canvas::{Drawing, Item, Mark, PxRect};
 use whitted::figure::clearance::{MIN_CLEARANCE_WIDTHS, NOTE_TAG, TOUCH_PX};
 use whitted::figure::kinds::hierarchy::DENSE_OBJECTS;
 use whitted::figure::plane::Outline;
-use whitted::figure::style::{MIN_NODE_CONTRAST, OBJECT_TAG, OBJECT_WIDTH, RAY_TAG};
+use whitted::figure::style::{MAPPING_TAG, MIN_NODE_CONTRAST, NORMAL_TAG, OBJECT_TAG, OBJECT_WIDTH, RAY_TAG};
 use whitted::figure::{Lang, Options};
 use whitted::lesson;
 use whitted::request::figure::{figure, Request};
@@ -89,6 +89,25 @@ fn no_label_of_any_lesson_figure_lies_on_a_ray_it_does_not_name() {
         }
     }
     assert!(found.is_empty(), "{} labels on rays:\n{}", found.len(), found.join("\n"));
+}
+
+/// No label of any lesson figure lies on a mapping arrow (`MAPPING_TAG`, pixel-uv's pixel
+/// centre → window point), shaft or head, nor on a normal (`NORMAL_TAG`), not even a label of
+/// the point it maps or is drawn from (issue 32). Before the rule: mapping arrows 2 (pixel-uv 2's
+/// "(−0.457, 0.334)", touched by the head, EN and RO); normals 2 (shadows 1's "I₁" on its own point's normal, EN and RO).
+#[test]
+fn no_label_of_any_lesson_figure_lies_on_a_mapping_arrow_or_a_normal() {
+    let mut found = Vec::new();
+    for lang in [Lang::En, Lang::Ro] {
+        for (name, d) in lesson_figures(lang) {
+            for tag in [MAPPING_TAG, NORMAL_TAG] {
+                for (label, line) in d.labels_on_strict_lines(tag) {
+                    found.push(format!("{name}: {} on {}", text_of(d, label), d.items[line].tag));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "{} labels on mapping arrows or normals:\n{}", found.len(), found.join("\n"));
 }
 
 /// The least share of the plot area's smaller side that the point of a shadows figure must

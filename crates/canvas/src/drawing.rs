@@ -56,6 +56,9 @@ pub struct Drawing {
     /// The tag prefix of the object outlines a label placed clear keeps off unless it names
     /// the object or its point lies on it ([`Drawing::guard_outlines`]).
     pub outline_guard: Option<String>,
+    /// The tag prefixes of the lines and arrows a label placed clear keeps off even when it
+    /// names them, arrows' heads too ([`Drawing::guard_strictly`]).
+    pub strict_guards: Vec<String>,
     /// How each panel that draws a scene maps the scene's axes onto the world of the drawing
     /// ([`Drawing::record_axes`]), in the order the panels were drawn; empty for a drawing of no
     /// scene (a chart, a tree). Metadata for tests and readers: no back end draws it.
@@ -93,6 +96,7 @@ impl Drawing {
             label_area: None,
             guard: None,
             outline_guard: None,
+            strict_guards: Vec::new(),
             scene_axes: Vec::new(),
             insets: Vec::new(),
             events: Vec::new(),
@@ -159,6 +163,16 @@ impl Drawing {
     /// also [`Drawing::labels_on_outlines`], the check.
     pub fn guard_outlines(&mut self, prefix: &str) -> &mut Self {
         self.outline_guard = Some(prefix.to_owned());
+        self
+    }
+
+    /// Makes the lines and arrows tagged `prefix…` (a mapping between two panels, the normals)
+    /// strictly guarded, in addition to those guarded before: a label placed clear from now on
+    /// keeps off each one, even one it names (the mapping's two ends, the point a normal is
+    /// drawn from), an arrow's head too, at [`GUARDED_LINE_COST`](super::label::GUARDED_LINE_COST)
+    /// a crossing; see also [`Drawing::labels_on_strict_lines`], the check.
+    pub fn guard_strictly(&mut self, prefix: &str) -> &mut Self {
+        self.strict_guards.push(prefix.to_owned());
         self
     }
 

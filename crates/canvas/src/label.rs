@@ -11,7 +11,7 @@ use super::drawing::Drawing;
 /// The text options, beside the items since the display list stores them; here too for the paths
 /// that name them through `label`.
 pub use super::items::{Align, HAlign, VAlign};
-use super::items::{Item, Mark, Placement, Text, TextOpts};
+use super::items::{ArrowPx, Item, Mark, Placement, Text, TextOpts};
 use super::legend::PlacedLegend;
 use super::style::Pen;
 use super::text;
@@ -38,6 +38,9 @@ pub const LEADER_CROSSING_COST: f64 = 20.0;
 /// reference pixels ([`Drawing::labels_on_lines`]): a stroke that only grazes a corner leaves
 /// every glyph readable, one that runs through the box hides part of a glyph.
 pub const MIN_CROSSING: f64 = 4.0;
+/// How near a guarded arrow's head may come to a label's ink box, in reference pixels
+/// ([`Drawing::labels_on_strict_lines`]): the spacing a label placed clear keeps from what it avoids.
+pub const HEAD_CLEARANCE: f64 = 4.0;
 /// What a candidate spot costs per guarded line ([`Drawing::guard_lines`], a figure's rays) it
 /// crosses and does not name: more than moving to the farthest ring and crossing a few plain
 /// lines, less than covering most of another label, so a name leaves a ray it would hide a part
@@ -373,6 +376,49 @@ impl Drawing {
         out
     }
 
+    /// The pairs `(label, line)`, as indices into `items`, of a text item whose ink box (see
+    /// [`Drawing::overlapping_labels`]) lies on a line or arrow tagged `prefix…` (strictly
+    /// guarded, [`Drawing::guard_strictly`]), even one whose events it draws: on its shaft as in [`Drawing::labels_on_lines`], or on
+    /// its head anywhere or within [`HEAD_CLEARANCE`] (a head touching a label reads as
+    /// pointing at the label, not at the point it maps). Empty for a legible layout.
+    #[must_use]
+    pub fn labels_on_strict_lines(&self, prefix: &str) -> Vec<(usize, usize)> {
+        let tf = self.frame().transform;
+        let boxes = self.ink_boxes(&tf);
+        let mut out = Vec::new();
+        for (j, arrow) in self.items.iter().enumerate() {
+            if !Self::guarded(arrow, prefix) {
+                continue;
+            }
+            let (mut shaft, mut head) = (Vec::new(), Vec::new());
+            Self::item_segments(arrow, &tf, &mut shaft);
+            Self::head_segments(arrow, &tf, &mut head);
+            let half = tf.ref_px(arrow.pen.width) / 2.0;
+            for (i, b) in &boxes {
+                let stroke = b.inflate(half);
+                let along: f64 = shaft.iter().map(|(p, q)| stroke.length_inside(*p, *q)).sum();
+                let near = b.inflate(tf.ref_px(HEAD_CLEARANCE));
+                let on_head = head.iter().any(|(p, q)| near.meets_segment(*p, *q));
+                if along > tf.ref_px(MIN_CROSSING) || on_head {
+                    out.push((*i, j));
+                }
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// The pixel edges of the head of `item` when it is an arrow (its closed quadrilateral,
+    /// [`ArrowPx`]); nothing for any other mark.
+    fn head_segments(item: &Item, tf: &Transform, out: &mut Vec<(DVec2, DVec2)>) {
+        if let Mark::Arrow { from, to, head } = &item.mark {
+            if let Some(arrow) = ArrowPx::new(tf.to_px(*from), tf.to_px(*to), tf.ref_px(*head)) {
+                let h = arrow.head;
+                out.extend((0..h.len()).map(|k| (h[k], h[(k + 1) % h.len()])));
+            }
+        }
+    }
+
     /// The pairs `(label, rival)`, as indices into `items`, of a text item whose ink box (see
     /// [`Drawing::overlapping_labels`]) reads as the name of the anchor of `rival` — another
     /// text item of its kind ([`label_kind`]) anchored elsewhere (farther than [`SAME_ANCHOR`]):
@@ -531,7 +577,11 @@ impl Drawing {
             .guard
             .as_ref()
             .is_some_and(|guard| self.labels_on_lines(guard).iter().any(|(i, _)| *i == index));
-        on_outline || on_line || self.rival(&self.items[index].tag, label, index, tf).is_some()
+        let on_arrow = self
+            .strict_guards
+            .iter()
+            .any(|prefix| self.labels_on_strict_lines(prefix).iter().any(|(i, _)| *i == index));
+        on_outline || on_line || on_arrow || self.rival(&self.items[index].tag, label, index, tf).is_some()
     }
 
     /// Places again every label placed clear ([`TextOpts::avoid_overlap`]) that, now that every
@@ -634,6 +684,13 @@ impl Drawing {
             let unnamed = |item: &&Item| Self::guarded(item, guard) && !Self::names(&self.events, item);
             for item in self.items.iter().filter(unnamed) {
                 Self::item_segments(item, &tf, &mut guarded);
+            }
+        }
+        // The strictly guarded lines, arrows' heads too: even those a label names.
+        for prefix in &self.strict_guards {
+            for item in self.items.iter().filter(|item| Self::guarded(item, prefix)) {
+                Self::item_segments(item, &tf, &mut guarded);
+                Self::head_segments(item, &tf, &mut guarded);
             }
         }
         let mut boxes = self.text_boxes(&tf);

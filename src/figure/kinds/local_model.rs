@@ -136,7 +136,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
         }
     };
     d.with_events(hit_ev.clone(), |d| {
-        d.arrow("normal", i, i + DVec2::Y * len, style::normal());
+        d.arrow(style::NORMAL_TAG, i, i + DVec2::Y * len, style::normal());
     });
     d.with_events(view_ev.clone(), |d| {
         d.arrow(view_role.tag(), i, i + unit(view_dir) * len, view_role.style());

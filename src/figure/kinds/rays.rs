@@ -199,7 +199,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
             if let Some(dir) = plane.dir(facing).try_normalize() {
                 if let Some((a, b)) = panel.segment(at, at + dir * normal_len) {
                     d.with_events(log.ended_by(node), |d| {
-                        d.segment("normal", a, b, style::normal());
+                        d.segment(style::NORMAL_TAG, a, b, style::normal());
                     });
                 }
             }

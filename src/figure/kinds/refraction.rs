@@ -211,7 +211,7 @@ fn panel<V: Planar>(
     let (surface, normal) = (DVec2::new(SURFACE_HALF, 0.0), DVec2::new(0.0, NORMAL_HALF));
     // Written out rather than negated, so that no −0 enters the coordinates.
     d.segment("surface", at(DVec2::new(-SURFACE_HALF, 0.0)), at(surface), style::object());
-    d.segment("normal", at(DVec2::new(0.0, -NORMAL_HALF)), at(normal), style::normal());
+    d.segment(style::NORMAL_TAG, at(DVec2::new(0.0, -NORMAL_HALF)), at(normal), style::normal());
 
     let page = |v: V| plane.dir(v);
     let incident = page(c.d);

@@ -161,7 +161,7 @@ pub fn draw<V: Planar>(input: &Input<'_, V>, d: &mut Drawing) -> Result<(), Figu
     let normal_len = 0.2 * view.height();
     if let Some(dir) = plane.dir(n_f).try_normalize() {
         d.with_events(hit_ev.clone(), |d| {
-            d.segment("normal", i, i + dir * normal_len, style::normal());
+            d.segment(style::NORMAL_TAG, i, i + dir * normal_len, style::normal());
             label(d, i + dir * normal_len, "N");
         });
     }

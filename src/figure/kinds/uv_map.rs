@@ -170,7 +170,7 @@ fn two_panels<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>,
         d.rect("pixel", to_window(u0, v0), to_window(u1, v1), style::outline(style::BLACK), hl);
         d.marker("pixel-ring", centre, 22.0, style::HIGHLIGHT.with_alpha(0.0), ring);
         d.marker("uv-ring", uv, 22.0, style::HIGHLIGHT.with_alpha(0.0), ring);
-        d.arrow("mapping", centre, uv, style::normal());
+        d.arrow(style::MAPPING_TAG, centre, uv, style::normal());
         d.dot("pixel-centre", centre, style::HIT);
         d.dot("uv", uv, style::HIT);
     });
@@ -300,7 +300,7 @@ fn one_row<V: Planar>(input: &Input<'_, V>, d: &mut Drawing, cam: &Camera<V>, m:
             Some(style::HIGHLIGHT),
         );
         d.segment("pixel", a, b, Pen::solid(style::HIGHLIGHT, style::OBJECT_WIDTH * 3.0));
-        d.arrow("mapping", centre, u, style::normal());
+        d.arrow(style::MAPPING_TAG, centre, u, style::normal());
         d.dot("pixel-centre", centre, style::HIT);
         d.dot("uv", u, style::HIT);
     });
