@@ -350,7 +350,7 @@ fn every_citation_of_another_figure_is_declared_and_true() {
             Fact::SameTrace => same_scene && same_pixel && at.depth == cited.depth,
             Fact::PixelHit(i, object) => {
                 let traced = pixel(cited);
-                let hit = traced.as_ref().map(|p| first_hit(&dir, cited, p));
+                let hit = traced.as_ref().map(|p| first_hit(cited, p));
                 let ok = traced.as_deref() == Some(&[i][..]) && hit.as_deref() == Some(object);
                 if !ok {
                     wrong.push(format!(
@@ -377,21 +377,8 @@ fn every_citation_of_another_figure_is_declared_and_true() {
 
 /// The English name of the object that pixel `pixel` of figure `spec`'s scene hits first, as
 /// `whitted trace --json` says it (`tree.hit.object`).
-fn first_hit(dir: &Path, spec: &FigureSpec, pixel: &[usize]) -> String {
-    use whitted::request::trace::Trace;
-    let scene = load_str(&std::fs::read_to_string(dir.join(&spec.scene)).unwrap()).unwrap();
-    let signed = |k: usize| i64::try_from(k).unwrap();
-    let trace = Trace {
-        target: whitted::request::target::Target {
-            pixel: Some((signed(pixel[0]), pixel.get(1).copied().map(signed))),
-            ray: None,
-        },
-        depth: spec.depth,
-        sampling: whitted::sample::Sampling::Center,
-        accel: whitted::request::options::AccelChoice::default(),
-        max_events: whitted::record::DEFAULT_LIMIT,
-    };
-    let doc = trace.document(&scene).unwrap_or_else(|e| panic!("{}", e.message));
+fn first_hit(spec: &FigureSpec, pixel: &[usize]) -> String {
+    let doc = crate::support::lesson_trace(spec, pixel);
     doc["tree"]["hit"]["object"].as_str().unwrap_or("nothing").to_owned()
 }
 

@@ -1519,20 +1519,7 @@ fn every_object_a_lesson_figure_shows_is_named() {
 /// The hit points of pixel `pixel` of figure `spec`'s scene, as `whitted trace --json` records
 /// them (every `hit.point` of its ray tree), 2D.
 fn traced_hits(spec: &lesson::FigureSpec, pixel: usize) -> Vec<DVec2> {
-    use whitted::request::trace::Trace;
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
-    let scene = load_str(&std::fs::read_to_string(dir.join(&spec.scene)).unwrap()).unwrap();
-    let trace = Trace {
-        target: whitted::request::target::Target {
-            pixel: Some((i64::try_from(pixel).unwrap(), None)),
-            ray: None,
-        },
-        depth: spec.depth,
-        sampling: whitted::sample::Sampling::Center,
-        accel: whitted::request::options::AccelChoice::default(),
-        max_events: whitted::record::DEFAULT_LIMIT,
-    };
-    let doc = trace.document(&scene).unwrap_or_else(|e| panic!("{}", e.message));
+    let doc = crate::support::lesson_trace(spec, &[pixel]);
     fn walk(node: &serde_json::Value, out: &mut Vec<DVec2>) {
         if let Some(p) = node["hit"]["point"].as_array() {
             out.push(DVec2::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap()));

@@ -263,3 +263,24 @@ pub fn lesson_files() -> Vec<(PathBuf, String)> {
     paths.sort();
     paths.into_iter().map(|p| (p.clone(), std::fs::read_to_string(&p).unwrap())).collect()
 }
+
+/// The trace document (`whitted trace --json`) of pixel `pixel` (`[i]` in 2D, `[i, j]` in 3D) of
+/// a lesson figure's scene (`lessons/` + `spec.scene`), at the figure's depth, one sample at the
+/// pixel's centre.
+pub fn lesson_trace(spec: &whitted::lesson::FigureSpec, pixel: &[usize]) -> Value {
+    use whitted::request::trace::Trace;
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+    let scene = load_str(&std::fs::read_to_string(dir.join(&spec.scene)).unwrap()).unwrap();
+    let signed = |k: usize| i64::try_from(k).unwrap();
+    let trace = Trace {
+        target: whitted::request::target::Target {
+            pixel: Some((signed(pixel[0]), pixel.get(1).copied().map(signed))),
+            ray: None,
+        },
+        depth: spec.depth,
+        sampling: whitted::sample::Sampling::Center,
+        accel: whitted::request::options::AccelChoice::default(),
+        max_events: whitted::record::DEFAULT_LIMIT,
+    };
+    trace.document(&scene).unwrap_or_else(|e| panic!("{}", e.message))
+}
