@@ -21,7 +21,7 @@
 //! A tree that is one leaf (a small scene) is visited without the stack.
 
 use super::binned;
-use super::wide::{Binary, Child, WideBvh, WideNode, WIDTH};
+use super::wide::{to_open, Binary, Child, WideBvh, WideNode, WIDTH};
 use super::{beyond, node_skip, node_visit, prim_bounds, Prim, TreeNode, Visitor};
 use crate::bounds::aabb::Aabb;
 use crate::geom::ray::Ray;
@@ -256,13 +256,7 @@ fn wide_into<V: Vector, T: Split<V>>(
     kids.push(kid(items, 0, mid, depth + 1, left));
     kids.push(kid(items, mid, n - mid, depth + 1, right));
     while kids.len() < WIDTH {
-        let Some(open) = (0..kids.len()).filter(|&k| kids[k].split.is_some()).reduce(|a, b| {
-            if kids[b].area > kids[a].area {
-                b
-            } else {
-                a
-            }
-        }) else {
+        let Some(open) = to_open(kids.iter().map(|k| (k.split.is_some(), k.area))) else {
             break;
         };
         let opened = kids.remove(open);

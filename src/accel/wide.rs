@@ -100,6 +100,16 @@ impl WideNode {
     }
 }
 
+/// Which child a wide node opens next, of its children given as `(inner, area)`: the inner
+/// child of largest surface, the first on a tie; `None` when every child is a leaf. The collapse
+/// and the BVH's direct build both open by this rule, so they make the same nodes.
+pub(crate) fn to_open(kids: impl Iterator<Item = (bool, f64)>) -> Option<usize> {
+    kids.enumerate()
+        .filter(|(_, (inner, _))| *inner)
+        .reduce(|a, b| if b.1 .1 > a.1 .1 { b } else { a })
+        .map(|(k, _)| k)
+}
+
 /// The collapsed tree: node 0 is the root (the binary root's box is tested by the caller).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct WideBvh {
@@ -164,14 +174,7 @@ impl WideBvh {
     ) -> u32 {
         let mut kids: ArrayVec<Binary<V>, WIDTH> = children(node).into_iter().collect();
         while kids.len() < WIDTH {
-            // Open the inner child of largest surface (the first on a tie).
-            let Some(open) = (0..kids.len()).filter(|&k| kids[k].link.count == 0).reduce(|a, b| {
-                if kids[b].area > kids[a].area {
-                    b
-                } else {
-                    a
-                }
-            }) else {
+            let Some(open) = to_open(kids.iter().map(|k| (k.link.count == 0, k.area))) else {
                 break;
             };
             let opened = kids.remove(open);

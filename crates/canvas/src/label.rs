@@ -351,29 +351,7 @@ impl Drawing {
     /// Empty for a legible layout.
     #[must_use]
     pub fn labels_on_lines(&self, guard: &str) -> Vec<(usize, usize)> {
-        let tf = self.frame().transform;
-        let boxes = self.ink_boxes(&tf);
-        let mut out = Vec::new();
-        for (j, line) in self.items.iter().enumerate() {
-            if !Self::guarded(line, guard) {
-                continue;
-            }
-            let mut segments = Vec::new();
-            Self::item_segments(line, &tf, &mut segments);
-            let half = tf.ref_px(line.pen.width) / 2.0;
-            for (i, b) in &boxes {
-                if Self::names(&self.items[*i].events, line) {
-                    continue;
-                }
-                let stroke = b.inflate(half);
-                let inside: f64 = segments.iter().map(|(p, q)| stroke.length_inside(*p, *q)).sum();
-                if inside > tf.ref_px(MIN_CROSSING) {
-                    out.push((*i, j));
-                }
-            }
-        }
-        out.sort_unstable();
-        out
+        self.labels_on(guard, false)
     }
 
     /// The pairs `(label, line)`, as indices into `items`, of a text item whose ink box (see
@@ -383,18 +361,30 @@ impl Drawing {
     /// pointing at the label, not at the point it maps). Empty for a legible layout.
     #[must_use]
     pub fn labels_on_strict_lines(&self, prefix: &str) -> Vec<(usize, usize)> {
+        self.labels_on(prefix, true)
+    }
+
+    /// The pairs `(label, line)` of a text item whose ink box lies on a line tagged `prefix…`:
+    /// its stroke crosses the box over more than [`MIN_CROSSING`]; with `strict`, also a label
+    /// that names the line, and one its arrow head meets within [`HEAD_CLEARANCE`].
+    fn labels_on(&self, prefix: &str, strict: bool) -> Vec<(usize, usize)> {
         let tf = self.frame().transform;
         let boxes = self.ink_boxes(&tf);
         let mut out = Vec::new();
-        for (j, arrow) in self.items.iter().enumerate() {
-            if !Self::guarded(arrow, prefix) {
+        for (j, line) in self.items.iter().enumerate() {
+            if !Self::guarded(line, prefix) {
                 continue;
             }
             let (mut shaft, mut head) = (Vec::new(), Vec::new());
-            Self::item_segments(arrow, &tf, &mut shaft);
-            Self::head_segments(arrow, &tf, &mut head);
-            let half = tf.ref_px(arrow.pen.width) / 2.0;
+            Self::item_segments(line, &tf, &mut shaft);
+            if strict {
+                Self::head_segments(line, &tf, &mut head);
+            }
+            let half = tf.ref_px(line.pen.width) / 2.0;
             for (i, b) in &boxes {
+                if !strict && Self::names(&self.items[*i].events, line) {
+                    continue;
+                }
                 let stroke = b.inflate(half);
                 let along: f64 = shaft.iter().map(|(p, q)| stroke.length_inside(*p, *q)).sum();
                 let near = b.inflate(tf.ref_px(HEAD_CLEARANCE));
