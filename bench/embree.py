@@ -38,8 +38,15 @@ counts the pixels whose class differs. f32 against f64 arithmetic and Embree's l
 a few on a silhouette, a terminator or a grazing shadow segment; a run fails when a ray count or
 the differing pixels exceed MISMATCH_TOLERANCE.
 
-Each round runs whitted (`render --threads 1 --json`) and this script's Embree child, one after the
-other in one command, each its own process (its peak RSS its own, from bench/peak_rss.c), pinned to
+A third peer answers the same way: whitted's own search through examples/queries.rs, a query
+server that speaks the harness's batch protocol, loads the scene with whitted's loader and answers
+each ray with `Accel::nearest` / `Accel::occluders` over the structure a render builds. Its rays
+are made by the same rules from its own hits, and only its queries are timed: its ns per ray is
+Embree's measure, where whitted's render figure also holds the camera, the shading and the image
+(`--no-queries` leaves it out; the script builds it with `cargo build --release --example queries`).
+
+Each round runs whitted (`render --threads 1 --json`), this script's Embree child and the query
+server's child, one after the other in one command, each its own process (its peak RSS its own, from bench/peak_rss.c), pinned to
 the same single CPU (Embree's build would otherwise use every core through TBB; whitted's build
 runs in its one-thread pool; the harness also asks Embree for `threads=1`). The tables show the
 medians of the rounds, the ratios of each round (whitted / Embree) as median [min–max], and the
@@ -48,7 +55,8 @@ load average of the machine.
     ns/ray    whitted: trace seconds / (primary + reflected + shadow rays), its whole render
               (sampling, shading, the image); Embree: (primary + reflected + shadow query seconds)
               / the same rays, the queries alone — so the ratio is an upper bound on the
-              traversal's gap
+              traversal's gap; whitted's queries: as Embree's, the queries alone (a second table,
+              by kind of ray)
     build s   whitted: `build_seconds` (the BVH over the loaded scene); Embree: `rtcCommitScene`
               (its default BVH build); embreex: timed around the first query, of one ray (the
               binding's copy of the arrays into Embree's buffers, `upload_s`, is kept apart)
@@ -93,6 +101,8 @@ EMBREE_OFFSET = 1e-4
 # the larger offset flip a few hundred pixels of 307 200 (under 0.1 %); a wrong ray rule or camera
 # flips thousands.
 MISMATCH_TOLERANCE = 2e-3
+# The child's peer name for whitted's query server, followed by the server's path.
+QUERIES_PEER = "queries="
 # A pixel's class, as both sides tell it.
 BACKGROUND, AMBIENT, LIT, MIRROR = 0, 1, 2, 3
 
@@ -341,6 +351,21 @@ class Harness:
         self.proc.wait()
 
 
+class Queries(Harness):
+    """whitted's search alone through examples/queries.rs: the harness's batches, answered by
+    `Accel::nearest` and `Accel::occluders` over the structure a render builds. The server loads
+    the scene file itself (whitted's loader), so nothing is uploaded; its protocol is in the
+    example's header comment."""
+
+    def __init__(self, scene_path, binary):
+        self.proc = subprocess.Popen([binary, scene_path], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+        self.build_s, self.embree_mb, _ = struct.unpack("<3d", self._receive(24))
+        self.embree_mb = None
+        self.name = "whitted's queries (examples/queries.rs)"
+        self.upload_s = None
+        self.peak_mb = None
+
+
 def offset_origins(point, facing):
     """I moved off the surface along N_f by EMBREE_OFFSET · max(‖I‖∞, 1)."""
     import numpy as np
@@ -425,7 +450,12 @@ def child(scene_path, classes_out, peer_name):
     t0 = time.perf_counter()
     geom = scene_geometry(scene, scene_path)
     load_s = time.perf_counter() - t0
-    peer = Embreex(geom) if peer_name == "embreex" else Harness(geom, peer_name)
+    if peer_name == "embreex":
+        peer = Embreex(geom)
+    elif peer_name.startswith(QUERIES_PEER):
+        peer = Queries(scene_path, peer_name[len(QUERIES_PEER):])
+    else:
+        peer = Harness(geom, peer_name)
     figures, classes, prim = trace(peer, geom, scene)
     peer.close()
     classes.tofile(classes_out)
@@ -445,6 +475,14 @@ def compiled(program):
     if subprocess.run(cmd).returncode != 0:
         sys.exit("embree.py: %s did not compile%s" % (source, " (apt-get install libembree-dev: Embree 3)" if libs else ""))
     return binary
+
+
+def queries_server():
+    """target/release/examples/queries, built by cargo (a no-op when it is up to date); its path."""
+    cmd = ["cargo", "build", "--release", "--quiet", "--example", "queries"]
+    if subprocess.run(cmd, cwd=REPO).returncode != 0:
+        sys.exit("embree.py: %s failed" % " ".join(cmd))
+    return os.path.join(REPO, "target", "release", "examples", "queries")
 
 
 # ----------------------------------------------------------------------------------------------
@@ -557,6 +595,8 @@ def main():
     ap.add_argument("--mesh-peer", choices=["embreex", "harness"], default="embreex",
                     help="the meshes through embreex (Embree 4, the default) or the C harness (Embree 3); "
                          "spheres always go through the harness")
+    ap.add_argument("--no-queries", action="store_true",
+                    help="skip the third child, whitted's queries alone (examples/queries.rs)")
     ap.add_argument("--results", default=runpy.RESULTS, help="folder of the results file")
     ap.add_argument("--timeout", type=float, default=600)
     ap.add_argument("--povray-dir", help="folder of gen_mesh.py, when the meshes must be generated (see run.py)")
@@ -580,6 +620,7 @@ def main():
     runpy.ensure_scene_files([(s, s + ".json", []) for s in scenes], False, args.povray_dir)
     os.makedirs(WORK, exist_ok=True)
     peers = {s: compiled(HARNESS) if p == "harness" else p for s, p in peers.items()}
+    server = None if args.no_queries else queries_server()
     load_start = os.getloadavg()
     results = {"machine": runpy.machine_info(binaries[0], None, load_start), "cpu": cpu, "binaries": binaries,
                "runs": args.runs, "embree_offset": EMBREE_OFFSET, "scenes": []}
@@ -608,11 +649,21 @@ def main():
             e_s = e["primary_s"] + e["reflected_s"] + e["shadow_s"]
             # The harness's own peak when it answered (a C process); embreex's is the Python child's.
             er = dict(e, peak_mb=e["peer_peak_mb"] or rss, child_peak_mb=rss, wall_s=wall, ns_per_ray=1e9 * e_s / e_rays)
-            rounds.append({"whitted": sides, "embree": er})
+            one = {"whitted": sides, "embree": er}
+            if server:
+                q_cmd = [sys.executable, os.path.abspath(__file__), "--child", scene_path, classes + ".queries",
+                         QUERIES_PEER + server]
+                out, wall, rss = measured(q_cmd, cpu, args.timeout)
+                q = json.loads(out)
+                q_rays = q["primary"] + q["reflected"] + q["shadow"]
+                one["queries"] = dict(q, peak_mb=q["peer_peak_mb"], wall_s=wall,
+                                      ns_per_ray=1e9 * (q["primary_s"] + q["reflected_s"] + q["shadow_s"]) / q_rays)
+            rounds.append(one)
             runpy.log("%-11s round %d: %s | Embree %.0f ns/ray, build %.3f s, %.0f MB" % (
                 name, k + 1, " | ".join("whitted%d %.0f ns/ray, build %.3f s, %.0f MB"
                                         % (i, w["ns_per_ray"], w["build_s"], w["peak_mb"]) for i, w in enumerate(sides)),
-                er["ns_per_ray"], er["build_s"], er["peak_mb"]))
+                er["ns_per_ray"], er["build_s"], er["peak_mb"])
+                + (" | whitted's queries %.0f ns/ray" % one["queries"]["ns_per_ray"] if server else ""))
         # Same rays? Counts from the last round (every round traces the same rays).
         w, e = rounds[-1]["whitted"][0], rounds[-1]["embree"]
         with open(classes, "rb") as fh:
@@ -626,6 +677,12 @@ def main():
             with open(png, "rb") as fh:
                 images.append(fh.read())
         check = compare_rays(w, e, mine, theirs, len(mine))
+        if server:
+            # The query server's rays against Embree's: made by the same rules from its own hits.
+            q = rounds[-1]["queries"]
+            check["queries"] = {k: [q[k], e[k]] for k in ("primary", "reflected", "shadow", "hits", "occluded")}
+            check["beyond_tolerance"] += ["queries' " + k for k, (a, b) in check["queries"].items()
+                                          if abs(a - b) > MISMATCH_TOLERANCE * max(a, b, 1)]
         check.update({
             "same_png_bytes": all(img == images[0] for img in images),
             "same_rays": all(x["rays"] == w["rays"] for x in rounds[-1]["whitted"]),
@@ -679,6 +736,29 @@ def table(results):
                 s["scene"], name.split(" ")[0], w("ns_per_ray"), e("ns_per_ray"), ratio("ns_per_ray"),
                 w("build_s"), e("build_s"), ratio("build_s"),
                 w("peak_mb"), e("peak_mb"), e("embree_mb"), ratio("peak_mb")))
+    with_queries = [s for s in results["scenes"] if all("queries" in x for x in s["rounds"])]
+    if with_queries:
+        lines += ["", "whitted's search alone against Embree's (examples/queries.rs: the rays made by the same rules "
+                  "from its own hits, timed around `Accel::nearest` and `Accel::occluders` alone, as the harness "
+                  "times Embree's queries; medians, ratios per round):", "",
+                  "| scene | whitted queries ns/ray (primary / reflected / shadow) | Embree ns/ray (primary / "
+                  "reflected / shadow) | ratio | whitted render ns/ray | queries / render | rays, queries / Embree "
+                  "(primary, reflected, shadow) |",
+                  "|---|---:|---:|---:|---:|---:|---|"]
+        for s in with_queries:
+            r = s["rounds"]
+            q = lambda key: statistics.median(x["queries"][key] for x in r)
+            e = lambda key: statistics.median(x["embree"][key] for x in r)
+            kinds = lambda f, side: " / ".join(
+                "%.0f" % (1e9 * f(k + "_s") / side[k]) if side[k] else "—" for k in ("primary", "reflected", "shadow"))
+            last_q, last_e = r[-1]["queries"], r[-1]["embree"]
+            lines.append("| %s | %.0f (%s) | %.0f (%s) | %s | %.0f | %s | %d / %d, %d / %d, %d / %d |" % (
+                s["scene"], q("ns_per_ray"), kinds(q, last_q), e("ns_per_ray"), kinds(e, last_e),
+                spread([x["queries"]["ns_per_ray"] / x["embree"]["ns_per_ray"] for x in r]),
+                statistics.median(x["whitted"][0]["ns_per_ray"] for x in r),
+                spread([x["queries"]["ns_per_ray"] / x["whitted"][0]["ns_per_ray"] for x in r]),
+                last_q["primary"], last_e["primary"], last_q["reflected"], last_e["reflected"],
+                last_q["shadow"], last_e["shadow"]))
     if len(names) > 1:
         lines += ["", "Each binary against the first, per round (time ratio = first / this, > 1 faster), median [min–max]:", ""]
         for s in results["scenes"]:

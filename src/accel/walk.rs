@@ -24,6 +24,10 @@ use std::cell::RefCell;
 
 /// How an acceleration structure hands primitives to the question being answered.
 pub trait Visitor<V: Dim> {
+    /// Whether the answer gains from meeting primitives nearest first: true when a hit found
+    /// shrinks [`Visitor::bound`] (the nearest hit), false when the bound never moves (a shadow
+    /// segment, which any occluder ends). A walk may then take the children in any order.
+    const NEAREST_FIRST: bool = true;
     /// Hits at `t` beyond this cannot change the answer: a structure may skip what lies beyond.
     fn bound(&self) -> f64;
     /// Tests a primitive; true when the search is over.
@@ -169,6 +173,9 @@ pub struct Shadow<'a, V: Dim> {
 }
 
 impl<V: Dim> Visitor<V> for Shadow<'_, V> {
+    // The bound is d_L throughout, and the answer (an opaque occluder, else the set of
+    // transparent ones) does not depend on the order of the visits.
+    const NEAREST_FIRST: bool = false;
     #[inline]
     fn bound(&self) -> f64 {
         self.d_l

@@ -246,7 +246,8 @@ impl WideBvh {
     /// Front-to-back walk from the root, whose box the ray met at `root_t_in` (not beyond the
     /// visitor's bound), handing every leaf's primitives (of `prims`, the binary tree's) to the
     /// visitor; `r` is the ray. The nearest hit child of a node is walked next without going
-    /// through the stack.
+    /// through the stack. A visitor without [`Visitor::NEAREST_FIRST`] gets the children in
+    /// lane order instead (any-hit): same answer, no sorting.
     pub(crate) fn walk<V: Dim, R: Recorder<V>, W: Visitor<V>>(
         &self,
         prims: &[Prim],
@@ -268,7 +269,9 @@ impl WideBvh {
                 stats.tests.node += u64::from(node.len);
                 let (t_in, t_out) = Self::intervals(node, r);
                 let bound = visitor.bound();
-                // The hit lanes, farthest entry first (an insertion sort of at most WIDTH).
+                // The hit lanes, farthest entry first (an insertion sort of at most WIDTH); for a
+                // visitor that gains nothing from the order (a shadow segment), in lane order,
+                // as Embree's any-hit walk takes them.
                 let mut hit_t = [0.0; WIDTH];
                 let mut hit_c = [Child::default(); WIDTH];
                 let mut n = 0;
@@ -276,7 +279,7 @@ impl WideBvh {
                     let t = t_in[lane];
                     if culling_hit(t, t_out[lane]) && !beyond(t, bound) {
                         let mut at = n;
-                        while at > 0 && hit_t[at - 1] < t {
+                        while W::NEAREST_FIRST && at > 0 && hit_t[at - 1] < t {
                             hit_t[at] = hit_t[at - 1];
                             hit_c[at] = hit_c[at - 1];
                             at -= 1;
@@ -294,12 +297,13 @@ impl WideBvh {
                     continue;
                 }
             }
-            // The next pending child whose entry the bound has not passed since it was pushed.
+            // The next pending child whose entry the bound has not passed since it was pushed
+            // (a bound that never moves was checked at the push).
             loop {
                 let Some((next, t_in)) = stack.pop() else {
                     return;
                 };
-                if !beyond(t_in, visitor.bound()) {
+                if !W::NEAREST_FIRST || !beyond(t_in, visitor.bound()) {
                     child = next;
                     break;
                 }
