@@ -214,6 +214,9 @@ fn center_rows<V: Dim>(
     pixels: &mut [Rgb],
 ) -> Stats {
     let cam = &scene.camera;
+    // Each column's u once, not a division per pixel at the head of every primary ray's chain
+    // (the same value: `pixel_center` computes u from i alone, v from j alone).
+    let us: Vec<f64> = (0..cam.nx).map(|i| cam.pixel_center(i, 0).0).collect();
     let rows: Vec<Stats> = pixels
         .par_chunks_mut(cam.nx)
         .enumerate()
@@ -224,8 +227,8 @@ fn center_rows<V: Dim>(
         .map_init(
             || tracer(scene, accel, config.max_depth),
             |tracer, (j, row)| {
-                for (i, pixel) in row.iter_mut().enumerate() {
-                    let (u, v) = cam.pixel_center(i, j);
+                let v = cam.pixel_center(0, j).1;
+                for (pixel, &u) in row.iter_mut().zip(&us) {
                     *pixel = tracer.trace_primary(&cam.primary_ray(u, v), &[]);
                 }
                 if let Some(progress) = config.progress {
