@@ -225,11 +225,15 @@ fn center_rows<V: Dim>(
         // idle for the last sixth of a render).
         .with_max_len(1)
         .map_init(
-            || tracer(scene, accel, config.max_depth),
-            |tracer, (j, row)| {
+            || (tracer(scene, accel, config.max_depth), Vec::with_capacity(cam.nx)),
+            |(tracer, rays), (j, row)| {
                 let v = cam.pixel_center(0, j).1;
-                for (pixel, &u) in row.iter_mut().zip(&us) {
-                    *pixel = tracer.trace_primary(&cam.primary_ray(u, v), &[]);
+                // The row's primary rays first, their normalisations back to back (independent,
+                // so they overlap), then each traced: the same rays, made before they are needed.
+                rays.clear();
+                rays.extend(us.iter().map(|&u| cam.primary_ray(u, v)));
+                for (pixel, ray) in row.iter_mut().zip(rays.iter()) {
+                    *pixel = tracer.trace_primary(ray, &[]);
                 }
                 if let Some(progress) = config.progress {
                     progress(1);
