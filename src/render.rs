@@ -214,6 +214,9 @@ fn center_rows<V: Dim>(
     pixels: &mut [Rgb],
 ) -> Stats {
     let cam = &scene.camera;
+    // Each column's u once, not a division per pixel at the head of every primary ray's chain
+    // (the same value: `pixel_center` computes u from i alone, v from j alone).
+    let us: Vec<f64> = (0..cam.nx).map(|i| cam.pixel_center(i, 0).0).collect();
     let rows: Vec<Stats> = pixels
         .par_chunks_mut(cam.nx)
         .enumerate()
@@ -222,11 +225,15 @@ fn center_rows<V: Dim>(
         // idle for the last sixth of a render).
         .with_max_len(1)
         .map_init(
-            || tracer(scene, accel, config.max_depth),
-            |tracer, (j, row)| {
-                for (i, pixel) in row.iter_mut().enumerate() {
-                    let (u, v) = cam.pixel_center(i, j);
-                    *pixel = tracer.trace_primary(&cam.primary_ray(u, v), &[]);
+            || (tracer(scene, accel, config.max_depth), Vec::with_capacity(cam.nx)),
+            |(tracer, rays), (j, row)| {
+                let v = cam.pixel_center(0, j).1;
+                // The row's primary rays first, their normalisations back to back (independent,
+                // so they overlap), then each traced: the same rays, made before they are needed.
+                rays.clear();
+                rays.extend(us.iter().map(|&u| cam.primary_ray(u, v)));
+                for (pixel, ray) in row.iter_mut().zip(rays.iter()) {
+                    *pixel = tracer.trace_primary(ray, &[]);
                 }
                 if let Some(progress) = config.progress {
                     progress(1);

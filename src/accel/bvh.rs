@@ -559,8 +559,14 @@ impl<V: Dim> Bvh<V> {
             root.t_in
         };
         if self.root.count > 0 {
-            // A tree that is one leaf (a small scene): its primitives, without the stack.
-            self.visit_leaf(self.root, visitor, stats, rec);
+            // A tree that is one leaf (a small scene): its primitives, without the stack, in a
+            // plain loop in the recursion's frame (`Iter::any` was compiled out of line).
+            let start = self.root.start as usize;
+            for prim in &self.prims[start..start + self.root.count as usize] {
+                if visitor.visit(*prim, stats, rec) {
+                    return;
+                }
+            }
             return;
         }
         let r = recip.unwrap_or_else(|| RecipRay::new(ray));

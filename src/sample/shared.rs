@@ -11,6 +11,7 @@
 
 use super::adaptive::{subdivide, unsplit, NoSquares, SampleSource};
 use super::corners::{Axes, Lattice};
+use crate::geom::ray::Ray;
 use crate::record::NoRecorder;
 use crate::scene::camera::Camera;
 use crate::scene::material::Rgb;
@@ -115,9 +116,12 @@ impl EdgeRow {
         shared: bool,
     ) -> Self {
         let s = u64::from(lattice.scale);
-        let corners = (0..=lattice.nx)
-            .map(|i| trace_point(tracer, (lattice, axes), i as u64 * s, j as u64 * s))
-            .collect();
+        // The row's primary rays first, their normalisations back to back (independent, so they
+        // overlap), then each traced: the same rays, made before they are needed.
+        let camera = &tracer.scene.camera;
+        let rays: Vec<_> =
+            (0..=lattice.nx).map(|i| primary_at(camera, axes, i as u64 * s, j as u64 * s)).collect();
+        let corners = rays.iter().map(|(ray, uv)| tracer.trace_primary(ray, &uv[..lattice.dims()])).collect();
         let finer = (shared && lattice.max_level > 0).then(|| Line::new(lattice.row_len()));
         Self { corners, finer }
     }
@@ -209,9 +213,15 @@ fn trace_point<V: Dim>(
     x: u64,
     y: u64,
 ) -> Rgb {
+    let (ray, uv) = primary_at(&tracer.scene.camera, axes, x, y);
+    tracer.trace_primary(&ray, &uv[..lattice.dims()])
+}
+
+/// The primary ray through global lattice point `(x, y)`, and its `(u, v)`.
+#[inline]
+fn primary_at<V: Dim>(camera: &Camera<V>, axes: &Axes, x: u64, y: u64) -> (Ray<V>, [f64; 2]) {
     let (u, v) = axes.uv(x, y);
-    let ray = tracer.scene.camera.primary_ray(u, v);
-    tracer.trace_primary(&ray, &[u, v][..lattice.dims()])
+    (camera.primary_ray(u, v), [u, v])
 }
 
 /// One memoised local point: valid when `stamp` is the current pixel's.

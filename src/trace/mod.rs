@@ -91,8 +91,11 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
         let delta = offset_distance(hit.point, ray.origin, hit.t, hit_object.scale);
         let material = &scene.materials[hit_object.material];
         let at = Shading { ray, hit, entering, n_f, delta, material };
+        // The secondary rays made before the local shading, so that their chains (the
+        // refraction's square root) overlap with it: the same rays, events in the same order.
+        let spawned = self.spawn(&at, level);
         let local = self.local(&at);
-        let color = local + self.secondary(&at, level);
+        let color = local + self.secondary(&at, level, spawned);
         self.recorder.close_ray(|| RayEnd {
             hit: Some(NodeHit { object, t: hit.t, point: hit.point, normal: hit.normal, entering }),
             local: Some(local),
@@ -101,9 +104,35 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
         color
     }
 
+    /// The rays a hit at level `n` spawns (§6): none past `max_depth`; R when the material
+    /// reflects, T (or TIR's `k`) when it transmits, each from its offset origin (§3, §11).
+    fn spawn(&self, at: &Shading<'_, V>, level: u32) -> Spawned<V> {
+        let material = at.material;
+        if level > self.max_depth {
+            return Spawned { reflected: None, transmitted: None };
+        }
+        let d = at.ray.dir;
+        let reflected = material.reflects().then(|| {
+            let r = reflect(d, at.n_f);
+            Ray::new(spawn_origin(at.hit.point, at.n_f, r, at.delta), r)
+        });
+        let transmitted = material.transmits().then(|| {
+            // Swap n1, n2 for a leaving ray (§3).
+            let (n1, n2) = indices(at.entering, material.ior);
+            let ray = match refract(d, at.n_f, n1 / n2) {
+                Refraction::TotalInternalReflection { k } => Err(k),
+                Refraction::Transmitted { dir, .. } => {
+                    Ok(Ray::new(spawn_origin(at.hit.point, at.n_f, dir, at.delta), dir))
+                }
+            };
+            Transmission { n1, n2, ray }
+        });
+        Spawned { reflected, transmitted }
+    }
+
     /// `ks·TraceRay(R, n + 1) + kt·TraceRay(T, n + 1)` when `n ≤ max_depth` (§6), children in the
-    /// order R, then T; TIR drops the `kt·T` term and records it.
-    fn secondary(&mut self, at: &Shading<'_, V>, level: u32) -> Rgb {
+    /// order R, then T; TIR drops the `kt·T` term and records it. `spawned`: [`Tracer::spawn`]'s.
+    fn secondary(&mut self, at: &Shading<'_, V>, level: u32, spawned: Spawned<V>) -> Rgb {
         let material = at.material;
         let (reflects, transmits) = (material.reflects(), material.transmits());
         if !(reflects || transmits) {
@@ -117,37 +146,42 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
         if R::ENABLED && self.recorder.full() {
             return Rgb::BLACK;
         }
-        let (ks, kt, ior) = (material.ks, material.kt, material.ior);
+        let (ks, kt) = (material.ks, material.kt);
         let mut sum = Rgb::BLACK;
-        let d = at.ray.dir;
-        if reflects {
-            let r = reflect(d, at.n_f);
-            let origin = spawn_origin(at.hit.point, at.n_f, r, at.delta);
-            self.recorder.event(|| Event::Reflect { origin, direction: r, offset: at.delta });
-            sum += self.trace(&Ray::new(origin, r), RayKind::Reflected, level + 1, &[]) * ks;
+        if let Some(ray) = spawned.reflected {
+            let (origin, direction) = (ray.origin, ray.dir);
+            self.recorder.event(|| Event::Reflect { origin, direction, offset: at.delta });
+            sum += self.trace(&ray, RayKind::Reflected, level + 1, &[]) * ks;
         }
-        if transmits {
-            // Swap n1, n2 for a leaving ray (§3).
-            let (n1, n2) = indices(at.entering, ior);
-            match refract(d, at.n_f, n1 / n2) {
-                Refraction::TotalInternalReflection { k } => {
+        if let Some(Transmission { n1, n2, ray }) = spawned.transmitted {
+            match ray {
+                Err(k) => {
                     self.recorder.event(|| Event::TotalInternalReflection { k, n1, n2 });
                 }
-                Refraction::Transmitted { dir, .. } => {
-                    let origin = spawn_origin(at.hit.point, at.n_f, dir, at.delta);
-                    self.recorder.event(|| Event::Refract {
-                        origin,
-                        direction: dir,
-                        offset: at.delta,
-                        n1,
-                        n2,
-                    });
-                    sum += self.trace(&Ray::new(origin, dir), RayKind::Transmitted, level + 1, &[]) * kt;
+                Ok(ray) => {
+                    let (origin, direction) = (ray.origin, ray.dir);
+                    self.recorder.event(|| Event::Refract { origin, direction, offset: at.delta, n1, n2 });
+                    sum += self.trace(&ray, RayKind::Transmitted, level + 1, &[]) * kt;
                 }
             }
         }
         sum
     }
+}
+
+/// The secondary rays of a hit ([`Tracer::spawn`]), made before they are traced.
+pub(crate) struct Spawned<V> {
+    /// R, when the material reflects.
+    reflected: Option<Ray<V>>,
+    /// T, or TIR, when the material transmits.
+    transmitted: Option<Transmission<V>>,
+}
+
+/// A transmitting hit's refraction: the indices `n1 → n2`, and T, or TIR's negative `k`.
+struct Transmission<V> {
+    n1: f64,
+    n2: f64,
+    ray: Result<Ray<V>, f64>,
 }
 
 /// The invariants ARCHITECTURE.md states of the recursion, each on the smallest scene that shows
