@@ -17,6 +17,7 @@
 //! allocated by the thread that first traces it, the blank image by every thread (`Image::new`).
 
 use crate::accel::Accel;
+use crate::geom::ray::Ray;
 use crate::image::Image;
 use crate::record::stats::Stats;
 use crate::record::NoRecorder;
@@ -214,9 +215,7 @@ fn center_rows<V: Dim>(
     pixels: &mut [Rgb],
 ) -> Stats {
     let cam = &scene.camera;
-    // Each column's u once, not a division per pixel at the head of every primary ray's chain
-    // (the same value: `pixel_center` computes u from i alone, v from j alone).
-    let us: Vec<f64> = (0..cam.nx).map(|i| cam.pixel_center(i, 0).0).collect();
+    let us = column_us(scene);
     let rows: Vec<Stats> = pixels
         .par_chunks_mut(cam.nx)
         .enumerate()
@@ -227,14 +226,7 @@ fn center_rows<V: Dim>(
         .map_init(
             || (tracer(scene, accel, config.max_depth), Vec::with_capacity(cam.nx)),
             |(tracer, rays), (j, row)| {
-                let v = cam.pixel_center(0, j).1;
-                // The row's primary rays first, their normalisations back to back (independent,
-                // so they overlap), then each traced: the same rays, made before they are needed.
-                rays.clear();
-                rays.extend(us.iter().map(|&u| cam.primary_ray(u, v)));
-                for (pixel, ray) in row.iter_mut().zip(rays.iter()) {
-                    *pixel = tracer.trace_primary(ray, &[]);
-                }
+                center_row(tracer, &us, j, row, rays);
                 if let Some(progress) = config.progress {
                     progress(1);
                 }
@@ -243,6 +235,33 @@ fn center_rows<V: Dim>(
         )
         .collect();
     total(rows)
+}
+
+/// Each column's u of a centre-sampled image, `u = l + (r − l)·(i + 0.5)/Nx`, computed once:
+/// not a division per pixel at the head of every primary ray's chain (the same values, as
+/// `pixel_center` computes u from i alone and v from j alone).
+fn column_us<V: Dim>(scene: &Scene<V>) -> Vec<f64> {
+    let cam = &scene.camera;
+    (0..cam.nx).map(|i| cam.pixel_center(i, 0).0).collect()
+}
+
+/// §2 for the pixels of row `j` whose columns' u are `us`, into `row`: the primary rays first
+/// (into `rays`), their normalisations back to back (independent, so they overlap), then each
+/// traced: the same rays, made before they are needed.
+fn center_row<V: Dim>(
+    tracer: &mut Tracer<'_, V, NoRecorder>,
+    us: &[f64],
+    j: usize,
+    row: &mut [Rgb],
+    rays: &mut Vec<Ray<V>>,
+) {
+    let cam = &tracer.scene.camera;
+    let v = cam.pixel_center(0, j).1;
+    rays.clear();
+    rays.extend(us.iter().map(|&u| cam.primary_ray(u, v)));
+    for (pixel, ray) in row.iter_mut().zip(rays.iter()) {
+        *pixel = tracer.trace_primary(ray, &[]);
+    }
 }
 
 /// A band of the image, on the calling thread, for a page that shows a render's progress
@@ -271,10 +290,13 @@ pub fn band<V: Dim>(
     let mut counted = tracer(scene, accel, max_depth);
     match sampling.rule() {
         None => {
-            for (k, pixel) in image.pixels.iter_mut().enumerate() {
-                let (i, j) = if flat { (range.start + k, 0) } else { (k % cam.nx, range.start + k / cam.nx) };
-                let (u, v) = cam.pixel_center(i, j);
-                *pixel = counted.trace_primary(&cam.primary_ray(u, v), &[]);
+            let (us, mut rays) = (column_us(scene), Vec::with_capacity(cam.nx));
+            if flat {
+                center_row(&mut counted, &us[range], 0, &mut image.pixels, &mut rays);
+            } else {
+                for (j, row) in range.zip(image.pixels.chunks_mut(cam.nx)) {
+                    center_row(&mut counted, &us, j, row, &mut rays);
+                }
             }
         }
         Some(_) if range.is_empty() => {}

@@ -559,8 +559,14 @@ impl<V: Dim> Bvh<V> {
             root.t_in
         };
         if self.root.count > 0 {
-            // A tree that is one leaf (a small scene): its primitives, without the stack, in a
-            // plain loop in the recursion's frame (`Iter::any` was compiled out of line).
+            // A tree that is one leaf (a small scene): its primitives, without the stack. A
+            // render's (no recorder) in a plain loop in the recursion's frame (`Iter::any` was
+            // compiled out of line); a recorded walk shares `visit_leaf` with the inner leaves,
+            // one copy of the visits (the WebAssembly module's size).
+            if R::ENABLED {
+                self.visit_leaf(self.root, visitor, stats, rec);
+                return;
+            }
             let start = self.root.start as usize;
             for prim in &self.prims[start..start + self.root.count as usize] {
                 if visitor.visit(*prim, stats, rec) {
