@@ -62,6 +62,7 @@ fn serve() -> Result<(), String> {
     let clock = Instant::now();
     let accel = Accel::build_for_render(&scene, &AccelOptions::of(AccelKind::Bvh));
     let build_s = clock.elapsed().as_secs_f64();
+    let server = Server { scene: &scene, accel: &accel };
     let mut input = BufReader::new(io::stdin().lock());
     let mut output = BufWriter::new(io::stdout().lock());
     put(&mut output, &[build_s.to_le_bytes(), 0f64.to_le_bytes(), 0f64.to_le_bytes()].concat())?;
@@ -74,8 +75,8 @@ fn serve() -> Result<(), String> {
         let n = usize::try_from(u64::from_le_bytes(take(&mut input)?)).map_err(|e| e.to_string())?;
         let rays = read_rays(&mut input, n)?;
         match op {
-            OP_NEAREST => nearest(&scene, &accel, &rays, &mut output)?,
-            OP_OCCLUDED => occluded(&scene, &accel, &rays, &mut output)?,
+            OP_NEAREST => server.nearest(&rays, &mut output)?,
+            OP_OCCLUDED => server.occluded(&rays, &mut output)?,
             other => return Err(format!("unknown operation {other}")),
         }
     }
@@ -89,53 +90,53 @@ struct Query {
     tfar: f64,
 }
 
-/// Answers a batch of nearest-hit queries: seconds, primitives, t.
-fn nearest(
-    scene: &Scene<DVec3>,
-    accel: &Accel<DVec3>,
-    rays: &[Query],
-    out: &mut impl Write,
-) -> Result<(), String> {
-    let mut stats = Stats::default();
-    let mut hits = Vec::with_capacity(rays.len());
-    let clock = Instant::now();
-    for q in rays {
-        hits.push(accel.nearest(scene, &q.ray, &mut stats, &mut NoRecorder).map(|(o, h)| (o, h.t)));
-    }
-    let seconds = clock.elapsed().as_secs_f64();
-    let mut bytes = seconds.to_le_bytes().to_vec();
-    for hit in &hits {
-        let prim = hit.map_or(-1, |(o, _)| primitive(o));
-        bytes.extend_from_slice(&prim.to_le_bytes());
-    }
-    for (hit, q) in hits.iter().zip(rays) {
-        // t along the direction as sent, in f32 as Embree answers.
-        let t = hit.map_or(f64::INFINITY, |(_, t)| t / q.length);
-        #[allow(clippy::cast_possible_truncation)]
-        bytes.extend_from_slice(&(t as f32).to_le_bytes());
-    }
-    put(out, &bytes)
+/// What answers the queries: the scene and the structure a render builds over it.
+struct Server<'s> {
+    scene: &'s Scene<DVec3>,
+    accel: &'s Accel<DVec3>,
 }
 
-/// Answers a batch of shadow segments: seconds, whether each is blocked.
-fn occluded(
-    scene: &Scene<DVec3>,
-    accel: &Accel<DVec3>,
-    rays: &[Query],
-    out: &mut impl Write,
-) -> Result<(), String> {
-    let mut stats = Stats::default();
-    let mut blocked = vec![0u8; rays.len()];
-    let clock = Instant::now();
-    for (q, b) in rays.iter().zip(&mut blocked) {
-        // The bench's scenes are opaque: the first occluder reported ends the search.
-        accel.occluders(scene, &q.ray, q.tfar * q.length, &mut stats, &mut NoRecorder, |_| {
-            *b = 1;
-            false
-        });
+impl Server<'_> {
+    /// Answers a batch of nearest-hit queries: seconds, primitives, t.
+    fn nearest(&self, rays: &[Query], out: &mut impl Write) -> Result<(), String> {
+        let mut stats = Stats::default();
+        let mut hits = Vec::with_capacity(rays.len());
+        let clock = Instant::now();
+        for q in rays {
+            hits.push(
+                self.accel.nearest(self.scene, &q.ray, &mut stats, &mut NoRecorder).map(|(o, h)| (o, h.t)),
+            );
+        }
+        let seconds = clock.elapsed().as_secs_f64();
+        let mut bytes = seconds.to_le_bytes().to_vec();
+        for hit in &hits {
+            let prim = hit.map_or(-1, |(o, _)| primitive(o));
+            bytes.extend_from_slice(&prim.to_le_bytes());
+        }
+        for (hit, q) in hits.iter().zip(rays) {
+            // t along the direction as sent, in f32 as Embree answers.
+            let t = hit.map_or(f64::INFINITY, |(_, t)| t / q.length);
+            #[allow(clippy::cast_possible_truncation)]
+            bytes.extend_from_slice(&(t as f32).to_le_bytes());
+        }
+        put(out, &bytes)
     }
-    let seconds = clock.elapsed().as_secs_f64();
-    put(out, &[&seconds.to_le_bytes()[..], &blocked].concat())
+
+    /// Answers a batch of shadow segments: seconds, whether each is blocked.
+    fn occluded(&self, rays: &[Query], out: &mut impl Write) -> Result<(), String> {
+        let mut stats = Stats::default();
+        let mut blocked = vec![0u8; rays.len()];
+        let clock = Instant::now();
+        for (q, b) in rays.iter().zip(&mut blocked) {
+            // The bench's scenes are opaque: the first occluder reported ends the search.
+            self.accel.occluders(self.scene, &q.ray, q.tfar * q.length, &mut stats, &mut NoRecorder, |_| {
+                *b = 1;
+                false
+            });
+        }
+        let seconds = clock.elapsed().as_secs_f64();
+        put(out, &[&seconds.to_le_bytes()[..], &blocked].concat())
+    }
 }
 
 /// Embree's primitive number: a mesh's triangle by its OBJ index, else the object.
