@@ -88,8 +88,9 @@ pub(crate) fn crossing(vertices: &[DVec3; 3], ray: &Ray<DVec3>) -> Option<Crossi
 pub(crate) fn crossing_sheared(vertices: &[DVec3; 3], origin: DVec3, shear: &Shear) -> Option<Crossing> {
     let Shear { sx, sy, sz, k } = *shear;
     let [kx, ky, kz] = k.map(usize::from);
-    let [a, b, c] = vertices.map(|p| p - origin);
-    let sheared = |p: DVec3| (p[kx] - sx * p[kz], p[ky] - sy * p[kz]);
+    // As arrays: a vector indexed by a run-time axis goes through a `match`, an array is a load.
+    let [a, b, c] = vertices.map(|p| (p - origin).to_array());
+    let sheared = |p: [f64; 3]| (p[kx] - sx * p[kz], p[ky] - sy * p[kz]);
     let (ax, ay) = sheared(a);
     let (bx, by) = sheared(b);
     let (cx, cy) = sheared(c);
