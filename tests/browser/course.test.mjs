@@ -4,7 +4,7 @@
 // screenshot under target/browser-shots/.
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdtempSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { ROOT, cutSteps, dedent, launch, liveViews, open, settled, shot, whitted } from './support.mjs';
@@ -20,6 +20,15 @@ const GLASS = [430, 280];
 let browser;
 before(async () => { browser = await launch(); });
 after(async () => { await browser?.close(); });
+
+// The temporary folders the tests write into, removed when the file's tests end.
+const scratchDirs = [];
+function scratch(prefix) {
+  const dir = mkdtempSync(join(tmpdir(), prefix));
+  scratchDirs.push(dir);
+  return dir;
+}
+after(() => { for (const dir of scratchDirs) rmSync(dir, { recursive: true, force: true }); });
 
 /** The first view's steps, current step, lit items and controls, read from the page. */
 async function state(page, view = 0) {
@@ -159,7 +168,7 @@ test('the secondary-rays lesson: click, steps, keys, Romanian, editor, depth, re
   const scene = readFileSync(join(ROOT, 'scenes/whitted.json'), 'utf8');
   const bad = scene.replace('"radius": 0.75', '"radius": -1');
   assert.notEqual(bad, scene);
-  const file = join(mkdtempSync(join(tmpdir(), 'whitted-')), 'bad.json');
+  const file = join(scratch('whitted-'), 'bad.json');
   writeFileSync(file, bad);
   let checkErr = '';
   try { whitted(['check', file]); } catch (e) { checkErr = e.stderr.toString(); }
@@ -293,7 +302,7 @@ test('the WebAssembly build traces and draws byte for byte as the CLI', async ()
     }
   }
   // Every lesson figure's SVG, in both languages, with the lesson's own options.
-  const dir = mkdtempSync(join(tmpdir(), 'whitted-svg-'));
+  const dir = scratch('whitted-svg-');
   for (const lesson of lessons) {
     for (const [k, f] of lesson.figures.entries()) {
       for (const lang of ['en', 'ro']) {
