@@ -84,7 +84,7 @@ pub(crate) fn crossing(vertices: &[DVec3; 3], ray: &Ray<DVec3>) -> Option<Crossi
 }
 
 /// [`crossing`] of a ray from `origin` whose direction's shear is `shear`.
-#[inline]
+#[inline(always)]
 pub(crate) fn crossing_sheared(vertices: &[DVec3; 3], origin: DVec3, shear: &Shear) -> Option<Crossing> {
     let Shear { sx, sy, sz, k } = *shear;
     let [kx, ky, kz] = k.map(usize::from);
