@@ -246,8 +246,10 @@ impl Parts<DVec3> for Mesh {
     fn prepare(ray: &Ray<DVec3>) -> Shear {
         Shear::of(ray.dir)
     }
-    /// [`Parts::hit`] with the ray's shear computed once.
-    #[inline(always)]
+    /// [`Parts::hit`] with the ray's shear computed once. Inline in a native build's walks, out
+    /// of line in the WebAssembly module, as [`crossing_sheared`] is.
+    #[cfg_attr(not(target_family = "wasm"), inline(always))]
+    #[cfg_attr(target_family = "wasm", inline)]
     fn hit_prepared(&self, k: usize, ray: &Ray<DVec3>, shear: &Shear) -> Option<SurfaceHit<DVec3>> {
         let [a, b, c] = self.triangle(k);
         let x = crossing_sheared(&[a, b, c], ray.origin, shear)?;
@@ -255,7 +257,9 @@ impl Parts<DVec3> for Mesh {
     }
     /// The t of [`Parts::hit_prepared`], which never fails for want of a normal: the same
     /// `(b − a) × (c − a)` was normalised when the mesh was built, or the triangle skipped.
-    #[inline(always)]
+    /// Inline as [`Parts::hit_prepared`] is.
+    #[cfg_attr(not(target_family = "wasm"), inline(always))]
+    #[cfg_attr(target_family = "wasm", inline)]
     fn hit_t_prepared(&self, k: usize, ray: &Ray<DVec3>, shear: &Shear) -> Option<f64> {
         let x = crossing_sheared(&self.triangle(k), ray.origin, shear)?;
         (x.t > 0.0).then_some(x.t)

@@ -84,7 +84,12 @@ pub(crate) fn crossing(vertices: &[DVec3; 3], ray: &Ray<DVec3>) -> Option<Crossi
 }
 
 /// [`crossing`] of a ray from `origin` whose direction's shear is `shear`.
-#[inline(always)]
+///
+/// Inline in the walks of a native build: out of line, each test paid a call and the loads of
+/// its arguments, 1.09× of mesh-100k's and mesh-1000k's render (bench/README.md, "Decisions
+/// that were measured"). The WebAssembly module keeps it out of line, for its 3 MB budget.
+#[cfg_attr(not(target_family = "wasm"), inline(always))]
+#[cfg_attr(target_family = "wasm", inline)]
 pub(crate) fn crossing_sheared(vertices: &[DVec3; 3], origin: DVec3, shear: &Shear) -> Option<Crossing> {
     let Shear { sx, sy, sz, k } = *shear;
     let [kx, ky, kz] = k.map(usize::from);
