@@ -180,7 +180,69 @@ fn too_large() -> ObjError {
 fn read_models(text: &str) -> tobj::LoadResult {
     let options =
         tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
-    tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| Err(tobj::LoadError::OpenFileFailed))
+    let mut reader = std::io::BufReader::new(ModelBreaks::new(text));
+    tobj::load_obj_buf(&mut reader, &options, |_| Err(tobj::LoadError::OpenFileFailed))
+}
+
+/// Face statements a model of tobj's holds at most, by [`ModelBreaks`].
+const FACES_PER_MODEL: usize = 1 << 16;
+
+/// An OBJ text as tobj reads it, with a group statement (`g`) after every [`FACES_PER_MODEL`]-th
+/// face statement. tobj keeps every face of the model it is reading (104 bytes each) and a map of
+/// its vertices until the model ends, so a million triangles in one model took 222 MB at the
+/// peak of loading; cut into models of at most [`FACES_PER_MODEL`] faces, it holds one model's.
+/// The triangles are the same, in the same order: OBJ indices name the file's vertices whatever
+/// the group, and [`parse_obj`] joins the models in order. A vertex used by two models is stored
+/// by each (the same coordinates). A text of at most [`FACES_PER_MODEL`] faces reads as it is.
+struct ModelBreaks<'a> {
+    /// The text not yet read.
+    rest: &'a [u8],
+    /// The group statement still to be read (empty when none is due).
+    pending: &'static [u8],
+    /// Whether `rest` starts a line.
+    line_start: bool,
+    /// Whether the line being read is a face statement.
+    face_line: bool,
+    /// Face statements read.
+    faces: usize,
+}
+
+impl<'a> ModelBreaks<'a> {
+    fn new(text: &'a str) -> Self {
+        Self { rest: text.as_bytes(), pending: b"", line_start: true, face_line: false, faces: 0 }
+    }
+}
+
+impl std::io::Read for ModelBreaks<'_> {
+    /// Copies from the pending group statement, else from the current line, up to its end.
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        if !self.pending.is_empty() {
+            let n = self.pending.len().min(buf.len());
+            buf[..n].copy_from_slice(&self.pending[..n]);
+            self.pending = &self.pending[n..];
+            return Ok(n);
+        }
+        let len = self.rest.iter().position(|&b| b == b'\n').map_or(self.rest.len(), |at| at + 1);
+        let line = &self.rest[..len];
+        if self.line_start {
+            // A statement's keyword is its line's first word, as tobj splits it.
+            let keyword = line.split(u8::is_ascii_whitespace).find(|w| !w.is_empty());
+            self.face_line = keyword == Some(b"f".as_slice());
+        }
+        let n = len.min(buf.len());
+        buf[..n].copy_from_slice(&line[..n]);
+        self.rest = &self.rest[n..];
+        // The line is read to its newline: the next read starts a line (the last line of a text
+        // without a final newline ends the text, and nothing follows it).
+        self.line_start = n == len && line.last() == Some(&b'\n');
+        if self.line_start && self.face_line {
+            self.faces += 1;
+            if self.faces.is_multiple_of(FACES_PER_MODEL) {
+                self.pending = b"g\n";
+            }
+        }
+        Ok(n)
+    }
 }
 
 /// The 1-based line of the shortest prefix tobj rejects.
@@ -340,6 +402,36 @@ mod tests {
         let h = m.hit(1, &down).unwrap();
         assert_eq!(h.t, 1.0);
         assert_eq!(h.normal, DVec3::Z);
+    }
+
+    #[test]
+    fn a_long_obj_is_read_as_models_of_bounded_size_with_the_same_triangles() {
+        // A strip of quads, each fanned into two triangles: more faces than one model holds,
+        // the last line without its newline, CRLF line ends, a blank line and a comment.
+        let quads = FACES_PER_MODEL + 7;
+        let mut text = String::from("# strip\r\n\r\n");
+        for k in 0..=quads {
+            text += &format!("v {k} 0 0\r\nv {k} 1 {}\r\n", k % 3);
+        }
+        for k in 0..quads {
+            let a = 2 * k + 1;
+            text += &format!("f {} {} {} {}\r\n", a, a + 2, a + 3, a + 1);
+        }
+        let text = text.trim_end();
+        let (models, _) = read_models(text).unwrap();
+        assert_eq!(models.len(), 2, "a group after every FACES_PER_MODEL faces");
+        assert_eq!(models[0].mesh.indices.len(), 3 * 2 * FACES_PER_MODEL);
+        let (vertices, faces) = parse_obj(text, 1e100).unwrap();
+        assert_eq!(faces.len(), 2 * quads);
+        // The triangles, in order, are the file's: quad k fans into (a, a+2, a+3), (a, a+3, a+1).
+        let file_vertex = |i: usize| {
+            DVec3::new((i / 2) as f64, (i % 2) as f64, if i % 2 == 1 { ((i / 2) % 3) as f64 } else { 0.0 })
+        };
+        for (t, face) in faces.iter().enumerate() {
+            let a = 2 * (t / 2);
+            let want = if t % 2 == 0 { [a, a + 2, a + 3] } else { [a, a + 3, a + 1] };
+            assert_eq!(face.map(|v| vertices[v as usize]), want.map(file_vertex), "triangle {t}");
+        }
     }
 
     #[test]
