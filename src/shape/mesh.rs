@@ -158,10 +158,14 @@ pub fn parse_obj(text: &str, max_magnitude: f64) -> Result<(Vec<DVec3>, Vec<[u32
         let offset = u32::try_from(vertices.len()).map_err(|_| too_large())?;
         for p in m.positions.chunks_exact(3) {
             let v = DVec3::new(p[0], p[1], p[2]);
-            if !(v.is_finite_vec() && v.max_abs() <= max_magnitude) {
+            if !fits(v, max_magnitude) {
+                // tobj lists a model's vertices in the order its faces first use them, not in the
+                // file's: the file's own `v` statements say which one it is.
+                let (line, n) = first_vertex_beyond(text, max_magnitude).unzip();
+                let n = n.unwrap_or(vertices.len() + 1);
                 return Err(ObjError {
-                    line: nth_vertex_line(text, vertices.len()),
-                    problem: format!("vertex {}: every coordinate must be finite and at most {max_magnitude:e} in magnitude", vertices.len() + 1),
+                    line,
+                    problem: format!("vertex {n}: every coordinate must be finite and at most {max_magnitude:e} in magnitude"),
                 });
             }
             vertices.push(v);
@@ -265,9 +269,25 @@ fn failing_line(text: &str) -> Option<usize> {
     Some(hi)
 }
 
-/// The 1-based line of the `n`-th (0-based) `v` statement.
-fn nth_vertex_line(text: &str, n: usize) -> Option<usize> {
-    text.lines().enumerate().filter(|(_, l)| l.trim_start().starts_with("v ")).nth(n).map(|(i, _)| i + 1)
+/// Whether a vertex is finite and within `max_magnitude` on every axis.
+fn fits(v: DVec3, max_magnitude: f64) -> bool {
+    v.is_finite_vec() && v.max_abs() <= max_magnitude
+}
+
+/// The 1-based line and the 1-based number of the file's first `v` statement whose coordinates
+/// do not [`fits`] (read as tobj reads them: the first three numbers after `v`).
+fn first_vertex_beyond(text: &str, max_magnitude: f64) -> Option<(usize, usize)> {
+    let vertex = |line: &str| {
+        let mut words = line.split_whitespace();
+        (words.next() == Some("v"))
+            .then(|| words.take(3).map(|w| w.parse::<f64>().unwrap_or(f64::NAN)).collect::<Vec<_>>())
+    };
+    text.lines()
+        .enumerate()
+        .filter_map(|(i, line)| Some((i + 1, vertex(line)?)))
+        .enumerate()
+        .find(|(_, (_, p))| p.len() == 3 && !fits(DVec3::new(p[0], p[1], p[2]), max_magnitude))
+        .map(|(n, (line, _))| (line, n + 1))
 }
 
 impl Parts<DVec3> for Mesh {
@@ -447,6 +467,11 @@ mod tests {
         assert_eq!(parse_obj(out, 1e100).unwrap_err().line, Some(4));
         let huge = "v 0 0 0\nv 1e200 0 0\nv 1 1 0\nf 1 2 3\n";
         assert_eq!(parse_obj(huge, 1e100).unwrap_err().line, Some(2));
+        // The file's fourth vertex, though the face names it first (tobj lists it first).
+        let first_used = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e300 0 0\nf 4 2 3\n";
+        let e = parse_obj(first_used, 1e100).unwrap_err();
+        assert_eq!(e.line, Some(4), "{e:?}");
+        assert!(e.problem.starts_with("vertex 4: "), "{e:?}");
     }
 
     #[test]
