@@ -513,7 +513,8 @@ impl<V: Dim> Bvh<V> {
         out.into_iter().flatten().collect()
     }
 
-    /// Hands a leaf's primitives to the visitor; true when the search is over.
+    /// Hands a leaf's primitives to the visitor; true when the search is over. A plain loop:
+    /// `Iter::any` was compiled out of line, outside the recursion's frame (one copy per question).
     #[inline(always)]
     fn visit_leaf<R: Recorder<V>, W: Visitor<V>>(
         &self,
@@ -523,7 +524,12 @@ impl<V: Dim> Bvh<V> {
         rec: &mut R,
     ) -> bool {
         let start = leaf.start as usize;
-        self.prims[start..start + leaf.count as usize].iter().any(|p| visitor.visit(*p, stats, rec))
+        for prim in &self.prims[start..start + leaf.count as usize] {
+            if visitor.visit(*prim, stats, rec) {
+                return true;
+            }
+        }
+        false
     }
 
     /// Front-to-back traversal, handing the primitives of every leaf reached to the visitor.
@@ -559,20 +565,8 @@ impl<V: Dim> Bvh<V> {
             root.t_in
         };
         if self.root.count > 0 {
-            // A tree that is one leaf (a small scene): its primitives, without the stack. A
-            // render's (no recorder) in a plain loop in the recursion's frame (`Iter::any` was
-            // compiled out of line); a recorded walk shares `visit_leaf` with the inner leaves,
-            // one copy of the visits (the WebAssembly module's size).
-            if R::ENABLED {
-                self.visit_leaf(self.root, visitor, stats, rec);
-                return;
-            }
-            let start = self.root.start as usize;
-            for prim in &self.prims[start..start + self.root.count as usize] {
-                if visitor.visit(*prim, stats, rec) {
-                    return;
-                }
-            }
+            // A tree that is one leaf (a small scene): its primitives, without the stack.
+            self.visit_leaf(self.root, visitor, stats, rec);
             return;
         }
         let r = recip.unwrap_or_else(|| RecipRay::new(ray));
