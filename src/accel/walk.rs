@@ -404,12 +404,15 @@ pub fn test_prim_t<V: Dim, R: Recorder<V>>(
 /// that beats `bound` when `t_in·(1 − 2⁻⁴⁰) > bound` (for `t_in > 0`). The slack of 2⁻⁴⁰ (about
 /// 10⁻¹²) covers the rounding of the box's t (3 roundings) and of any object's own t, so a
 /// primitive whose computed t ties or beats the bound is never skipped: pruning changes the
-/// number of tests, never the answer.
+/// number of tests, never the answer. A bound is never negative (a hit's t, a light's
+/// distance, or +∞), so a `t_in ≤ 0` is never beyond it, and the one product decides.
 #[inline]
 #[must_use]
 pub fn beyond(t_in: f64, bound: f64) -> bool {
-    const SLACK: f64 = 1.0 / (1u64 << 40) as f64;
-    t_in - t_in.abs() * SLACK > bound
+    /// `1 − 2⁻⁴⁰`, exact in `f64`.
+    const KEEP: f64 = 1.0 - 1.0 / (1u64 << 40) as f64;
+    debug_assert!(bound >= 0.0, "a bound is never negative");
+    t_in * KEEP > bound
 }
 
 thread_local! {
@@ -453,6 +456,40 @@ impl Mailbox {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_prune_is_the_slack_subtracted_for_every_bound_a_walk_has() {
+        // The earlier form `t − |t|·2⁻⁴⁰ > bound`: the same decision whenever bound ≥ 0.
+        let slack = 1.0 / (1u64 << 40) as f64;
+        let ts = [
+            -1e300,
+            -2.5,
+            -f64::MIN_POSITIVE,
+            -0.0,
+            0.0,
+            5e-324,
+            1e-310,
+            1e-12,
+            0.5,
+            1.0,
+            3.0,
+            1e15,
+            1e300,
+            f64::INFINITY,
+        ];
+        for &t in &ts {
+            for bound in ts.iter().map(|b: &f64| b.abs()).chain([1.0 - 1e-12, 3.0 * (1.0 - slack)]) {
+                for t in [t, t.next_up(), t.next_down()] {
+                    if t == f64::INFINITY {
+                        // The earlier form made ∞ − ∞ = NaN and kept a box entered at +∞.
+                        assert_eq!(beyond(t, bound), bound < f64::INFINITY);
+                    } else {
+                        assert_eq!(beyond(t, bound), t - t.abs() * slack > bound, "{t:e} {bound:e}");
+                    }
+                }
+            }
+        }
+    }
 
     fn prim(object: u32) -> Prim {
         Prim { object, part: 0 }

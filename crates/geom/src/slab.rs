@@ -144,7 +144,13 @@ impl<V: Vector> RecipRay<V> {
 #[inline]
 #[must_use]
 pub fn culling_hit(t_in: f64, t_out: f64) -> bool {
-    let wide = widen_exit(t_out);
+    admits(t_in, widen_exit(t_out))
+}
+
+/// [`culling_hit`] of an exit already widened: `t_in ≤ wide` and `wide ≥ 0`.
+#[inline(always)]
+#[must_use]
+pub fn admits(t_in: f64, wide: f64) -> bool {
     t_in <= wide && wide >= 0.0
 }
 
@@ -204,6 +210,25 @@ pub const GAMMA3: f64 = 3.0 * f64::EPSILON * 0.5 / (1.0 - 3.0 * f64::EPSILON * 0
 #[must_use]
 pub fn widen_exit(t_out: f64) -> f64 {
     t_out * (1.0 + 2.0 * GAMMA3)
+}
+
+/// The factor of [`far_recip`]: `(1 + 2γ₃)(1 + 8u)` (`u = 2^-53`, `f64::EPSILON = 2u`), above
+/// `(1 + 2γ₃)(1 + u)²/(1 − u)² ≈ (1 + 2γ₃)(1 + 4u)`, the two roundings it must absorb.
+pub const WIDEN_FAR: f64 = (1.0 + 2.0 * GAMMA3) * (1.0 + 4.0 * f64::EPSILON);
+// Its margin over `1 + 2γ₃`, as rounded: at least 3 steps of `f64::EPSILON` (2 are needed).
+const _: () = assert!(WIDEN_FAR - (1.0 + 2.0 * GAMMA3) >= 3.0 * f64::EPSILON);
+
+/// `1/d` for the far planes of many boxes, the exit's widening folded into it:
+/// `(x − o)·(1/d)·WIDEN_FAR`. For `x − o` of either sign and a non-negative result,
+/// `fl(fl(x − o)·fl(inv·WIDEN_FAR)) ≥ fl(fl(fl(x − o)·inv)·(1 + 2γ₃))`: the product's two
+/// roundings lose at most `(1 − u)²`, the reference's gain at most `(1 + u)²`, and
+/// [`WIDEN_FAR`] covers both (outside the subnormal range, as [`widen_exit`] itself). So one
+/// multiplication per plane gives an exit at least [`widen_exit`]'s, and a box the reference
+/// admits is admitted.
+#[inline]
+#[must_use]
+pub fn far_recip(inv: f64) -> f64 {
+    inv * WIDEN_FAR
 }
 
 #[cfg(test)]
@@ -303,5 +328,36 @@ mod tests {
         let ray = Ray::new(DVec2::new(-1.0, 0.5), DVec2::new(1.0, 0.0));
         let c = box_crossing(&ray, DVec2::ZERO, DVec2::ONE, |_, _| {});
         assert_eq!((c.t_in, c.t_out), (1.0, 2.0));
+    }
+
+    /// A small deterministic generator (xorshift64*), so the sweep is the same on every run.
+    fn next(state: &mut u64) -> f64 {
+        *state ^= *state >> 12;
+        *state ^= *state << 25;
+        *state ^= *state >> 27;
+        let bits = state.wrapping_mul(0x2545_f491_4f6c_dd1d);
+        // A mantissa and a sign from the bits, a magnitude from 1e-30 to 1e30.
+        #[allow(clippy::cast_precision_loss)]
+        let m = (bits >> 11) as f64 / (1u64 << 53) as f64;
+        let sign = if bits & 1 == 0 { 1.0 } else { -1.0 };
+        #[allow(clippy::cast_possible_truncation)]
+        let exp = ((bits >> 1) % 61) as i32 - 30;
+        sign * (0.5 + m) * 10f64.powi(exp)
+    }
+
+    #[test]
+    fn the_far_reciprocal_exit_is_at_least_the_widened_exit() {
+        let mut state = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..200_000 {
+            let (x, o, d) = (next(&mut state), next(&mut state), next(&mut state));
+            // Near neighbours too: the exit close to the origin and x − o exact.
+            for (x, o) in [(x, o), (o * (1.0 + f64::EPSILON), o), (x, x.next_down())] {
+                let inv = 1.0 / d;
+                let reference = widen_exit((x - o) * inv);
+                if reference >= 0.0 {
+                    assert!((x - o) * far_recip(inv) >= reference, "x {x:e} o {o:e} d {d:e}");
+                }
+            }
+        }
     }
 }
