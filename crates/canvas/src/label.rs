@@ -302,14 +302,21 @@ impl Drawing {
     /// The ink box of every text item, with its index into `items`: its advance width across
     /// and its glyphs' ink up and down ([`text::TextLayout::ink`]), where both back ends draw it.
     fn ink_boxes(&self, tf: &Transform) -> Vec<(usize, PxRect)> {
-        self.items
-            .iter()
-            .enumerate()
-            .filter_map(|(k, item)| match &item.mark {
-                Mark::Text(label) => Some((k, Self::ink_box(label, tf))),
-                _ => None,
-            })
-            .collect()
+        self.ink_boxes_of(tf, None)
+    }
+
+    /// [`Drawing::ink_boxes`] of text item `only` alone (none when it is not text), or of every
+    /// text item when `only` is `None`: a check of one label runs in the items' count, not its
+    /// square (a 2D lens figure at depth 64, 1 379 labels, took over two minutes to settle them).
+    fn ink_boxes_of(&self, tf: &Transform, only: Option<usize>) -> Vec<(usize, PxRect)> {
+        let text = |(k, item): (usize, &Item)| match &item.mark {
+            Mark::Text(label) => Some((k, Self::ink_box(label, tf))),
+            _ => None,
+        };
+        match only {
+            Some(k) => self.items.get(k).and_then(|item| text((k, item))).into_iter().collect(),
+            None => self.items.iter().enumerate().filter_map(text).collect(),
+        }
     }
 
     /// Where a text item's ink lands in pixels under `tf`: its advance width across and its
@@ -342,6 +349,14 @@ impl Drawing {
         out
     }
 
+    /// Whether text item `index`'s ink overlaps another label's ([`Drawing::overlapping_labels`]
+    /// of that one item).
+    fn overlaps_another_label(&self, index: usize) -> bool {
+        let tf = self.frame().transform;
+        let Some((_, own)) = self.ink_boxes_of(&tf, Some(index)).pop() else { return false };
+        self.ink_boxes(&tf).iter().any(|(k, b)| *k != index && own.overlap(b) > 0.0)
+    }
+
     /// The pairs `(label, line)`, as indices into `items`, of a text item whose ink box (see
     /// [`Drawing::overlapping_labels`]) lies on a guarded line it does not name: a stroked item
     /// whose tag starts with `guard` (a figure's rays) sharing none of the label's events
@@ -351,7 +366,7 @@ impl Drawing {
     /// Empty for a legible layout.
     #[must_use]
     pub fn labels_on_lines(&self, guard: &str) -> Vec<(usize, usize)> {
-        self.labels_on(guard, false)
+        self.labels_on(guard, false, None)
     }
 
     /// The pairs `(label, line)`, as indices into `items`, of a text item whose ink box (see
@@ -361,15 +376,16 @@ impl Drawing {
     /// pointing at the label, not at the point it maps). Empty for a legible layout.
     #[must_use]
     pub fn labels_on_strict_lines(&self, prefix: &str) -> Vec<(usize, usize)> {
-        self.labels_on(prefix, true)
+        self.labels_on(prefix, true, None)
     }
 
     /// The pairs `(label, line)` of a text item whose ink box lies on a line tagged `prefix…`:
     /// its stroke crosses the box over more than [`MIN_CROSSING`]; with `strict`, also a label
-    /// that names the line, and one its arrow head meets within [`HEAD_CLEARANCE`].
-    fn labels_on(&self, prefix: &str, strict: bool) -> Vec<(usize, usize)> {
+    /// that names the line, and one its arrow head meets within [`HEAD_CLEARANCE`]. Of text
+    /// item `only` alone when given ([`Drawing::ink_boxes_of`]).
+    fn labels_on(&self, prefix: &str, strict: bool, only: Option<usize>) -> Vec<(usize, usize)> {
         let tf = self.frame().transform;
-        let boxes = self.ink_boxes(&tf);
+        let boxes = self.ink_boxes_of(&tf, only);
         let mut out = Vec::new();
         for (j, line) in self.items.iter().enumerate() {
             if !Self::guarded(line, prefix) {
@@ -456,8 +472,13 @@ impl Drawing {
     /// through by the floor). Empty for a legible layout.
     #[must_use]
     pub fn labels_on_outlines(&self, prefix: &str) -> Vec<(usize, usize)> {
+        self.labels_on_outlines_of(prefix, None)
+    }
+
+    /// [`Drawing::labels_on_outlines`] of text item `only` alone when given.
+    fn labels_on_outlines_of(&self, prefix: &str, only: Option<usize>) -> Vec<(usize, usize)> {
         let tf = self.frame().transform;
-        let boxes = self.ink_boxes(&tf);
+        let boxes = self.ink_boxes_of(&tf, only);
         let mut out = Vec::new();
         for (j, line) in self.items.iter().enumerate() {
             if !Self::guarded(line, prefix) {
@@ -559,18 +580,13 @@ impl Drawing {
     /// ([`Drawing::labels_on_outlines`]).
     fn misplaced(&self, index: usize, tf: &Transform) -> bool {
         let Mark::Text(label) = &self.items[index].mark else { return false };
+        let only = Some(index);
         let on_outline = self
             .outline_guard
             .as_ref()
-            .is_some_and(|prefix| self.labels_on_outlines(prefix).iter().any(|(i, _)| *i == index));
-        let on_line = self
-            .guard
-            .as_ref()
-            .is_some_and(|guard| self.labels_on_lines(guard).iter().any(|(i, _)| *i == index));
-        let on_arrow = self
-            .strict_guards
-            .iter()
-            .any(|prefix| self.labels_on_strict_lines(prefix).iter().any(|(i, _)| *i == index));
+            .is_some_and(|prefix| !self.labels_on_outlines_of(prefix, only).is_empty());
+        let on_line = self.guard.as_ref().is_some_and(|guard| !self.labels_on(guard, false, only).is_empty());
+        let on_arrow = self.strict_guards.iter().any(|prefix| !self.labels_on(prefix, true, only).is_empty());
         on_outline || on_line || on_arrow || self.rival(&self.items[index].tag, label, index, tf).is_some()
     }
 
@@ -612,7 +628,7 @@ impl Drawing {
                     }
                 }
                 // A new spot on another label is worse than the old one: keep that, joined.
-                if self.overlapping_labels().iter().any(|(a, b)| *a == index || *b == index) {
+                if self.overlaps_another_label(index) {
                     self.items[index] = old;
                     if let Mark::Text(label) = &mut self.items[index].mark {
                         label.leader = true;

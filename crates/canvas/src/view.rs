@@ -154,7 +154,26 @@ impl PxRect {
     }
     /// The parameters `t0 ≤ t1` in [0, 1] of the part of `a + t·(b − a)` inside the rectangle
     /// (Liang–Barsky clipping), or `None` when the segment misses it.
+    ///
+    /// A segment whose box lies farther than [`SURE_MISS`] outside the rectangle misses it
+    /// without the divisions: the clip itself would find `t0 > t1` there (its entry parameter
+    /// is then above 1 by far more than a rounding), so the answer is the same, only sooner.
     fn clip_segment(&self, a: DVec2, b: DVec2) -> Option<(f64, f64)> {
+        if self.surely_missed(a, b) {
+            return None;
+        }
+        self.clip(a, b)
+    }
+    /// Whether the box of the segment `a`–`b` lies farther than [`SURE_MISS`] outside.
+    fn surely_missed(&self, a: DVec2, b: DVec2) -> bool {
+        let (lo, hi) = (a.min(b), a.max(b));
+        hi.x < self.min.x - SURE_MISS
+            || lo.x > self.max.x + SURE_MISS
+            || hi.y < self.min.y - SURE_MISS
+            || lo.y > self.max.y + SURE_MISS
+    }
+    /// [`PxRect::clip_segment`] by Liang–Barsky's four divisions, for any segment.
+    fn clip(&self, a: DVec2, b: DVec2) -> Option<(f64, f64)> {
         let d = b - a;
         let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
         for (p, q) in [
@@ -179,6 +198,11 @@ impl PxRect {
         (t0 <= t1).then_some((t0, t1))
     }
 }
+
+/// How far outside a rectangle, in pixels, a segment's box must lie for
+/// [`PxRect::meets_segment`] to answer without clipping: a millionth of a pixel, far above the
+/// rounding of a clip in a drawing's coordinates.
+const SURE_MISS: f64 = 1e-6;
 
 /// The world → pixel map of a drawing: `px = (tx + s·x, ty − s·y)`, one uniform scale `s` and a
 /// y flip. Back ends narrow its f64 results to f32 at the last moment.
@@ -230,5 +254,30 @@ impl Transform {
     #[must_use]
     pub fn offset_px(&self, offset: DVec2) -> DVec2 {
         DVec2::new(offset.x, -offset.y) * self.px_scale
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_segment_surely_missed_is_one_the_clip_misses() {
+        let rect = PxRect { min: DVec2::new(10.25, -3.5), max: DVec2::new(47.0, 12.125) };
+        // Coordinates on, near and away from each edge, in every pairing.
+        let xs = [-1e4, 0.0, 10.25 - 1e-6, 10.25 - 2e-6, 10.25, 30.0, 47.0, 47.0 + 2e-6, 47.0 + 1e-3, 1e4];
+        let ys = [-1e4, -3.5 - 2e-6, -3.5 - 1e-9, -3.5, 4.0, 12.125, 12.125 + 2e-6, 12.2, 1e4];
+        let points: Vec<DVec2> = xs.iter().flat_map(|&x| ys.iter().map(move |&y| DVec2::new(x, y))).collect();
+        let mut missed = 0;
+        for &a in &points {
+            for &b in &points {
+                if rect.surely_missed(a, b) {
+                    missed += 1;
+                    assert_eq!(rect.clip(a, b), None, "{a} {b}");
+                }
+                assert_eq!(rect.clip_segment(a, b), rect.clip(a, b), "{a} {b}");
+            }
+        }
+        assert!(missed > 1000, "the sweep reaches the early answer ({missed})");
     }
 }
