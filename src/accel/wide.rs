@@ -122,6 +122,12 @@ impl WideNode {
         wide
     }
 
+    /// Lane `lane`'s child.
+    #[inline(always)]
+    fn child(&self, lane: usize) -> Child {
+        Child { start: self.start[lane], count: u32::from(self.count[lane]) }
+    }
+
     /// Points lane `lane` at inner node `node`.
     pub(crate) fn set_start(&mut self, lane: usize, node: u32) {
         self.start[lane] = node;
@@ -309,32 +315,50 @@ impl WideBvh {
                 stats.tests.node += u64::from(node.len);
                 let (t_in, t_out) = Self::intervals(node, r, &sides);
                 let bound = visitor.bound();
-                // The hit lanes, farthest entry first (an insertion sort of at most WIDTH); for a
-                // visitor that gains nothing from the order (a shadow segment), in lane order,
-                // as Embree's any-hit walk takes them.
-                let mut hit_t = [0.0; WIDTH];
-                let mut hit_c = [Child::default(); WIDTH];
-                let mut n = 0;
-                for lane in 0..WIDTH {
-                    let t = t_in[lane];
-                    if admits(t, t_out[lane]) && !beyond(t, bound) {
-                        let mut at = n;
-                        while W::NEAREST_FIRST && at > 0 && hit_t[at - 1] < t {
-                            hit_t[at] = hit_t[at - 1];
-                            hit_c[at] = hit_c[at - 1];
-                            at -= 1;
+                if !W::NEAREST_FIRST {
+                    // Any-hit (a shadow segment): the hit lanes in lane order, as Embree's any-hit
+                    // walk takes them, each pushed when the next is found, the last walked next
+                    // (no arrays to fill and copy: 2.8 % of mesh-100k's instructions).
+                    let mut last: Option<(Child, f64)> = None;
+                    for lane in 0..WIDTH {
+                        let t = t_in[lane];
+                        if admits(t, t_out[lane]) && !beyond(t, bound) {
+                            if let Some(earlier) = last {
+                                stack.push(earlier);
+                            }
+                            last = Some((node.child(lane), t));
                         }
-                        hit_t[at] = t;
-                        hit_c[at] = Child { start: node.start[lane], count: u32::from(node.count[lane]) };
-                        n += 1;
                     }
-                }
-                if n > 0 {
-                    for k in 0..n - 1 {
-                        stack.push((hit_c[k], hit_t[k]));
+                    if let Some((next, _)) = last {
+                        child = next;
+                        continue;
                     }
-                    child = hit_c[n - 1];
-                    continue;
+                } else {
+                    // The hit lanes, farthest entry first (an insertion sort of at most WIDTH).
+                    let mut hit_t = [0.0; WIDTH];
+                    let mut hit_c = [Child::default(); WIDTH];
+                    let mut n = 0;
+                    for lane in 0..WIDTH {
+                        let t = t_in[lane];
+                        if admits(t, t_out[lane]) && !beyond(t, bound) {
+                            let mut at = n;
+                            while at > 0 && hit_t[at - 1] < t {
+                                hit_t[at] = hit_t[at - 1];
+                                hit_c[at] = hit_c[at - 1];
+                                at -= 1;
+                            }
+                            hit_t[at] = t;
+                            hit_c[at] = node.child(lane);
+                            n += 1;
+                        }
+                    }
+                    if n > 0 {
+                        for k in 0..n - 1 {
+                            stack.push((hit_c[k], hit_t[k]));
+                        }
+                        child = hit_c[n - 1];
+                        continue;
+                    }
                 }
             }
             // The next pending child whose entry the bound has not passed since it was pushed
