@@ -16,9 +16,10 @@
 //! earlier entry and a later exit, so every primitive the binary walk reaches is reached here
 //! too. An oblique ray's far planes take the widening inside their reciprocal
 //! ([`crate::geom::slab::far_recip`], one multiplication a plane instead of two), which gives an
-//! exit at least the widened one, so this still holds, and the exact `f64` primitive test still decides every hit. Since [`super::Nearest`]
-//! keeps the least `(t, object, part)` whatever the order of visits, and [`super::Shadow`]
-//! reports its occluders sorted, the answers are those of the binary walk, bit for bit.
+//! exit at least the widened one, so this still holds. The exact `f64` primitive test still
+//! decides every hit. Since [`super::Nearest`] keeps the least `(t, object, part)` whatever the
+//! order of visits, and [`super::Shadow`] reports its occluders sorted, the answers are those of
+//! the binary walk, bit for bit.
 //!
 //! **Layout**: per node, per axis, per side (`min`, `max`), the [`WIDTH`] children's planes side
 //! by side (`[f32; 4]`), so the test of all children is one loop over lanes that the compiler
