@@ -316,6 +316,9 @@ impl WideBvh {
                 stats.tests.node += u64::from(node.len);
                 let (t_in, t_out) = Self::intervals(node, r, &sides);
                 let bound = visitor.bound();
+                // Each branch below writes out its own lane test (`admits` and `beyond`): one
+                // closure shared by both cost 80.97 → 86.95 M instructions on mesh-100k
+                // (callgrind, 160x120), a `filter` over the lanes 89.2 M.
                 if !W::NEAREST_FIRST {
                     // Any-hit (a shadow segment): the hit lanes in lane order, as Embree's any-hit
                     // walk takes them, each pushed when the next is found, the last walked next
