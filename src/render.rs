@@ -15,10 +15,15 @@
 //! written in place into the image, and a job's size comes from `job_rows` (small jobs, so that a
 //! thread out of work takes the next one). Nothing large is written serially: an edge row is
 //! allocated by the thread that first traces it, the blank image by every thread (`Image::new`).
+//!
+//! Each pixel's colour is computed in `f64` and then kept as the caller's [`Pixel`]: the linear
+//! colour ([`render`], for whatever measures or compares colours), or the 8-bit bytes of the file
+//! ([`render_as`] with `[u8; 3]`, for `whitted render` and the page), which spares the render 21
+//! of 24 bytes a pixel and their first-touch page faults.
 
 use crate::accel::Accel;
 use crate::geom::ray::Ray;
-use crate::image::Image;
+use crate::image::{Image, Pixel};
 use crate::record::stats::Stats;
 use crate::record::NoRecorder;
 use crate::sample::corners::{Axes, Lattice};
@@ -31,11 +36,11 @@ use crate::trace::Tracer;
 use rayon::prelude::*;
 use std::ops::Range;
 
-/// What a render produced.
+/// What a render produced, its image of pixels `P` (linear colours unless asked otherwise).
 #[derive(Clone, Debug)]
-pub struct Rendered {
+pub struct Rendered<P = Rgb> {
     /// The image.
-    pub image: Image,
+    pub image: Image<P>,
     /// Rays and tests, summed over threads (`rays.primary` = the samples traced).
     pub stats: Stats,
     /// Pixels computed (a 2D strip counts its one row).
@@ -98,7 +103,9 @@ const PNG_BYTES_PER_PIXEL: u64 = 6;
 /// About how many bytes a render of `scene` (its camera already resized) needs with `config` on
 /// `threads` threads: the linear image and its PNG, the per-pixel counts if asked, and for corners
 /// or adaptive sampling the lattice's u, v tables and the edge rows (two per thread in progress,
-/// plus `edge_memory` of rows waiting between jobs).
+/// plus `edge_memory` of rows waiting between jobs). It counts the linear image, 24 bytes a pixel,
+/// also for a render that keeps only the file's bytes ([`render_as`]): an over-estimate, so that
+/// one refusal holds for every caller.
 #[must_use]
 pub fn memory_needed<V: Dim>(scene: &Scene<V>, config: &RenderConfig<'_>, threads: usize) -> u64 {
     let cam = &scene.camera;
@@ -173,9 +180,21 @@ pub fn render_centers<V: Dim>(
 /// Renders the scene's image with `config`'s sampling in the current rayon pool.
 #[must_use]
 pub fn render<V: Dim>(scene: &Scene<V>, accel: &Accel<V>, config: &RenderConfig<'_>) -> Rendered {
+    render_as(scene, accel, config)
+}
+
+/// [`render`] into pixels `P`: each pixel's colour is computed as [`render`] computes it, then
+/// kept as `P` ([`Pixel::from_linear`]). `[u8; 3]`, the bytes of a file, keeps an eighth of the
+/// memory, and its trace touches an eighth of the fresh pages.
+#[must_use]
+pub fn render_as<V: Dim, P: Pixel>(
+    scene: &Scene<V>,
+    accel: &Accel<V>,
+    config: &RenderConfig<'_>,
+) -> Rendered<P> {
     let cam = &scene.camera;
     let height = image_height(scene, config);
-    let mut image = Image::new(cam.nx, height);
+    let mut image = Image::<P>::new(cam.nx, height);
     // Rows are written in place: the computed rows are the first Ny of the image.
     let computed = &mut image.pixels[..cam.nx * cam.ny];
     let (stats, counts) = match config.sampling.rule() {
@@ -208,11 +227,11 @@ fn total(rows: Vec<Stats>) -> Stats {
 }
 
 /// §2: one ray through each pixel centre, `u = l + (r − l)·(i + 0.5)/Nx`; rows in parallel.
-fn center_rows<V: Dim>(
+fn center_rows<V: Dim, P: Pixel>(
     scene: &Scene<V>,
     accel: &Accel<V>,
     config: &RenderConfig<'_>,
-    pixels: &mut [Rgb],
+    pixels: &mut [P],
 ) -> Stats {
     let cam = &scene.camera;
     let us = column_us(scene);
@@ -248,11 +267,11 @@ fn column_us<V: Dim>(scene: &Scene<V>) -> Vec<f64> {
 /// §2 for the pixels of row `j` whose columns' u are `us`, into `row`: the primary rays first
 /// (into `rays`), their normalisations back to back (independent, so they overlap), then each
 /// traced: the same rays, made before they are needed.
-fn center_row<V: Dim>(
+fn center_row<V: Dim, P: Pixel>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     us: &[f64],
     j: usize,
-    row: &mut [Rgb],
+    row: &mut [P],
     rays: &mut Vec<Ray<V>>,
 ) {
     let cam = &tracer.scene.camera;
@@ -260,7 +279,7 @@ fn center_row<V: Dim>(
     rays.clear();
     rays.extend(us.iter().map(|&u| cam.primary_ray(u, v)));
     for (pixel, ray) in row.iter_mut().zip(rays.iter()) {
-        *pixel = tracer.trace_primary(ray, &[]);
+        *pixel = P::from_linear(tracer.trace_primary(ray, &[]));
     }
 }
 
@@ -373,12 +392,12 @@ fn job_rows(lattice: Lattice, budget: usize, threads: usize) -> usize {
 /// bottom one (so a job's first row makes its own top row while the job below may still be
 /// making the row they share), and releases both when done. Each pixel's sample count goes to
 /// `counts` when asked for.
-fn lattice_rows<V: Dim>(
+fn lattice_rows<V: Dim, P: Pixel>(
     scene: &Scene<V>,
     accel: &Accel<V>,
     config: &RenderConfig<'_>,
     rule: (f64, u32),
-    pixels: &mut [Rgb],
+    pixels: &mut [P],
     counts: Option<&mut [u32]>,
 ) -> Stats {
     let lattice = Lattice::new(&scene.camera, rule.1);
@@ -414,9 +433,9 @@ struct Rows<'a, V: Dim> {
 
 impl<V: Dim> Rows<'_, V> {
     /// Renders the pixel rows `rows` gives, bottom to top (each with its counts, if asked for).
-    fn run<'p>(
+    fn run<'p, P: Pixel>(
         &self,
-        rows: impl IndexedParallelIterator<Item = (&'p mut [Rgb], Option<&'p mut [u32]>)>,
+        rows: impl IndexedParallelIterator<Item = (&'p mut [P], Option<&'p mut [u32]>)>,
     ) -> Stats {
         let (lattice, edges) = (self.lattice, &self.edges);
         let job = job_rows(lattice, self.config.edge_memory, rayon::current_num_threads());
@@ -444,7 +463,7 @@ impl<V: Dim> Rows<'_, V> {
 /// One pixel row of the lattice modes, into its pixels and per-pixel counts.
 // The inputs of `render_row` plus the progress callback; a struct would only rename them.
 #[allow(clippy::too_many_arguments)]
-fn lattice_row<V: Dim>(
+fn lattice_row<V: Dim, P: Pixel>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     scratch: &mut Scratch,
     lattice: Lattice,
@@ -452,7 +471,7 @@ fn lattice_row<V: Dim>(
     config: &RenderConfig<'_>,
     j: usize,
     edges: Edges<'_>,
-    (pixels, counts): (&mut [Rgb], Option<&mut [u32]>),
+    (pixels, counts): (&mut [P], Option<&mut [u32]>),
 ) {
     render_row(tracer, lattice, rule, (0, j), edges, scratch, pixels, counts);
     if let Some(progress) = config.progress {

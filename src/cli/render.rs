@@ -160,7 +160,7 @@ fn render_scene<V: Dim>(
 ///
 /// # Errors
 /// Only if the encoder fails (it does not for valid sizes).
-fn png(image: &Image) -> Result<Vec<u8>, String> {
+fn png(image: &Image<[u8; 3]>) -> Result<Vec<u8>, String> {
     use image::ImageEncoder;
     let width = u32::try_from(image.width).map_err(|e| e.to_string())?;
     let height = u32::try_from(image.height).map_err(|e| e.to_string())?;

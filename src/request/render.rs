@@ -5,7 +5,7 @@ use super::Failure;
 use crate::accel::{Accel, AccelOptions};
 use crate::clock::Stopwatch;
 use crate::doc::float;
-use crate::render::{check_fits, render, RenderConfig, Rendered, EDGE_MEMORY};
+use crate::render::{check_fits, render_as, RenderConfig, Rendered, EDGE_MEMORY};
 use crate::sample::Sampling;
 use crate::scene::Scene;
 use crate::shape::Dim;
@@ -14,8 +14,9 @@ use serde_json::{json, Value};
 /// A finished render.
 #[derive(Clone, Debug)]
 pub struct Outcome {
-    /// The image and its statistics.
-    pub rendered: Rendered,
+    /// The image, as the bytes of its file (all a command line or a page shows of it), and its
+    /// statistics.
+    pub rendered: Rendered<[u8; 3]>,
     /// Seconds to build the structure.
     pub build_seconds: f64,
     /// Seconds to render.
@@ -62,7 +63,7 @@ pub fn run<V: Dim>(scene: &Scene<V>, job: &Job<'_>) -> Result<Outcome, Failure> 
     let accel = Accel::build_for_render(scene, job.accel);
     let build_seconds = build.seconds();
     let watch = Stopwatch::start();
-    let rendered = render(scene, &accel, &config);
+    let rendered = render_as(scene, &accel, &config);
     let seconds = watch.seconds();
     Ok(Outcome { rendered, build_seconds, seconds, accel: accel.kind().name(), sampling: job.sampling })
 }

@@ -78,6 +78,17 @@ fn unit(v: DVec3) -> DVec3 {
     v / v.dot(v).sqrt()
 }
 
+/// round(255·clamp(c, 0, 1)), half away from zero (§5), as whitted's `image::to_byte` computes
+/// it: 0 below x = 255·c = 0.5, else ⌊x + 0.5⌋ by the saturating cast.
+fn to_byte(c: f64) -> u8 {
+    let x = 255.0 * c;
+    if x < 0.5 {
+        0
+    } else {
+        (x + 0.5) as u8
+    }
+}
+
 fn max_abs(v: DVec3) -> f64 {
     v.x.abs().max(v.y.abs()).max(v.z.abs())
 }
@@ -157,13 +168,14 @@ impl Scene {
         s
     }
 
-    /// Every pixel centre into a fresh image (row 0 at the bottom, §2), and the rays traced.
+    /// Every pixel centre into a fresh image of the file's bytes (row 0 at the bottom, §2; as
+    /// `whitted render` keeps it), and the rays traced.
     /// Not inlined, so that a profile shows the trace phase as one function.
     #[inline(never)]
-    fn render(&self, camera: &Camera) -> (Vec<DVec3>, Rays) {
+    fn render(&self, camera: &Camera) -> (Vec<[u8; 3]>, Rays) {
         let (l, r, b, t) = (-0.666_666_666_666_666_6, 0.666_666_666_666_666_6, -0.5, 0.5);
         let (nx, ny) = (camera.nx, camera.ny);
-        let mut image = vec![DVec3::ZERO; nx * ny];
+        let mut image = vec![[0; 3]; nx * ny];
         let mut rays = Rays::default();
         for j in 0..ny {
             for i in 0..nx {
@@ -171,7 +183,8 @@ impl Scene {
                 let pv = b + (t - b) * (j as f64 + 0.5) / ny as f64;
                 let s = camera.eye + camera.u * pu + camera.v * pv - camera.w * 1.0;
                 rays.primary += 1;
-                image[j * nx + i] = self.trace(camera.eye, unit(s - camera.eye), 1, &mut rays);
+                let c = self.trace(camera.eye, unit(s - camera.eye), 1, &mut rays);
+                image[j * nx + i] = [c.x, c.y, c.z].map(to_byte);
             }
         }
         (image, rays)
@@ -294,13 +307,10 @@ fn main() {
         rays.primary, rays.reflected, rays.transmitted, rays.shadow
     );
     if let Some(path) = std::env::args().nth(1) {
-        // Binary PPM, top row first (rows count from the bottom, §2), round(255·clamp) per channel.
+        // Binary PPM, top row first (rows count from the bottom, §2).
         let mut bytes = format!("P6\n{nx} {ny}\n255\n").into_bytes();
         for j in (0..ny).rev() {
-            for i in 0..nx {
-                let c = image[j * nx + i];
-                bytes.extend([c.x, c.y, c.z].map(|x| (255.0 * x.clamp(0.0, 1.0)).round() as u8));
-            }
+            bytes.extend(image[j * nx..(j + 1) * nx].iter().flatten());
         }
         std::fs::write(&path, bytes).expect("write the PPM");
     }
