@@ -16,10 +16,11 @@
 //! thread out of work takes the next one). Nothing large is written serially: an edge row is
 //! allocated by the thread that first traces it, the blank image by every thread (`Image::new`).
 //!
-//! Each pixel's colour is computed in `f64` and then kept as the caller's [`Pixel`]: the linear
-//! colour ([`render`], for whatever measures or compares colours), or the 8-bit bytes of the file
-//! ([`render_as`] with `[u8; 3]`, for `whitted render` and the page), which spares the render 21
-//! of 24 bytes a pixel and their first-touch page faults.
+//! Each pixel's colour is computed in `f64`, a row at a time into a thread's row of colours, and
+//! then kept as the caller's [`Pixel`] (`keep`): the linear colour ([`render`], for whatever
+//! measures or compares colours, and the page), or the 8-bit bytes of the file ([`render_as`]
+//! with `[u8; 3]`, for `whitted render`), which spares the render 21 of 24 bytes a pixel and their
+//! first-touch page faults.
 
 use crate::accel::Accel;
 use crate::geom::ray::Ray;
@@ -243,9 +244,10 @@ fn center_rows<V: Dim, P: Pixel>(
         // idle for the last sixth of a render).
         .with_max_len(1)
         .map_init(
-            || (tracer(scene, accel, config.max_depth), Vec::with_capacity(cam.nx)),
-            |(tracer, rays), (j, row)| {
-                center_row(tracer, &us, j, row, rays);
+            || (tracer(scene, accel, config.max_depth), Vec::with_capacity(cam.nx), vec![Rgb::BLACK; cam.nx]),
+            |(tracer, rays, colours), (j, row)| {
+                center_row(tracer, &us, j, colours, rays);
+                keep(row, colours);
                 if let Some(progress) = config.progress {
                     progress(1);
                 }
@@ -254,6 +256,14 @@ fn center_rows<V: Dim, P: Pixel>(
         )
         .collect();
     total(rows)
+}
+
+/// A row's colours kept as the image's pixels: the tracing code is the same whatever `P` is (one
+/// copy of it in the program), and only this loop is made for each pixel type.
+fn keep<P: Pixel>(row: &mut [P], colours: &[Rgb]) {
+    for (pixel, colour) in row.iter_mut().zip(colours) {
+        *pixel = P::from_linear(*colour);
+    }
 }
 
 /// Each column's u of a centre-sampled image, `u = l + (r − l)·(i + 0.5)/Nx`, computed once:
@@ -267,11 +277,11 @@ fn column_us<V: Dim>(scene: &Scene<V>) -> Vec<f64> {
 /// §2 for the pixels of row `j` whose columns' u are `us`, into `row`: the primary rays first
 /// (into `rays`), their normalisations back to back (independent, so they overlap), then each
 /// traced: the same rays, made before they are needed.
-fn center_row<V: Dim, P: Pixel>(
+fn center_row<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     us: &[f64],
     j: usize,
-    row: &mut [P],
+    row: &mut [Rgb],
     rays: &mut Vec<Ray<V>>,
 ) {
     let cam = &tracer.scene.camera;
@@ -279,7 +289,7 @@ fn center_row<V: Dim, P: Pixel>(
     rays.clear();
     rays.extend(us.iter().map(|&u| cam.primary_ray(u, v)));
     for (pixel, ray) in row.iter_mut().zip(rays.iter()) {
-        *pixel = P::from_linear(tracer.trace_primary(ray, &[]));
+        *pixel = tracer.trace_primary(ray, &[]);
     }
 }
 
@@ -409,7 +419,9 @@ fn lattice_rows<V: Dim, P: Pixel>(
         let edge = EdgeRow::trace(&mut tracer, (lattice, &axes), 0, false);
         let edges = Edges { bottom: &edge, top: &edge, axes: &axes };
         let mut scratch = Scratch::new(lattice);
-        lattice_row(&mut tracer, &mut scratch, lattice, rule, config, 0, edges, (pixels, counts));
+        let mut colours = vec![Rgb::BLACK; pixels.len()];
+        lattice_row(&mut tracer, &mut scratch, lattice, rule, config, 0, edges, (&mut colours, counts));
+        keep(pixels, &colours);
         return tracer.stats;
     }
     let rows = Rows { scene, accel, config, rule, lattice, edges: EdgeRows::new(lattice, &scene.camera) };
@@ -444,12 +456,16 @@ impl<V: Dim> Rows<'_, V> {
             .with_min_len(job)
             .with_max_len(job)
             .map_init(
-                || (tracer(self.scene, self.accel, self.config.max_depth), Scratch::new(lattice)),
-                |(tracer, scratch), (j, row)| {
+                || {
+                    let tracer = tracer(self.scene, self.accel, self.config.max_depth);
+                    (tracer, Scratch::new(lattice), vec![Rgb::BLACK; lattice.nx])
+                },
+                |(tracer, scratch, colours), (j, (row, counts))| {
                     let top = edges.acquire(tracer, j + 1);
                     let bottom = edges.acquire(tracer, j);
                     let pair = Edges { bottom: &bottom, top: &top, axes: edges.axes() };
-                    lattice_row(tracer, scratch, lattice, self.rule, self.config, j, pair, row);
+                    lattice_row(tracer, scratch, lattice, self.rule, self.config, j, pair, (colours, counts));
+                    keep(row, colours);
                     edges.release(j);
                     edges.release(j + 1);
                     std::mem::take(&mut tracer.stats)
@@ -460,10 +476,10 @@ impl<V: Dim> Rows<'_, V> {
     }
 }
 
-/// One pixel row of the lattice modes, into its pixels and per-pixel counts.
+/// One pixel row of the lattice modes, into its colours and per-pixel counts.
 // The inputs of `render_row` plus the progress callback; a struct would only rename them.
 #[allow(clippy::too_many_arguments)]
-fn lattice_row<V: Dim, P: Pixel>(
+fn lattice_row<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     scratch: &mut Scratch,
     lattice: Lattice,
@@ -471,7 +487,7 @@ fn lattice_row<V: Dim, P: Pixel>(
     config: &RenderConfig<'_>,
     j: usize,
     edges: Edges<'_>,
-    (pixels, counts): (&mut [P], Option<&mut [u32]>),
+    (pixels, counts): (&mut [Rgb], Option<&mut [u32]>),
 ) {
     render_row(tracer, lattice, rule, (0, j), edges, scratch, pixels, counts);
     if let Some(progress) = config.progress {

@@ -12,7 +12,6 @@
 use super::adaptive::{subdivide, unsplit, NoSquares, SampleSource};
 use super::corners::{Axes, Lattice};
 use crate::geom::ray::Ray;
-use crate::image::Pixel;
 use crate::record::NoRecorder;
 use crate::scene::camera::Camera;
 use crate::scene::material::Rgb;
@@ -303,20 +302,20 @@ pub struct Edges<'l> {
 }
 
 /// Renders pixel row `j` with the subdivision rule `(threshold, K)` between its traced edge rows:
-/// writes the colour of pixel `first + k` to `pixels[k]` (as a [`Pixel`]) and, if asked, the number of distinct
+/// writes the colour of pixel `first + k` to `pixels[k]` and, if asked, the number of distinct
 /// samples it read to `used[k]` (a whole row starts at `first = 0`; a band of a 2D scene's line
 /// elsewhere).
 // Tracer, lattice, rule, row, edges, scratch and the two outputs are all distinct; a struct
 // would only rename them.
 #[allow(clippy::too_many_arguments)]
-pub fn render_row<V: Dim, P: Pixel>(
+pub fn render_row<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     lattice: Lattice,
     (threshold, max_level): (f64, u32),
     (first, j): (usize, usize),
     edges: Edges<'_>,
     scratch: &mut Scratch,
-    pixels: &mut [P],
+    pixels: &mut [Rgb],
     mut used: Option<&mut [u32]>,
 ) {
     let dims = lattice.dims();
@@ -334,13 +333,13 @@ pub fn render_row<V: Dim, P: Pixel>(
             unsplit([&b[i], &b[i + 1], &t[i], &t[i + 1]], threshold, max_level)
         };
         let count = if let Some(color) = quiet {
-            *pixel = P::from_linear(color);
+            *pixel = color;
             scratch.carry_right_edge(dims, false);
             1 << dims
         } else {
             scratch.next_pixel();
             let mut source = RowSource { tracer, lattice, i, j, edges, scratch, used: 0 };
-            *pixel = P::from_linear(subdivide(&mut source, &mut NoSquares, dims, threshold, max_level));
+            *pixel = subdivide(&mut source, &mut NoSquares, dims, threshold, max_level);
             let count = source.used;
             // A pixel split at level 0 has read points inside it.
             scratch.carry_right_edge(dims, true);
