@@ -16,11 +16,12 @@
 //! thread out of work takes the next one). Nothing large is written serially: an edge row is
 //! allocated by the thread that first traces it, the blank image by every thread (`Image::new`).
 //!
-//! Each pixel's colour is computed in `f64`, a row at a time into a thread's row of colours, and
-//! then kept as the caller's [`Pixel`] (`keep`): the linear colour ([`render`], for whatever
-//! measures or compares colours, and the page), or the 8-bit bytes of the file ([`render_as`]
-//! with `[u8; 3]`, for `whitted render`), which spares the render 21 of 24 bytes a pixel and their
-//! first-touch page faults.
+//! Each pixel's colour is computed in `f64`, a row at a time, into the caller's [`Pixel`]s
+//! (`Pixel::colours`, `Pixel::keep`): linear colours ([`render`], for whatever measures or
+//! compares colours) traced in place, or the 8-bit bytes of the file ([`render_as`] with
+//! `[u8; 3]`, for `whitted render` and the page) traced into a thread's row of colours and then
+//! converted, which spares the render 21 of 24 bytes a pixel and their first-touch page faults.
+//! The tracing code is the same whatever the pixel type: one copy of it in the program.
 
 use crate::accel::Accel;
 use crate::geom::ray::Ray;
@@ -245,9 +246,9 @@ fn center_rows<V: Dim, P: Pixel>(
         .with_max_len(1)
         .map_init(
             || (tracer(scene, accel, config.max_depth), Vec::with_capacity(cam.nx), vec![Rgb::BLACK; cam.nx]),
-            |(tracer, rays, colours), (j, row)| {
-                center_row(tracer, &us, j, colours, rays);
-                keep(row, colours);
+            |(tracer, rays, scratch), (j, row)| {
+                center_row(tracer, &us, j, P::colours(row, scratch), rays);
+                P::keep(row, scratch);
                 if let Some(progress) = config.progress {
                     progress(1);
                 }
@@ -256,14 +257,6 @@ fn center_rows<V: Dim, P: Pixel>(
         )
         .collect();
     total(rows)
-}
-
-/// A row's colours kept as the image's pixels: the tracing code is the same whatever `P` is (one
-/// copy of it in the program), and only this loop is made for each pixel type.
-fn keep<P: Pixel>(row: &mut [P], colours: &[Rgb]) {
-    for (pixel, colour) in row.iter_mut().zip(colours) {
-        *pixel = P::from_linear(*colour);
-    }
 }
 
 /// Each column's u of a centre-sampled image, `u = l + (r − l)·(i + 0.5)/Nx`, computed once:
@@ -420,8 +413,9 @@ fn lattice_rows<V: Dim, P: Pixel>(
         let edges = Edges { bottom: &edge, top: &edge, axes: &axes };
         let mut scratch = Scratch::new(lattice);
         let mut colours = vec![Rgb::BLACK; pixels.len()];
-        lattice_row(&mut tracer, &mut scratch, lattice, rule, config, 0, edges, (&mut colours, counts));
-        keep(pixels, &colours);
+        let out = P::colours(pixels, &mut colours);
+        lattice_row(&mut tracer, &mut scratch, lattice, rule, config, 0, edges, (out, counts));
+        P::keep(pixels, &colours);
         return tracer.stats;
     }
     let rows = Rows { scene, accel, config, rule, lattice, edges: EdgeRows::new(lattice, &scene.camera) };
@@ -461,11 +455,12 @@ impl<V: Dim> Rows<'_, V> {
                     (tracer, Scratch::new(lattice), vec![Rgb::BLACK; lattice.nx])
                 },
                 |(tracer, scratch, colours), (j, (row, counts))| {
+                    let out = P::colours(row, colours);
                     let top = edges.acquire(tracer, j + 1);
                     let bottom = edges.acquire(tracer, j);
                     let pair = Edges { bottom: &bottom, top: &top, axes: edges.axes() };
-                    lattice_row(tracer, scratch, lattice, self.rule, self.config, j, pair, (colours, counts));
-                    keep(row, colours);
+                    lattice_row(tracer, scratch, lattice, self.rule, self.config, j, pair, (out, counts));
+                    P::keep(row, colours);
                     edges.release(j);
                     edges.release(j + 1);
                     std::mem::take(&mut tracer.stats)

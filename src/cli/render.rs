@@ -122,7 +122,7 @@ fn render_scene<V: Dim>(
     sampling: Sampling,
     options: &AccelOptions,
     strip_rows: Option<usize>,
-) -> Result<Outcome<[u8; 3]>, Failure> {
+) -> Result<Outcome, Failure> {
     // A progress bar over pixel rows, only for a person watching a terminal.
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = ProgressBar::new(scene.camera.ny as u64);

@@ -5,21 +5,18 @@ use super::Failure;
 use crate::accel::{Accel, AccelOptions};
 use crate::clock::Stopwatch;
 use crate::doc::float;
-use crate::image::Pixel;
 use crate::render::{check_fits, render_as, RenderConfig, Rendered, EDGE_MEMORY};
 use crate::sample::Sampling;
-use crate::scene::material::Rgb;
 use crate::scene::Scene;
 use crate::shape::Dim;
 use serde_json::{json, Value};
 
-/// A finished render, its image of pixels `P`: the file's bytes for the command line (which
-/// then holds 3 bytes a pixel, not 24), linear colours for the page (where one render path keeps
-/// the WebAssembly module within its size).
+/// A finished render.
 #[derive(Clone, Debug)]
-pub struct Outcome<P = Rgb> {
-    /// The image and its statistics.
-    pub rendered: Rendered<P>,
+pub struct Outcome {
+    /// The image, as the bytes of its file (all a command line or a page shows of it: 3 bytes a
+    /// pixel, not 24), and its statistics.
+    pub rendered: Rendered<[u8; 3]>,
     /// Seconds to build the structure.
     pub build_seconds: f64,
     /// Seconds to render.
@@ -51,7 +48,7 @@ pub struct Job<'a> {
 ///
 /// # Errors
 /// Bad input: an image too large, naming `--size`.
-pub fn run<V: Dim, P: Pixel>(scene: &Scene<V>, job: &Job<'_>) -> Result<Outcome<P>, Failure> {
+pub fn run<V: Dim>(scene: &Scene<V>, job: &Job<'_>) -> Result<Outcome, Failure> {
     let config = RenderConfig {
         sampling: job.sampling,
         max_depth: job.depth.unwrap_or(scene.max_depth),
@@ -71,7 +68,7 @@ pub fn run<V: Dim, P: Pixel>(scene: &Scene<V>, job: &Job<'_>) -> Result<Outcome<
     Ok(Outcome { rendered, build_seconds, seconds, accel: accel.kind().name(), sampling: job.sampling })
 }
 
-impl<P> Outcome<P> {
+impl Outcome {
     /// The object `whitted render --json` prints: `pixels`, `samples`, `load_seconds`,
     /// `build_seconds`, `seconds`, `threads`, `accel`, `aa`, `width`, `height`, `output` (when
     /// a file was written), `rays`, `tests`, and `threshold`, `max_level` for adaptive sampling.

@@ -230,8 +230,7 @@ fn render_op(f: &Fields<'_>) -> Result<Answer, Failure> {
         strip_rows,
         progress: None,
     };
-    // Linear colours, as every other render of the module keeps them: one render path in it.
-    let outcome: job::Outcome = match scene {
+    let outcome = match scene {
         AnyScene::Flat(mut s) => {
             let rows = resize(&mut s, options.size);
             let (w, h) = image_size(&s, rows);
