@@ -16,8 +16,10 @@
 //!   summed from the deepest level up, I = (I_local + ks·R) + kt·T as the recursion sums them.
 //!   Without `WAVES` they are traced one ray at a time by the library's scalar `shade`.
 //!
-//! Build-time knobs: `FLOOR_SIMD_LANES` (2, 4 or 8; default 8 with AVX-512, else 4) and
-//! `FLOOR_SIMD_WAVES` (0 or 1; default 1 with AVX2); the first line of the output says which.
+//! Build-time knobs: `FLOOR_SIMD_LANES` (2, 4 or 8; default 8 with AVX-512, else 4),
+//! `FLOOR_SIMD_DISPATCH` (0 or 1; default 1 on x86-64: a baseline build runs its packets in AVX2
+//! code when the CPU has it, chosen at run time by `pulp`) and `FLOOR_SIMD_WAVES` (0 or 1;
+//! default 1 with AVX2 or the dispatch); the first line of the output says which.
 //! It prints what `whitted-floor` prints, writes the same PPM, and must give the same bytes:
 //!
 //! ```text
@@ -349,7 +351,7 @@ fn spawn_packet(point: F3, n_f: F3, dir: F3, delta: F) -> F3 {
 /// follows the target, `FLOOR_SIMD_WAVES` = 0 or 1 at build time overrides it.
 const WAVES: bool = match option_env!("FLOOR_SIMD_WAVES") {
     Some(w) => matches!(w.as_bytes(), [b'1', ..]),
-    None => cfg!(target_feature = "avx2"),
+    None => cfg!(target_feature = "avx2") || DISPATCH,
 };
 
 /// No child.
@@ -365,11 +367,13 @@ struct Wave {
 }
 
 impl Wave {
+    #[inline(always)]
     fn len(&self) -> usize {
         self.parent.len()
     }
 
     /// Push a ray; its index.
+    #[inline(always)]
     fn push(&mut self, o: DVec3, d: DVec3, parent: u32) -> u32 {
         for (k, c) in self.o.iter_mut().enumerate() {
             c.push(o[k]);
@@ -381,6 +385,7 @@ impl Wave {
         (self.parent.len() - 1) as u32
     }
 
+    #[inline(always)]
     fn clear(&mut self) {
         for c in self.o.iter_mut().chain(self.d.iter_mut()) {
             c.clear();
@@ -389,6 +394,7 @@ impl Wave {
     }
 
     /// Repeat the last ray's coordinates to a whole number of packets (`len` stays).
+    #[inline(always)]
     fn pad(&mut self) {
         for c in self.o.iter_mut().chain(self.d.iter_mut()) {
             let last = *c.last().expect("a ray");
@@ -419,6 +425,7 @@ struct Nodes {
 }
 
 impl Nodes {
+    #[inline(always)]
     fn clear(&mut self) {
         self.local.clear();
         self.ks.clear();
@@ -439,6 +446,7 @@ struct Trees {
 }
 
 impl Trees {
+    #[inline(always)]
     fn new(levels: usize) -> Trees {
         Trees {
             waves: (0..=levels).map(|_| Wave::default()).collect(),
@@ -518,6 +526,7 @@ struct Packets<'s>(&'s Scene);
 
 impl std::ops::Deref for Packets<'_> {
     type Target = Scene;
+    #[inline(always)]
     fn deref(&self) -> &Scene {
         self.0
     }
@@ -528,8 +537,9 @@ impl Packets<'_> {
     /// `whitted render` keeps it), and the rays traced: the primary rays W at a time (a packet of
     /// W neighbours in a row), their floor hits shaded in the packet, the sphere hits one lane at
     /// a time by the scalar `shade`.
-    /// Not inlined, so that a profile shows the trace phase as one function.
-    #[inline(never)]
+    /// Inlined into its caller, [`render_plain`] or [`Render`]'s dispatch, so that the whole trace
+    /// is compiled inside the function that enables the CPU's features.
+    #[inline(always)]
     fn render(&self, camera: &Camera) -> (Vec<[u8; 3]>, Rays) {
         let (l, r, b, t) = (-0.666_666_666_666_666_6, 0.666_666_666_666_666_6, -0.5, 0.5);
         let (nx, ny) = (camera.nx, camera.ny);
@@ -585,6 +595,7 @@ impl Packets<'_> {
 
     /// The ray trees of the pixels in `trees`' first wave, a level at a time (a wave), in
     /// packets of W rays; their colours into `image`; the waves emptied.
+    #[inline(always)]
     fn trace_trees(&self, trees: &mut Trees, image: &mut [[u8; 3]], rays: &mut Rays) {
         let levels = trees.waves.len();
         let mut depth = 0;
@@ -622,6 +633,7 @@ impl Packets<'_> {
 
     /// Trace one wave (the rays of one level), W at a time, into `nodes`: each ray's local colour,
     /// its weights, and its children pushed onto `next` (their index in it noted in the node).
+    #[inline(always)]
     fn trace_wave(&self, wave: &mut Wave, level: u32, next: &mut Wave, nodes: &mut Nodes, rays: &mut Rays) {
         let n = wave.len();
         wave.pad();
@@ -862,10 +874,65 @@ impl Packets<'_> {
     }
 }
 
+/// Whether the trace picks its instruction set when it runs (`pulp`): with AVX2 and FMA on the CPU,
+/// a baseline x86-64 build runs its packets in AVX2 code, else in the SSE2 code it was built for.
+/// On by default on x86-64 (a build for a target with AVX2 has nothing to choose: it keeps its
+/// own code); `FLOOR_SIMD_DISPATCH` = 0 at build time turns it off.
+const DISPATCH: bool = match option_env!("FLOOR_SIMD_DISPATCH") {
+    Some(d) => !matches!(d.as_bytes(), [b'0', ..]) && cfg!(target_arch = "x86_64"),
+    None => cfg!(target_arch = "x86_64"),
+} && !cfg!(target_feature = "avx2");
+
+/// The render compiled once for the build's target, out of line, so that a profile shows the
+/// trace phase as one function.
+#[inline(never)]
+fn render_plain(scene: &Scene, camera: &Camera) -> (Vec<[u8; 3]>, Rays) {
+    Packets(scene).render(camera)
+}
+
+/// The render as `pulp` dispatches it: `with_simd` is compiled once per instruction set, each copy
+/// inside a function with that set's target features, and `Arch::dispatch` calls the one the CPU
+/// has. Every function of the packet path is `#[inline(always)]`, so that all of it lands in the
+/// copy (a function left out of line would be compiled for the baseline target alone). A closure
+/// does not do: its body is compiled outside the features' function.
+#[cfg(target_arch = "x86_64")]
+struct Render<'a> {
+    scene: &'a Scene,
+    camera: &'a Camera,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl pulp::WithSimd for Render<'_> {
+    type Output = (Vec<[u8; 3]>, Rays);
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Self::Output {
+        Packets(self.scene).render(self.camera)
+    }
+}
+
+/// The instruction set the render runs in: the one `pulp` finds on the CPU when [`DISPATCH`] is on.
+fn instruction_set() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    if DISPATCH {
+        return match pulp::Arch::new() {
+            pulp::Arch::V3(_) => "AVX2 chosen at run time",
+            _ => "the build's target (no AVX2 on this CPU)",
+        };
+    }
+    "the build's target"
+}
+
 fn main() {
     let header = format!(
-        "packets of {W} lanes, sphere pixels' trees {}",
-        if WAVES { "in waves" } else { "by scalar recursion" }
+        "packets of {W} lanes, sphere pixels' trees {}, {}",
+        if WAVES { "in waves" } else { "by scalar recursion" },
+        instruction_set()
     );
-    run(Some(&header), |scene, camera| Packets(scene).render(camera));
+    run(Some(&header), |scene, camera| {
+        #[cfg(target_arch = "x86_64")]
+        if DISPATCH {
+            return pulp::Arch::new().dispatch(Render { scene, camera });
+        }
+        render_plain(scene, camera)
+    });
 }
