@@ -878,10 +878,9 @@ impl Packets<'_> {
 /// a baseline x86-64 build runs its packets in AVX2 code, else in the SSE2 code it was built for.
 /// On by default on x86-64 (a build for a target with AVX2 has nothing to choose: it keeps its
 /// own code); `FLOOR_SIMD_DISPATCH` = 0 at build time turns it off.
-const DISPATCH: bool = match option_env!("FLOOR_SIMD_DISPATCH") {
-    Some(d) => !matches!(d.as_bytes(), [b'0', ..]) && cfg!(target_arch = "x86_64"),
-    None => cfg!(target_arch = "x86_64"),
-} && !cfg!(target_feature = "avx2");
+const DISPATCH: bool = cfg!(target_arch = "x86_64")
+    && !cfg!(target_feature = "avx2")
+    && !matches!(option_env!("FLOOR_SIMD_DISPATCH"), Some(d) if matches!(d.as_bytes(), [b'0', ..]));
 
 /// The render compiled once for the build's target, out of line, so that a profile shows the
 /// trace phase as one function.
@@ -910,28 +909,29 @@ impl pulp::WithSimd for Render<'_> {
     }
 }
 
-/// The instruction set the render runs in: the one `pulp` finds on the CPU when [`DISPATCH`] is on.
-fn instruction_set() -> &'static str {
-    #[cfg(target_arch = "x86_64")]
-    if DISPATCH {
-        return match pulp::Arch::new() {
-            pulp::Arch::V3(_) => "AVX2 chosen at run time",
-            _ => "the build's target (no AVX2 on this CPU)",
-        };
-    }
-    "the build's target"
-}
-
 fn main() {
+    // The CPU is asked once: its answer names the code in the header and picks it in every repetition.
+    #[cfg(target_arch = "x86_64")]
+    let arch = DISPATCH.then(pulp::Arch::new);
+    #[cfg(target_arch = "x86_64")]
+    let chosen = match arch {
+        Some(pulp::Arch::V3(_)) => "AVX2 chosen at run time",
+        Some(_) => "the build's target (no AVX2 on this CPU)",
+        None => "the build's target",
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let chosen = "the build's target";
     let header = format!(
-        "packets of {W} lanes, sphere pixels' trees {}, {}",
+        "packets of {W} lanes, sphere pixels' trees {}, {chosen}",
         if WAVES { "in waves" } else { "by scalar recursion" },
-        instruction_set()
     );
     run(Some(&header), |scene, camera| {
+        // Behind the constant too, so that a build without the dispatch compiles no AVX2 copy.
         #[cfg(target_arch = "x86_64")]
         if DISPATCH {
-            return pulp::Arch::new().dispatch(Render { scene, camera });
+            if let Some(arch) = arch {
+                return arch.dispatch(Render { scene, camera });
+            }
         }
         render_plain(scene, camera)
     });
