@@ -281,9 +281,7 @@ fn center_row<V: Dim>(
     let v = cam.pixel_center(0, j).1;
     rays.clear();
     rays.extend(us.iter().map(|&u| cam.primary_ray(u, v)));
-    for (pixel, ray) in row.iter_mut().zip(rays.iter()) {
-        *pixel = tracer.trace_primary(ray, &[]);
-    }
+    tracer.trace_primaries(rays, row);
 }
 
 /// A band of the image, on the calling thread, for a page that shows a render's progress

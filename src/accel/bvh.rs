@@ -532,6 +532,20 @@ impl<V: Dim> Bvh<V> {
         false
     }
 
+    /// A tree that is one leaf (a small scene): its root box and its primitives, in the order
+    /// [`Bvh::walk`] visits them (none for a scene without bounded objects, whose walk tests no
+    /// box); `None` for a tree with inner nodes.
+    #[must_use]
+    pub fn one_leaf(&self) -> Option<(&Aabb<V>, &[Prim])> {
+        if self.prims.is_empty() {
+            return Some((&self.root_box, &[]));
+        }
+        (self.root.count > 0).then(|| {
+            let start = self.root.start as usize;
+            (&self.root_box, &self.prims[start..start + self.root.count as usize])
+        })
+    }
+
     /// Front-to-back traversal, handing the primitives of every leaf reached to the visitor.
     pub fn walk<R: Recorder<V>, W: Visitor<V>>(
         &self,

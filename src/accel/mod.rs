@@ -22,6 +22,10 @@ pub mod grid;
 pub mod layout;
 pub mod list;
 pub mod octree;
+// The packets serve the render's run-time SIMD (`crate::trace::packet`), on x86-64 only: elsewhere
+// (the WebAssembly module) every ray is searched alone.
+#[cfg(target_arch = "x86_64")]
+pub mod packet;
 pub mod volumes;
 pub mod walk;
 pub mod wide;

@@ -120,8 +120,9 @@ impl EdgeRow {
         // overlap), then each traced: the same rays, made before they are needed.
         let camera = &tracer.scene.camera;
         let rays: Vec<_> =
-            (0..=lattice.nx).map(|i| primary_at(camera, axes, i as u64 * s, j as u64 * s)).collect();
-        let corners = rays.iter().map(|(ray, uv)| tracer.trace_primary(ray, &uv[..lattice.dims()])).collect();
+            (0..=lattice.nx).map(|i| primary_at(camera, axes, i as u64 * s, j as u64 * s).0).collect();
+        let mut corners = vec![Rgb::BLACK; rays.len()];
+        tracer.trace_primaries(&rays, &mut corners);
         let finer = (shared && lattice.max_level > 0).then(|| Line::new(lattice.row_len()));
         Self { corners, finer }
     }

@@ -2,6 +2,8 @@
 //! `I = I_local + ks·R + kt·T`, spawning R and T (in that order) while the level `n ≤ max_depth`.
 //! Everything it does is reported to the recorder `R`, chosen at compile time.
 
+#[cfg(target_arch = "x86_64")]
+pub mod packet;
 pub mod shade;
 
 use crate::accel::Accel;
@@ -10,7 +12,7 @@ use crate::geom::optics::{indices, reflect, refract, Refraction};
 use crate::geom::ray::Ray;
 use crate::record::event::{Event, NodeHit, RayKind};
 use crate::record::stats::Stats;
-use crate::record::{RayEnd, RayStart, Recorder};
+use crate::record::{NoRecorder, RayEnd, RayStart, Recorder};
 use crate::scene::material::{Material, Rgb};
 use crate::scene::Scene;
 use crate::shape::{Dim, SurfaceHit};
@@ -166,6 +168,23 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
             }
         }
         sum
+    }
+}
+
+impl<V: Dim> Tracer<'_, V, NoRecorder> {
+    /// [`Tracer::trace_primary`] of each ray of `rays` (given by hand) into the same place of
+    /// `colors`, the same colours, rays and tests: in packets where the structure has a packet
+    /// search and the CPU's SIMD serves it (x86-64, [`packet`]), else one ray at a time.
+    pub fn trace_primaries(&mut self, rays: &[Ray<V>], colors: &mut [Rgb]) {
+        debug_assert_eq!(rays.len(), colors.len(), "a colour for every ray");
+        #[cfg(target_arch = "x86_64")]
+        if let Some(packets) = self.accel.packets(self.scene) {
+            packet::trace(self, packets, rays, colors);
+            return;
+        }
+        for (color, ray) in colors.iter_mut().zip(rays) {
+            *color = self.trace_primary(ray, &[]);
+        }
     }
 }
 

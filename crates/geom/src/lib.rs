@@ -5,6 +5,7 @@
 #![forbid(unsafe_code)]
 
 pub mod frame;
+pub mod lanes;
 pub mod offset;
 pub mod optics;
 pub mod quadratic;

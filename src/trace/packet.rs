@@ -1,0 +1,417 @@
+//! Primary rays in packets of [`LANES`] (`accel::packet`): each packet's nearest hits found at
+//! once, and the rays whose ray tree ends at that hit — a miss (the background), or a plane of
+//! a material that neither reflects nor transmits (the lecture's floor) — shaded at once too:
+//! the local model of §5 with its shadow segments, lane by lane the operations of
+//! [`Tracer::local`] in its order. Every other ray (a sphere, a mirror, a lane the packet
+//! cannot answer) is traced by [`Tracer::trace_primary`], from the start. The colours, the rays
+//! and the tests counted are those of one ray at a time, bit for bit: a packet's counts for a
+//! lane are added only when its answer is kept.
+//!
+//! The width is chosen when the program runs: `pulp::Arch` asks the CPU once, and the packets'
+//! loop runs in code built for AVX2 where the CPU has it, else in the baseline build (SSE2).
+//! Everything the loop calls in the packet is inlined into that code (`#[inline(always)]` all
+//! the way down); the rays traced one at a time take the tracer's ordinary code.
+
+use super::Tracer;
+use crate::accel::packet::{key, LaneCounts, Packets, NO_KEY};
+use crate::geom::lanes::{
+    and, and_not, any, axes, dot, dot_axes, gather, holds, lanes, max_abs, or, select, select_v, splat, test,
+    unit, vector, Vs, F, LANES, M, NONE,
+};
+use crate::geom::offset::OFFSET_SCALE;
+use crate::geom::ray::Ray;
+use crate::record::NoRecorder;
+use crate::scene::material::{Material, Rgb};
+use crate::shape::plane::Plane;
+use crate::shape::Dim;
+use std::sync::OnceLock;
+
+/// A colour per lane, channel by channel.
+type Colors = [F; 3];
+
+/// The instruction sets this CPU has, asked once.
+fn arch() -> pulp::Arch {
+    static ARCH: OnceLock<pulp::Arch> = OnceLock::new();
+    *ARCH.get_or_init(pulp::Arch::new)
+}
+
+/// [`Tracer::trace_primary`] of each ray of `rays` into the same place of `colors`, in packets
+/// searched by `packets`, in the widest code this CPU runs.
+pub(super) fn trace<'s, V: Dim>(
+    tracer: &mut Tracer<'s, V, NoRecorder>,
+    packets: Packets<'s, V>,
+    rays: &[Ray<V>],
+    colors: &mut [Rgb],
+) {
+    arch().dispatch(Batch { tracer, packets, rays, colors });
+}
+
+/// The packets' loop, run by `pulp` in the code it chose.
+struct Batch<'b, 's, V: Dim> {
+    tracer: &'b mut Tracer<'s, V, NoRecorder>,
+    packets: Packets<'s, V>,
+    rays: &'b [Ray<V>],
+    colors: &'b mut [Rgb],
+}
+
+impl<V: Dim> pulp::WithSimd for Batch<'_, '_, V> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        let Batch { tracer, packets, rays, colors } = self;
+        let whole = rays.len() - rays.len() % LANES;
+        for (rays, colors) in rays[..whole].chunks_exact(LANES).zip(colors[..whole].chunks_exact_mut(LANES)) {
+            packet(tracer, &packets, rays, colors);
+        }
+        // The last rays, fewer than a packet, one at a time.
+        for (color, ray) in colors[whole..].iter_mut().zip(&rays[whole..]) {
+            *color = tracer.trace_primary(ray, &[]);
+        }
+    }
+}
+
+/// One packet of primary rays into their colours.
+#[inline(always)]
+fn packet<V: Dim>(
+    tracer: &mut Tracer<'_, V, NoRecorder>,
+    packets: &Packets<'_, V>,
+    rays: &[Ray<V>],
+    colors: &mut [Rgb],
+) {
+    let scene = tracer.scene;
+    let o = gather(|k| rays[k].origin);
+    let d = gather(|k| rays[k].dir);
+    let mut counts = LaneCounts::default();
+    let mut shadows = [0; LANES];
+    let (best, scalar) = packets.nearest(&o, &d, &mut counts);
+    let background = scene.background.0;
+    let mut color: Colors = std::array::from_fn(|c| splat(background[c]));
+    // Misses end here; so do the lanes a plane below shades.
+    let mut done = test(|k| best.key[k] == NO_KEY);
+    for (prim, plane) in packets.planes() {
+        let on = and_not(test(|k| best.key[k] == key(*prim)), scalar);
+        let object = &scene.objects[prim.object()];
+        let material = &scene.materials[object.material];
+        if !any(on) || material.reflects() || material.transmits() {
+            continue;
+        }
+        let hit = PlaneHit { plane, scale: object.scale, material, t: best.t };
+        let (shaded, ok) = local(tracer, packets, &hit, (&o, &d), on, (&mut counts, &mut shadows));
+        // `local + secondary` with no secondary ray: `+ (0, 0, 0)`, as the recursion adds it.
+        color = std::array::from_fn(|c| select(ok, lanes(|k| shaded[c][k] + Rgb::BLACK.0[c]), color[c]));
+        done = or(done, ok);
+    }
+    let done = and_not(done, scalar);
+    for k in 0..LANES {
+        if holds(done, k) {
+            let stats = &mut tracer.stats;
+            stats.rays.primary += 1;
+            stats.rays.shadow += shadows[k];
+            stats.tests.object += counts.object[k];
+            stats.tests.node += counts.node[k];
+            colors[k] = Rgb(std::array::from_fn(|c| color[c][k]));
+        } else {
+            colors[k] = tracer.trace_primary(&rays[k], &[]);
+        }
+    }
+}
+
+/// A plane met by the lanes of a packet.
+struct PlaneHit<'a, V> {
+    plane: &'a Plane<V>,
+    /// The object's scale, for the spawn offset.
+    scale: f64,
+    material: &'a Material,
+    /// Each lane's t.
+    t: F,
+}
+
+/// `I_local` of [`Tracer::local`] in the lanes `on`, each lane's hit on `hit`'s plane by the ray
+/// `o + t·d`, every light in scene order; also the lanes shaded (the others need the scalar
+/// code: a normalisation off its common case, a shadow ray the packet cannot search). The
+/// material reflects nothing, so `ks = 0` and there is no highlight. Tests and shadow rays are
+/// counted per lane.
+#[inline(always)]
+#[allow(clippy::float_cmp)] // The checker's parity is exactly 1 or not.
+fn local<V: Dim>(
+    tracer: &Tracer<'_, V, NoRecorder>,
+    packets: &Packets<'_, V>,
+    hit: &PlaneHit<'_, V>,
+    (o, d): (&Vs, &Vs),
+    on: M,
+    (counts, shadows): (&mut LaneCounts, &mut [u64; LANES]),
+) -> (Colors, M) {
+    let scene = tracer.scene;
+    let (material, t) = (hit.material, hit.t);
+    let (p, n) = (axes(hit.plane.point), axes(hit.plane.normal));
+    // `Plane::surface_at`: I = O + t·D re-projected, I − N·((I − P)·N).
+    let raw = vector::<V>(|a, k| o[a][k] + d[a][k] * t[k]);
+    let off = dot_axes::<V>(&vector::<V>(|a, k| raw[a][k] - p[a]), &n);
+    let point = vector::<V>(|a, k| raw[a][k] - n[a] * off[k]);
+    // §3: entering iff D·N ≤ 0; N_f faces the incoming ray.
+    let entering = test_le_zero(dot_axes::<V>(d, &n));
+    let n_f = select_v(entering, &vector::<V>(|a, _| n[a]), &vector::<V>(|a, _| -n[a]));
+    // `offset_distance`: δ = 2⁻⁴⁴·max(|I|∞, |O|∞, |t|, scale).
+    let (point_max, origin_max) = (max_abs::<V>(&point), max_abs::<V>(o));
+    let delta = lanes(|k| OFFSET_SCALE * point_max[k].max(origin_max[k]).max(t[k].abs()).max(hit.scale));
+    let (ka, kd) = colors_at::<V>(material, &point);
+    let mut sum: Colors = std::array::from_fn(|c| lanes(|k| scene.ambient.0[c] * ka[c][k]));
+    let mut scalar = NONE;
+    for light in &scene.lights {
+        let position = axes(light.position);
+        let to_light = vector::<V>(|a, k| position[a] - point[a][k]);
+        let (l, usual, dd) = unit::<V>(&to_light);
+        let distance = lanes(|k| dd[k].sqrt());
+        let fat = lanes(|k| light.fat(distance[k]));
+        // try_unit's other branch (a light nearly at I, or very far) is the scalar code's.
+        scalar = or(scalar, and_not(on, usual));
+        let n_dot_l = dot::<V>(&n_f, &l);
+        // lum = 1 iff N·L > 0; no shadow ray otherwise (§6).
+        let lit = and(and(on, usual), test(|k| n_dot_l[k] > 0.0));
+        if !any(lit) {
+            continue;
+        }
+        let (s, flagged) = shadow_factor(packets, (&point, &n_f, &delta), &to_light, position, lit, counts);
+        scalar = or(scalar, flagged);
+        for (k, count) in shadows.iter_mut().enumerate() {
+            *count += lit[k] & 1;
+        }
+        let weight = lanes(|k| fat[k] * s[k]);
+        for c in 0..3 {
+            let intensity = light.intensity.0[c];
+            let diffuse = lanes(|k| intensity * kd[c][k] * (weight[k] * n_dot_l[k]));
+            // ks = 0: the highlight is not computed, and the term is `Isrc·(weight·ks·0)`.
+            let specular = lanes(|k| intensity * (weight[k] * material.ks * 0.0));
+            sum[c] = select(lit, lanes(|k| sum[c][k] + (diffuse[k] + specular[k])), sum[c]);
+        }
+    }
+    (sum, and_not(on, scalar))
+}
+
+/// `D·N ≤ 0` in each lane.
+#[inline(always)]
+fn test_le_zero(x: F) -> M {
+    test(|k| x[k] <= 0.0)
+}
+
+/// `Material::colors_at` in each lane: `(ka2, kd2)` where the checker's cell is odd, else `(ka,
+/// kd)`. The parity of `Σ floor(x_i/size + 1e-10)` is `Checker::is_odd`'s: the floors and their
+/// sum are exact integers in `f64` below 2⁵³, and `s − 2·floor(s/2)` is then exactly 0 or 1.
+#[inline(always)]
+#[allow(clippy::float_cmp)] // The parity is exactly 1 or not.
+fn colors_at<V: Dim>(material: &Material, point: &Vs) -> (Colors, Colors) {
+    let (ka, kd) = (material.ka.0, material.kd.0);
+    let plain = (std::array::from_fn(|c| splat(ka[c])), std::array::from_fn(|c| splat(kd[c])));
+    let Some(checker) = &material.checker else { return plain };
+    let mut cells = splat(0.0);
+    for axis in point.iter().take(V::DIM) {
+        cells = lanes(|k| cells[k] + (axis[k] / checker.size + 1e-10).floor());
+    }
+    let odd = test(|k| cells[k] - 2.0 * (cells[k] * 0.5).floor() == 1.0);
+    let pick = |odd_value: [f64; 3], even: &Colors| -> Colors {
+        std::array::from_fn(|c| select(odd, splat(odd_value[c]), even[c]))
+    };
+    (pick(checker.ka2.0, &plain.0), pick(checker.kd2.0, &plain.1))
+}
+
+/// `Tracer::shadow_factor` in the lanes `lit`: the segment from the offset origin to the light,
+/// searched by the packet; also the lanes the scalar code must take.
+#[inline(always)]
+fn shadow_factor<V: Dim>(
+    packets: &Packets<'_, V>,
+    (point, n_f, delta): (&Vs, &Vs, &F),
+    to_light: &Vs,
+    position: [f64; 3],
+    lit: M,
+    counts: &mut LaneCounts,
+) -> (F, M) {
+    // `spawn_origin`: I + N_f·δ on the side the direction leaves to.
+    let side = dot::<V>(to_light, n_f);
+    let outward = test(|k| side[k] >= 0.0);
+    let up = vector::<V>(|a, k| point[a][k] + n_f[a][k] * delta[k]);
+    let down = vector::<V>(|a, k| point[a][k] - n_f[a][k] * delta[k]);
+    let origin = select_v(outward, &up, &down);
+    let to_light = vector::<V>(|a, k| position[a] - origin[a][k]);
+    let (direction, usual, dd) = unit::<V>(&to_light);
+    let distance = lanes(|k| dd[k].sqrt());
+    let live = and(lit, usual);
+    let (s, flagged) = packets.shadow(&origin, &direction, distance, live, counts);
+    (s, or(flagged, and_not(lit, usual)))
+}
+
+/// The packets against one ray at a time, on the scenes that take each branch: the colours bit
+/// for bit and every count, over every pixel centre (so whole packets and a last partial one).
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::{Accel, AccelKind, AccelOptions};
+    use crate::record::stats::Stats;
+    use crate::scene::load::load_str;
+    use crate::scene::{AnyScene, Scene};
+    use proptest::prelude::*;
+
+    /// The colours and counts of every pixel centre of `scene`, traced by `trace`.
+    fn traced<V: Dim>(
+        scene: &Scene<V>,
+        accel: &Accel<V>,
+        trace: impl Fn(&mut Tracer<'_, V, NoRecorder>, &[Ray<V>], &mut [Rgb]),
+    ) -> (Vec<[u64; 3]>, Stats) {
+        let cam = &scene.camera;
+        let rays: Vec<Ray<V>> = (0..cam.ny)
+            .flat_map(|j| (0..cam.nx).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let (u, v) = cam.pixel_center(i, j);
+                cam.primary_ray(u, v)
+            })
+            .collect();
+        let mut tracer = Tracer::new(scene, accel, NoRecorder);
+        let mut colors = vec![Rgb::BLACK; rays.len()];
+        trace(&mut tracer, &rays, &mut colors);
+        (colors.iter().map(|c| c.0.map(f64::to_bits)).collect(), tracer.stats)
+    }
+
+    /// Packets and single rays agree on `scene`; `packed`: whether the scene has a packet search
+    /// (`None`: either).
+    fn agree<V: Dim>(scene: &Scene<V>, packed: impl Into<Option<bool>>) {
+        let accel = Accel::build_for_render(scene, &AccelOptions::of(AccelKind::Bvh));
+        if let Some(packed) = packed.into() {
+            assert_eq!(accel.packets(scene).is_some(), packed, "a packet search");
+        }
+        let packets = traced(scene, &accel, |t, rays, colors| t.trace_primaries(rays, colors));
+        let single = traced(scene, &accel, |t, rays, colors| {
+            for (color, ray) in colors.iter_mut().zip(rays) {
+                *color = t.trace_primary(ray, &[]);
+            }
+        });
+        let differ = packets.0.iter().zip(&single.0).position(|(a, b)| a != b);
+        assert_eq!(differ, None, "the first pixel that differs");
+        assert_eq!(packets.1, single.1);
+        assert!(single.1.rays.primary > 0);
+    }
+
+    fn space(text: &str) -> Scene<glam::DVec3> {
+        match load_str(text) {
+            Ok(AnyScene::Space(s)) => s,
+            other => panic!("not a 3D scene: {other:?}"),
+        }
+    }
+
+    fn flat(text: &str) -> Scene<glam::DVec2> {
+        match load_str(text) {
+            Ok(AnyScene::Flat(s)) => s,
+            other => panic!("not a 2D scene: {other:?}"),
+        }
+    }
+
+    /// A 3D scene: a camera at `eye` looking at the origin, `objects` and `lights` (JSON).
+    fn scene_3d(eye: &str, projection: &str, lights: &str, objects: &str) -> String {
+        format!(
+            r#"{{ "camera": {{ "eye": {eye}, "center": [0, 0, 0], "up": [0, 1, 0], "projection": "{projection}",
+                "window": {{ "l": -2, "r": 2, "b": -1.5, "t": 1.5 }}, "resolution": [37, 23] }},
+                "background": [0.2, 0.3, 0.9], "ambient": [0.5, 0.4, 0.3], "max_depth": 3,
+                "lights": [ {lights} ], "objects": [ {objects} ] }}"#
+        )
+    }
+
+    /// A checkered floor, a glass sphere, a mirror sphere and a matte one.
+    const ROOM: &str = r#"
+        { "type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0],
+          "material": { "ka": [0.1, 0.02, 0.01], "kd": [0.7, 0.1, 0.1],
+                        "checker": { "size": 0.5, "kd2": [0.8, 0.7, 0.1], "ka2": [0.1, 0.1, 0.02] } } },
+        { "type": "sphere", "center": [-0.8, 0, -0.5], "radius": 0.7, "material": { "ks": 0.7, "kd": 0.2 } },
+        { "type": "sphere", "center": [0.6, -0.2, 0.6], "radius": 0.6,
+          "material": { "ks": 0.2, "kt": 0.8, "ior": 1.5, "kd": 0.05 } },
+        { "type": "sphere", "center": [1.5, -0.5, -1], "radius": 0.5, "material": { "kd": [0.2, 0.6, 0.2] } }"#;
+
+    #[test]
+    fn the_lecture_scene_is_the_same_in_packets() {
+        agree(&space(include_str!("../../scenes/whitted.json")), true);
+    }
+
+    #[test]
+    fn checkers_lights_shadows_and_attenuation_are_the_same_in_packets() {
+        let lights = r#"{ "position": [3, 5, 4] }, { "position": [-4, 2, 1], "intensity": [0.5, 0.4, 0.3],
+            "attenuation": [1, 0.1, 0.02] }, { "position": [0, -3, 0] }"#;
+        agree(&space(&scene_3d("[0, 2, 6]", "perspective", lights, ROOM)), true);
+        // A light on the floor's plane (N·L = 0) and one right at a floor point's height.
+        let grazing = r#"{ "position": [5, -1, 0] }, { "position": [0.3, -0.99, 0.2] }"#;
+        agree(&space(&scene_3d("[0, 2, 6]", "perspective", grazing, ROOM)), true);
+    }
+
+    #[test]
+    fn planes_of_every_kind_and_a_camera_inside_the_box_are_the_same_in_packets() {
+        // A transparent plane and a mirror one beside the floor; a floor seen from below.
+        let planes = format!(
+            r#"{ROOM},
+            {{ "type": "plane", "point": [0, 0, -3], "normal": [0, 0, 1], "material": {{ "kt": 0.5, "ior": 1.0, "kd": 0.3 }} }},
+            {{ "type": "plane", "point": [-3, 0, 0], "normal": [1, 0, 0], "material": {{ "ks": 0.5 }} }},
+            {{ "type": "plane", "point": [0, 3, 0], "normal": [0, 1, 0], "material": {{ "kd": [0.3, 0.3, 0.3] }} }}"#
+        );
+        let light = r#"{ "position": [1, 2, 2] }"#;
+        agree(&space(&scene_3d("[0, 2, 6]", "perspective", light, &planes)), true);
+        // The eye inside the spheres' box: the root box holds every primary ray's origin.
+        agree(&space(&scene_3d("[0.1, -0.3, 0.05]", "perspective", light, ROOM)), true);
+    }
+
+    #[test]
+    fn rays_parallel_to_a_slab_and_scenes_without_a_packet_search_are_the_same() {
+        // Orthographic along −z: every D has zero x and y, so 1/D is infinite (the scalar branch).
+        let light = r#"{ "position": [1, 4, 5] }"#;
+        agree(&space(&scene_3d("[0, 0, 6]", "orthographic", light, ROOM)), true);
+        // Only planes: no box, no node test.
+        let floor = ROOM.split("},\n        { \"type\": \"sphere\"").next().expect("the floor");
+        agree(&space(&scene_3d("[0, 2, 6]", "perspective", light, &format!("{floor}}}"))), true);
+        // A box among the objects: no packet search.
+        let boxed = format!(r#"{ROOM}, {{ "type": "box", "min": [-2, -1, -2], "max": [-1.5, 0, -1.5] }}"#);
+        agree(&space(&scene_3d("[0, 2, 6]", "perspective", light, &boxed)), false);
+    }
+
+    #[test]
+    fn a_2d_scene_is_the_same_in_packets() {
+        let text = r#"{ "camera": { "eye": [0, 6], "center": [0, 0], "window": { "l": -1.5, "r": 1.5 }, "resolution": [203] },
+            "max_depth": 3, "lights": [ { "position": [3, 5] }, { "position": [-2, 1] } ],
+            "objects": [
+              { "type": "plane", "point": [0, -2], "normal": [0, 1],
+                "material": { "kd": [0.8, 0.7, 0.2], "checker": { "size": 0.3, "kd2": [0.1, 0.2, 0.3] } } },
+              { "type": "sphere", "center": [0.3, 1], "radius": 0.8, "material": { "ks": 0.2, "kt": 0.9, "ior": 1.5 } },
+              { "type": "sphere", "center": [-1.5, -1], "radius": 0.5, "material": { "ks": 0.8 } } ] }"#;
+        agree(&flat(text), true);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        /// Random spheres over a random plane, random lights and eye.
+        #[test]
+        fn random_scenes_are_the_same_in_packets(
+            spheres in prop::collection::vec(
+                ((-2.0..2.0f64, -1.0..2.0f64, -2.0..2.0f64), 0.1..1.2f64, 0..4usize), 0..4),
+            normal in (-0.3..0.3f64, 0.5..1.0f64, -0.3..0.3f64),
+            lights in prop::collection::vec((-5.0..5.0f64, -2.0..6.0f64, -5.0..5.0f64), 1..3),
+            eye in (-4.0..4.0f64, -0.5..4.0f64, 2.0..7.0f64),
+        ) {
+            const MATERIALS: [&str; 4] = [
+                r#"{ "kd": [0.6, 0.5, 0.4] }"#,
+                r#"{ "ks": 0.6, "kd": 0.3 }"#,
+                r#"{ "ks": 0.1, "kt": 0.8, "ior": 1.33 }"#,
+                r#"{ "kt": 0.5, "ior": 1.0, "kd": 0.2 }"#,
+            ];
+            let mut objects = vec![format!(
+                r#"{{ "type": "plane", "point": [0, -1, 0], "normal": [{}, {}, {}],
+                    "material": {{ "kd": [0.7, 0.2, 0.1], "checker": {{ "size": 0.7, "kd2": [0.9, 0.9, 0.2] }} }} }}"#,
+                normal.0, normal.1, normal.2
+            )];
+            for ((x, y, z), r, m) in spheres {
+                objects.push(format!(
+                    r#"{{ "type": "sphere", "center": [{x}, {y}, {z}], "radius": {r}, "material": {} }}"#,
+                    MATERIALS[m]
+                ));
+            }
+            let lights: Vec<String> =
+                lights.iter().map(|(x, y, z)| format!(r#"{{ "position": [{x}, {y}, {z}] }}"#)).collect();
+            let eye = format!("[{}, {}, {}]", eye.0, eye.1, eye.2);
+            // A BVH of several spheres may split, and then has no packet search.
+            agree(&space(&scene_3d(&eye, "perspective", &lights.join(","), &objects.join(","))), None);
+        }
+    }
+}
