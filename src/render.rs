@@ -267,9 +267,8 @@ fn column_us<V: Dim>(scene: &Scene<V>) -> Vec<f64> {
     (0..cam.nx).map(|i| cam.pixel_center(i, 0).0).collect()
 }
 
-/// §2 for the pixels of row `j` whose columns' u are `us`, into `row`: the primary rays first
-/// (into `rays`), their normalisations back to back (independent, so they overlap), then each
-/// traced: the same rays, made before they are needed.
+/// §2 for the pixels of row `j` whose columns' u are `us`, into `row`
+/// ([`Tracer::trace_window_row`], `rays` its room for the rays made one at a time).
 fn center_row<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     us: &[f64],
@@ -277,11 +276,8 @@ fn center_row<V: Dim>(
     row: &mut [Rgb],
     rays: &mut Vec<Ray<V>>,
 ) {
-    let cam = &tracer.scene.camera;
-    let v = cam.pixel_center(0, j).1;
-    rays.clear();
-    rays.extend(us.iter().map(|&u| cam.primary_ray(u, v)));
-    tracer.trace_primaries(rays, row);
+    let v = tracer.scene.camera.pixel_center(0, j).1;
+    tracer.trace_window_row(us, v, rays, row);
 }
 
 /// A band of the image, on the calling thread, for a page that shows a render's progress

@@ -179,10 +179,27 @@ impl<V: Dim> Tracer<'_, V, NoRecorder> {
         debug_assert_eq!(rays.len(), colors.len(), "a colour for every ray");
         #[cfg(target_arch = "x86_64")]
         if let Some(packets) = self.accel.packets(self.scene) {
-            packet::trace(self, packets, rays, colors);
+            packet::trace(self, packets, packet::Source::Given(rays), colors);
             return;
         }
         for (color, ray) in colors.iter_mut().zip(rays) {
+            *color = self.trace_primary(ray, &[]);
+        }
+    }
+
+    /// [`Tracer::trace_primaries`] of the primary rays through `(u, v)` for each `u` of `us`
+    /// (`Camera::primary_ray`), into `colors`; where they are made one at a time, they are made
+    /// first, into `rays` (their normalisations back to back, independent, so they overlap).
+    pub fn trace_window_row(&mut self, us: &[f64], v: f64, rays: &mut Vec<Ray<V>>, colors: &mut [Rgb]) {
+        let camera = &self.scene.camera;
+        #[cfg(target_arch = "x86_64")]
+        if let Some(packets) = self.accel.packets(self.scene) {
+            packet::trace(self, packets, packet::Source::Row { camera, us, v }, colors);
+            return;
+        }
+        rays.clear();
+        rays.extend(us.iter().map(|&u| camera.primary_ray(u, v)));
+        for (color, ray) in colors.iter_mut().zip(rays.iter()) {
             *color = self.trace_primary(ray, &[]);
         }
     }

@@ -15,12 +15,13 @@
 use super::Tracer;
 use crate::accel::packet::{key, LaneCounts, Packets, NO_KEY};
 use crate::geom::lanes::{
-    and, and_not, any, axes, dot, dot_axes, gather, holds, lanes, max_abs, or, select, select_v, splat, test,
-    unit, vector, Vs, F, LANES, M, NONE,
+    all, and, and_not, any, axes, dot, dot_axes, gather, holds, lanes, max_abs, or, select, select_v, splat,
+    test, unit, vector, Vs, F, LANES, M, NONE,
 };
 use crate::geom::offset::OFFSET_SCALE;
 use crate::geom::ray::Ray;
 use crate::record::NoRecorder;
+use crate::scene::camera::{Camera, Projection};
 use crate::scene::material::{Material, Rgb};
 use crate::shape::plane::Plane;
 use crate::shape::Dim;
@@ -35,22 +36,78 @@ fn arch() -> pulp::Arch {
     *ARCH.get_or_init(pulp::Arch::new)
 }
 
-/// [`Tracer::trace_primary`] of each ray of `rays` into the same place of `colors`, in packets
-/// searched by `packets`, in the widest code this CPU runs.
+/// The primary rays of a batch: given, or made on the way, 4 at a time.
+#[derive(Clone, Copy)]
+pub(super) enum Source<'a, V> {
+    /// Rays given by hand.
+    Given(&'a [Ray<V>]),
+    /// `Camera::primary_ray(u, v)` of each `u` of `us`, at one `v` (a row of pixel centres).
+    Row { camera: &'a Camera<V>, us: &'a [f64], v: f64 },
+}
+
+impl<V: Dim> Source<'_, V> {
+    /// How many rays.
+    fn len(&self) -> usize {
+        match self {
+            Self::Given(rays) => rays.len(),
+            Self::Row { us, .. } => us.len(),
+        }
+    }
+    /// Ray `i`, as the scalar code makes it.
+    #[inline(always)]
+    fn ray(&self, i: usize) -> Ray<V> {
+        match *self {
+            Self::Given(rays) => rays[i],
+            Self::Row { camera, us, v } => camera.primary_ray(us[i], v),
+        }
+    }
+    /// Rays `first … first + LANES − 1` as lane vectors: origins and directions.
+    #[inline(always)]
+    fn lanes(&self, first: usize) -> (Vs, Vs) {
+        if let Self::Row { camera, us, v } = *self {
+            if let Some(rays) = window_rays(camera, lanes(|k| us[first + k]), v) {
+                return rays;
+            }
+        }
+        let rays: [Ray<V>; LANES] = std::array::from_fn(|k| self.ray(first + k));
+        (gather(|k| rays[k].origin), gather(|k| rays[k].dir))
+    }
+}
+
+/// `Camera::primary_ray(u, v)` in each lane: the window point `S = O + u·u + v·v − p·w`, then
+/// from S along `−w` (orthographic) or from O along `S − O` normalised (perspective). `None`
+/// when some lane's `S − O` is off `try_unit`'s usual branch: the scalar code makes those rays.
+#[inline(always)]
+fn window_rays<V: Dim>(camera: &Camera<V>, u: F, v: f64) -> Option<(Vs, Vs)> {
+    let frame = &camera.frame;
+    let (eye, fu, fv, fw) = (axes(camera.eye), axes(frame.u), axes(frame.v), axes(frame.w));
+    let s = vector::<V>(|a, k| eye[a] + fu[a] * u[k] + fv[a] * v - fw[a] * camera.p);
+    match camera.projection {
+        Projection::Orthographic => Some((s, vector::<V>(|a, _| -fw[a]))),
+        Projection::Perspective => {
+            let (d, usual, _) = unit::<V>(&vector::<V>(|a, k| s[a][k] - eye[a]));
+            all(usual).then(|| (vector::<V>(|a, _| eye[a]), d))
+        }
+    }
+}
+
+/// [`Tracer::trace_primary`] of each ray of `source` into the same place of `colors`, in
+/// packets searched by `packets`, in the widest code this CPU runs.
 pub(super) fn trace<'s, V: Dim>(
     tracer: &mut Tracer<'s, V, NoRecorder>,
     packets: Packets<'s, V>,
-    rays: &[Ray<V>],
+    source: Source<'_, V>,
     colors: &mut [Rgb],
 ) {
-    arch().dispatch(Batch { tracer, packets, rays, colors });
+    debug_assert_eq!(source.len(), colors.len(), "a colour for every ray");
+    arch().dispatch(Batch { tracer, packets, source, colors });
 }
 
 /// The packets' loop, run by `pulp` in the code it chose.
 struct Batch<'b, 's, V: Dim> {
     tracer: &'b mut Tracer<'s, V, NoRecorder>,
     packets: Packets<'s, V>,
-    rays: &'b [Ray<V>],
+    source: Source<'b, V>,
     colors: &'b mut [Rgb],
 }
 
@@ -59,29 +116,29 @@ impl<V: Dim> pulp::WithSimd for Batch<'_, '_, V> {
 
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
-        let Batch { tracer, packets, rays, colors } = self;
-        let whole = rays.len() - rays.len() % LANES;
-        for (rays, colors) in rays[..whole].chunks_exact(LANES).zip(colors[..whole].chunks_exact_mut(LANES)) {
-            packet(tracer, &packets, rays, colors);
+        let Batch { tracer, packets, source, colors } = self;
+        let whole = source.len() - source.len() % LANES;
+        for (first, colors) in (0..whole).step_by(LANES).zip(colors[..whole].chunks_exact_mut(LANES)) {
+            packet(tracer, &packets, &source, first, colors);
         }
         // The last rays, fewer than a packet, one at a time.
-        for (color, ray) in colors[whole..].iter_mut().zip(&rays[whole..]) {
-            *color = tracer.trace_primary(ray, &[]);
+        for (i, color) in colors.iter_mut().enumerate().skip(whole) {
+            *color = tracer.trace_primary(&source.ray(i), &[]);
         }
     }
 }
 
-/// One packet of primary rays into their colours.
+/// The packet of rays `first …` of `source` into their colours.
 #[inline(always)]
 fn packet<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     packets: &Packets<'_, V>,
-    rays: &[Ray<V>],
+    source: &Source<'_, V>,
+    first: usize,
     colors: &mut [Rgb],
 ) {
     let scene = tracer.scene;
-    let o = gather(|k| rays[k].origin);
-    let d = gather(|k| rays[k].dir);
+    let (o, d) = source.lanes(first);
     let mut counts = LaneCounts::default();
     let mut shadows = [0; LANES];
     let (best, scalar) = packets.nearest(&o, &d, &mut counts);
@@ -112,7 +169,7 @@ fn packet<V: Dim>(
             stats.tests.node += counts.node[k];
             colors[k] = Rgb(std::array::from_fn(|c| color[c][k]));
         } else {
-            colors[k] = tracer.trace_primary(&rays[k], &[]);
+            colors[k] = tracer.trace_primary(&source.ray(first + k), &[]);
         }
     }
 }
@@ -284,9 +341,19 @@ mod tests {
                 *color = t.trace_primary(ray, &[]);
             }
         });
-        let differ = packets.0.iter().zip(&single.0).position(|(a, b)| a != b);
-        assert_eq!(differ, None, "the first pixel that differs");
-        assert_eq!(packets.1, single.1);
+        // The same rays made in the packets, a row of the window at a time.
+        let cam = &scene.camera;
+        let us: Vec<f64> = (0..cam.nx).map(|i| cam.pixel_center(i, 0).0).collect();
+        let rows = traced(scene, &accel, |t, _, colors| {
+            for (j, row) in colors.chunks_exact_mut(cam.nx).enumerate() {
+                t.trace_window_row(&us, cam.pixel_center(0, j).1, &mut Vec::new(), row);
+            }
+        });
+        for (way, (colors, stats)) in [("given", &packets), ("made by row", &rows)] {
+            let differ = colors.iter().zip(&single.0).position(|(a, b)| a != b);
+            assert_eq!(differ, None, "the first pixel that differs, rays {way}");
+            assert_eq!(*stats, single.1, "rays {way}");
+        }
         assert!(single.1.rays.primary > 0);
     }
 

@@ -83,6 +83,13 @@ pub fn any(m: M) -> bool {
     m.iter().fold(0, |acc, x| acc | x) != 0
 }
 
+/// Whether the condition holds in every lane.
+#[inline(always)]
+#[must_use]
+pub fn all(m: M) -> bool {
+    m.iter().fold(u64::MAX, |acc, x| acc & x) != 0
+}
+
 /// How many lanes hold the condition, one count per lane (0 or 1), to add to per-lane counters.
 #[inline(always)]
 #[must_use]
@@ -260,5 +267,6 @@ mod tests {
         assert_eq!(ones(m), [1, 0, 1, 0]);
         assert_eq!(and_not(ALL, m), test(|k| k % 2 == 1));
         assert!(any(m) && !any(NONE) && holds(or(m, NONE), 2) && !holds(and(m, NONE), 0));
+        assert!(all(ALL) && !all(m) && !all(NONE));
     }
 }
