@@ -116,13 +116,11 @@ impl EdgeRow {
         shared: bool,
     ) -> Self {
         let s = u64::from(lattice.scale);
-        // The row's primary rays first, their normalisations back to back (independent, so they
-        // overlap), then each traced: the same rays, made before they are needed.
-        let camera = &tracer.scene.camera;
-        let rays: Vec<_> =
-            (0..=lattice.nx).map(|i| primary_at(camera, axes, i as u64 * s, j as u64 * s).0).collect();
-        let mut corners = vec![Rgb::BLACK; rays.len()];
-        tracer.trace_primaries(&rays, &mut corners);
+        // The row's corners are a row of the window: `primary_at`'s rays, made as they are traced.
+        let us: Vec<f64> = (0..=lattice.nx).map(|i| axes.uv(i as u64 * s, 0).0).collect();
+        let v = axes.uv(0, j as u64 * s).1;
+        let mut corners = vec![Rgb::BLACK; us.len()];
+        tracer.trace_window_row(&us, v, &mut Vec::new(), &mut corners);
         let finer = (shared && lattice.max_level > 0).then(|| Line::new(lattice.row_len()));
         Self { corners, finer }
     }
