@@ -163,54 +163,38 @@ impl<'a, V: Dim> Packets<'a, V> {
     /// ended the search). Also the lanes the packet cannot answer.
     #[inline(always)]
     pub fn shadow(&self, o: &Vs, d: &Vs, d_l: F, live: M, counts: &mut LaneCounts) -> (F, M) {
-        let mut found = [NONE; MAX_OBJECTS];
-        let mut open = live;
-        let mut opaque_kt = splat(1.0);
-        let mut opaque = NONE;
-        let scene = self.scene;
-        let mut place = 0;
-        for (prim, plane) in self.planes {
-            LaneCounts::add(&mut counts.object, open);
+        let mut segments =
+            Segments { found: [NONE; MAX_OBJECTS], open: live, opaque: NONE, opaque_kt: splat(1.0) };
+        for (place, (prim, plane)) in self.planes.iter().enumerate() {
+            LaneCounts::add(&mut counts.object, segments.open);
             let (t, ok) = plane_t::<V>(plane, o, d);
-            let on = and(open, and(ok, test(|k| t[k] < d_l[k])));
-            let kt = scene.material_of(prim.object()).kt;
-            if kt > 0.0 {
-                found[place] = on;
-            } else {
-                opaque = or(opaque, on);
-                opaque_kt = select(on, splat(kt), opaque_kt);
-                open = and_not(open, on);
-            }
-            place += 1;
+            segments.meet(place, self.kt(*prim), and(ok, test(|k| t[k] < d_l[k])));
         }
         let mut scalar = NONE;
-        if !self.spheres.is_empty() && any(open) {
-            let (pass, flagged) = self.root(o, d, open, d_l, counts);
+        if !self.spheres.is_empty() && any(segments.open) {
+            let (pass, flagged) = self.root(o, d, segments.open, d_l, counts);
             scalar = flagged;
-            open = pass;
-            for (prim, sphere) in &self.spheres {
-                if !any(open) {
+            segments.open = pass;
+            for (place, (prim, sphere)) in self.spheres.iter().enumerate() {
+                if !any(segments.open) {
                     break;
                 }
-                LaneCounts::add(&mut counts.object, open);
+                LaneCounts::add(&mut counts.object, segments.open);
                 let (t, ok) = sphere_t::<V>(sphere, o, d);
-                let on = and(open, and(ok, test(|k| t[k] < d_l[k])));
-                let kt = scene.material_of(prim.object()).kt;
-                if kt > 0.0 {
-                    found[place] = on;
-                } else {
-                    opaque = or(opaque, on);
-                    opaque_kt = select(on, splat(kt), opaque_kt);
-                    open = and_not(open, on);
-                }
-                place += 1;
+                segments.meet(self.planes.len() + place, self.kt(*prim), and(ok, test(|k| t[k] < d_l[k])));
             }
         }
         let mut s = splat(1.0);
         for &(place, kt) in &self.by_index {
-            s = select(found[place], lanes(|k| s[k] * kt), s);
+            s = select(segments.found[place], lanes(|k| s[k] * kt), s);
         }
-        (select(opaque, lanes(|k| s[k] * opaque_kt[k]), s), scalar)
+        (select(segments.opaque, lanes(|k| s[k] * segments.opaque_kt[k]), s), scalar)
+    }
+
+    /// The `kt` of a primitive's material.
+    #[inline(always)]
+    fn kt(&self, prim: Prim) -> f64 {
+        self.scene.material_of(prim.object()).kt
     }
 
     /// The root box's node test in the lanes `live` (counted), as `Bvh::walk` makes it: a ray
@@ -236,6 +220,34 @@ impl<'a, V: Dim> Packets<'a, V> {
         let near = and_not(met, test(|k| beyond(t_in[k], bound[k])));
         let scalar = and_not(and_not(live, inside), oblique);
         (and_not(and(live, or(inside, near)), scalar), scalar)
+    }
+}
+
+/// A packet's shadow segments as the search meets their occluders.
+struct Segments {
+    /// The lanes each object (by its place in the walk) occludes, when it is transparent.
+    found: [M; MAX_OBJECTS],
+    /// The lanes no opaque occluder has ended yet.
+    open: M,
+    /// The lanes an opaque occluder ended, and its `kt`.
+    opaque: M,
+    opaque_kt: F,
+}
+
+impl Segments {
+    /// The object at `place` in the walk, of `kt`, hit on the segment (`0 < t < d_l`) in the lanes
+    /// `hit`: where the segment is still open, a transparent one is kept, an opaque one ends the
+    /// search (`Shadow::offer`).
+    #[inline(always)]
+    fn meet(&mut self, place: usize, kt: f64, hit: M) {
+        let on = and(self.open, hit);
+        if kt > 0.0 {
+            self.found[place] = on;
+        } else {
+            self.opaque = or(self.opaque, on);
+            self.opaque_kt = select(on, splat(kt), self.opaque_kt);
+            self.open = and_not(self.open, on);
+        }
     }
 }
 
