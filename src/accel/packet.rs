@@ -18,8 +18,8 @@
 use super::{beyond, Accel, Prim, Structure};
 use crate::bounds::aabb::Aabb;
 use crate::geom::lanes::{
-    and, and_not, any, axes, dot, dot_axes, finite, lanes, ones, or, select, splat, test, vector, Vs, F,
-    LANES, M, NONE,
+    and, and_not, any, axes, dot, dot_axes, finite, lanes, max_abs, ones, or, select, splat, test, vector,
+    Vs, ALL, F, LANES, M, NONE,
 };
 use crate::geom::slab::widen_exit;
 use crate::scene::Scene;
@@ -137,14 +137,14 @@ impl<'a, V: Dim> Packets<'a, V> {
     pub fn nearest(&self, o: &Vs, d: &Vs, counts: &mut LaneCounts) -> (Best, M) {
         let mut best = Best { t: splat(f64::INFINITY), key: [NO_KEY; LANES] };
         for (prim, plane) in self.planes {
-            LaneCounts::add(&mut counts.object, crate::geom::lanes::ALL);
+            LaneCounts::add(&mut counts.object, ALL);
             let (t, ok) = plane_t::<V>(plane, o, d);
             best.offer(*prim, t, ok);
         }
         if self.spheres.is_empty() {
             return (best, NONE);
         }
-        let (pass, scalar) = self.root(o, d, crate::geom::lanes::ALL, best.t, counts);
+        let (pass, scalar) = self.root(o, d, ALL, best.t, counts);
         // Rays that miss the box test no sphere: a packet that misses it whole, no lane either.
         if !any(pass) {
             return (best, scalar);
@@ -205,8 +205,8 @@ impl<'a, V: Dim> Packets<'a, V> {
     fn root(&self, o: &Vs, d: &Vs, live: M, bound: F, counts: &mut LaneCounts) -> (M, M) {
         LaneCounts::add(&mut counts.node, live);
         let (min, max) = (axes(self.root_box.min), axes(self.root_box.max));
-        let mut inside = crate::geom::lanes::ALL;
-        let mut oblique = crate::geom::lanes::ALL;
+        let mut inside = ALL;
+        let mut oblique = ALL;
         let inv = vector::<V>(|a, k| 1.0 / d[a][k]);
         for a in 0..V::DIM {
             inside = and(inside, and(test(|k| min[a] <= o[a][k]), test(|k| o[a][k] <= max[a])));
@@ -308,7 +308,7 @@ fn sphere_t<V: Dim>(sphere: &Sphere<V>, o: &Vs, d: &Vs) -> (F, M) {
     let low_ahead = test(|k| low[k] > 0.0);
     let t = select(low_ahead, low, high);
     let radial = vector::<V>(|a, k| o[a][k] + d[a][k] * t[k] - center[a]);
-    let m = crate::geom::lanes::max_abs::<V>(&radial);
+    let m = max_abs::<V>(&radial);
     let root = and(test(|k| delta[k] >= 0.0), or(low_ahead, test(|k| high[k] > 0.0)));
     let normalises = and(test(|k| m[k] > 0.0), finite(m));
     (t, and_not(and(root, normalises), behind))

@@ -172,29 +172,16 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
 }
 
 impl<V: Dim> Tracer<'_, V, NoRecorder> {
-    /// [`Tracer::trace_primary`] of each ray of `rays` (given by hand) into the same place of
-    /// `colors`, the same colours, rays and tests: in packets where the structure has a packet
-    /// search and the CPU's SIMD serves it (x86-64, [`packet`]), else one ray at a time.
-    pub fn trace_primaries(&mut self, rays: &[Ray<V>], colors: &mut [Rgb]) {
-        debug_assert_eq!(rays.len(), colors.len(), "a colour for every ray");
-        #[cfg(target_arch = "x86_64")]
-        if let Some(packets) = self.accel.packets(self.scene) {
-            packet::trace(self, packets, packet::Source::Given(rays), colors);
-            return;
-        }
-        for (color, ray) in colors.iter_mut().zip(rays) {
-            *color = self.trace_primary(ray, &[]);
-        }
-    }
-
-    /// [`Tracer::trace_primaries`] of the primary rays through `(u, v)` for each `u` of `us`
-    /// (`Camera::primary_ray`), into `colors`; where they are made one at a time, they are made
-    /// first, into `rays` (their normalisations back to back, independent, so they overlap).
+    /// [`Tracer::trace_primary`] of the primary rays through `(u, v)` for each `u` of `us`
+    /// (`Camera::primary_ray`) into the same place of `colors`, the same colours, rays and tests:
+    /// in packets where the structure has a packet search and the CPU's SIMD serves it (x86-64,
+    /// [`packet`]), else one at a time, made first into `rays` (their normalisations back to
+    /// back, independent, so they overlap).
     pub fn trace_window_row(&mut self, us: &[f64], v: f64, rays: &mut Vec<Ray<V>>, colors: &mut [Rgb]) {
         let camera = &self.scene.camera;
         #[cfg(target_arch = "x86_64")]
         if let Some(packets) = self.accel.packets(self.scene) {
-            packet::trace(self, packets, packet::Source::Row { camera, us, v }, colors);
+            packet::trace(self, packets, packet::Row { camera, us, v }, colors);
             return;
         }
         rays.clear();

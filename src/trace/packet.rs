@@ -15,8 +15,8 @@
 use super::Tracer;
 use crate::accel::packet::{key, LaneCounts, Packets, NO_KEY};
 use crate::geom::lanes::{
-    all, and, and_not, any, axes, dot, dot_axes, gather, holds, lanes, max_abs, or, select, select_v, splat,
-    test, unit, vector, Vs, F, LANES, M, NONE,
+    all, and, and_not, any, axes, dot, dot_axes, gather, holds, lanes, max_abs, ones, or, select, select_v,
+    splat, test, unit, vector, Vs, F, LANES, M, NONE,
 };
 use crate::geom::offset::OFFSET_SCALE;
 use crate::geom::ray::Ray;
@@ -36,38 +36,26 @@ fn arch() -> pulp::Arch {
     *ARCH.get_or_init(pulp::Arch::new)
 }
 
-/// The primary rays of a batch: given, or made on the way, 4 at a time.
+/// The primary rays of a batch, a row of the window: `Camera::primary_ray(u, v)` of each `u` of
+/// `us`, at one `v`, made 4 at a time as they are traced.
 #[derive(Clone, Copy)]
-pub(super) enum Source<'a, V> {
-    /// Rays given by hand.
-    Given(&'a [Ray<V>]),
-    /// `Camera::primary_ray(u, v)` of each `u` of `us`, at one `v` (a row of pixel centres).
-    Row { camera: &'a Camera<V>, us: &'a [f64], v: f64 },
+pub(super) struct Row<'a, V> {
+    pub camera: &'a Camera<V>,
+    pub us: &'a [f64],
+    pub v: f64,
 }
 
-impl<V: Dim> Source<'_, V> {
-    /// How many rays.
-    fn len(&self) -> usize {
-        match self {
-            Self::Given(rays) => rays.len(),
-            Self::Row { us, .. } => us.len(),
-        }
-    }
+impl<V: Dim> Row<'_, V> {
     /// Ray `i`, as the scalar code makes it.
     #[inline(always)]
     fn ray(&self, i: usize) -> Ray<V> {
-        match *self {
-            Self::Given(rays) => rays[i],
-            Self::Row { camera, us, v } => camera.primary_ray(us[i], v),
-        }
+        self.camera.primary_ray(self.us[i], self.v)
     }
     /// Rays `first … first + LANES − 1` as lane vectors: origins and directions.
     #[inline(always)]
     fn lanes(&self, first: usize) -> (Vs, Vs) {
-        if let Self::Row { camera, us, v } = *self {
-            if let Some(rays) = window_rays(camera, lanes(|k| us[first + k]), v) {
-                return rays;
-            }
+        if let Some(rays) = window_rays(self.camera, lanes(|k| self.us[first + k]), self.v) {
+            return rays;
         }
         let rays: [Ray<V>; LANES] = std::array::from_fn(|k| self.ray(first + k));
         (gather(|k| rays[k].origin), gather(|k| rays[k].dir))
@@ -91,23 +79,23 @@ fn window_rays<V: Dim>(camera: &Camera<V>, u: F, v: f64) -> Option<(Vs, Vs)> {
     }
 }
 
-/// [`Tracer::trace_primary`] of each ray of `source` into the same place of `colors`, in
+/// [`Tracer::trace_primary`] of each ray of `row` into the same place of `colors`, in
 /// packets searched by `packets`, in the widest code this CPU runs.
 pub(super) fn trace<'s, V: Dim>(
     tracer: &mut Tracer<'s, V, NoRecorder>,
     packets: Packets<'s, V>,
-    source: Source<'_, V>,
+    row: Row<'_, V>,
     colors: &mut [Rgb],
 ) {
-    debug_assert_eq!(source.len(), colors.len(), "a colour for every ray");
-    arch().dispatch(Batch { tracer, packets, source, colors });
+    debug_assert_eq!(row.us.len(), colors.len(), "a colour for every ray");
+    arch().dispatch(Batch { tracer, packets, row, colors });
 }
 
 /// The packets' loop, run by `pulp` in the code it chose.
 struct Batch<'b, 's, V: Dim> {
     tracer: &'b mut Tracer<'s, V, NoRecorder>,
     packets: Packets<'s, V>,
-    source: Source<'b, V>,
+    row: Row<'b, V>,
     colors: &'b mut [Rgb],
 }
 
@@ -116,29 +104,29 @@ impl<V: Dim> pulp::WithSimd for Batch<'_, '_, V> {
 
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
-        let Batch { tracer, packets, source, colors } = self;
-        let whole = source.len() - source.len() % LANES;
+        let Batch { tracer, packets, row, colors } = self;
+        let whole = row.us.len() - row.us.len() % LANES;
         for (first, colors) in (0..whole).step_by(LANES).zip(colors[..whole].chunks_exact_mut(LANES)) {
-            packet(tracer, &packets, &source, first, colors);
+            packet(tracer, &packets, &row, first, colors);
         }
         // The last rays, fewer than a packet, one at a time.
         for (i, color) in colors.iter_mut().enumerate().skip(whole) {
-            *color = tracer.trace_primary(&source.ray(i), &[]);
+            *color = tracer.trace_primary(&row.ray(i), &[]);
         }
     }
 }
 
-/// The packet of rays `first …` of `source` into their colours.
+/// The packet of rays `first …` of `row` into their colours.
 #[inline(always)]
 fn packet<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     packets: &Packets<'_, V>,
-    source: &Source<'_, V>,
+    row: &Row<'_, V>,
     first: usize,
     colors: &mut [Rgb],
 ) {
     let scene = tracer.scene;
-    let (o, d) = source.lanes(first);
+    let (o, d) = row.lanes(first);
     let mut counts = LaneCounts::default();
     let mut shadows = [0; LANES];
     let (best, scalar) = packets.nearest(&o, &d, &mut counts);
@@ -169,7 +157,7 @@ fn packet<V: Dim>(
             stats.tests.node += counts.node[k];
             colors[k] = Rgb(std::array::from_fn(|c| color[c][k]));
         } else {
-            colors[k] = tracer.trace_primary(&source.ray(first + k), &[]);
+            colors[k] = tracer.trace_primary(&row.ray(first + k), &[]);
         }
     }
 }
@@ -207,7 +195,8 @@ fn local<V: Dim>(
     let off = dot_axes::<V>(&vector::<V>(|a, k| raw[a][k] - p[a]), &n);
     let point = vector::<V>(|a, k| raw[a][k] - n[a] * off[k]);
     // §3: entering iff D·N ≤ 0; N_f faces the incoming ray.
-    let entering = test_le_zero(dot_axes::<V>(d, &n));
+    let d_dot_n = dot_axes::<V>(d, &n);
+    let entering = test(|k| d_dot_n[k] <= 0.0);
     let n_f = select_v(entering, &vector::<V>(|a, _| n[a]), &vector::<V>(|a, _| -n[a]));
     // `offset_distance`: δ = 2⁻⁴⁴·max(|I|∞, |O|∞, |t|, scale).
     let (point_max, origin_max) = (max_abs::<V>(&point), max_abs::<V>(o));
@@ -231,9 +220,8 @@ fn local<V: Dim>(
         }
         let (s, flagged) = shadow_factor(packets, (&point, &n_f, &delta), &to_light, position, lit, counts);
         scalar = or(scalar, flagged);
-        for (k, count) in shadows.iter_mut().enumerate() {
-            *count += lit[k] & 1;
-        }
+        let lit_once = ones(lit);
+        *shadows = std::array::from_fn(|k| shadows[k] + lit_once[k]);
         let weight = lanes(|k| fat[k] * s[k]);
         for c in 0..3 {
             let intensity = light.intensity.0[c];
@@ -244,12 +232,6 @@ fn local<V: Dim>(
         }
     }
     (sum, and_not(on, scalar))
-}
-
-/// `D·N ≤ 0` in each lane.
-#[inline(always)]
-fn test_le_zero(x: F) -> M {
-    test(|k| x[k] <= 0.0)
 }
 
 /// `Material::colors_at` in each lane: `(ka2, kd2)` where the checker's cell is odd, else `(ka,
@@ -335,7 +317,6 @@ mod tests {
         if let Some(packed) = packed.into() {
             assert_eq!(accel.packets(scene).is_some(), packed, "a packet search");
         }
-        let packets = traced(scene, &accel, |t, rays, colors| t.trace_primaries(rays, colors));
         let single = traced(scene, &accel, |t, rays, colors| {
             for (color, ray) in colors.iter_mut().zip(rays) {
                 *color = t.trace_primary(ray, &[]);
@@ -349,11 +330,9 @@ mod tests {
                 t.trace_window_row(&us, cam.pixel_center(0, j).1, &mut Vec::new(), row);
             }
         });
-        for (way, (colors, stats)) in [("given", &packets), ("made by row", &rows)] {
-            let differ = colors.iter().zip(&single.0).position(|(a, b)| a != b);
-            assert_eq!(differ, None, "the first pixel that differs, rays {way}");
-            assert_eq!(*stats, single.1, "rays {way}");
-        }
+        let differ = rows.0.iter().zip(&single.0).position(|(a, b)| a != b);
+        assert_eq!(differ, None, "the first pixel that differs");
+        assert_eq!(rows.1, single.1);
         assert!(single.1.rays.primary > 0);
     }
 

@@ -133,17 +133,6 @@ pub fn gather<V: Vector>(of: impl Fn(usize) -> V) -> Vs {
     std::array::from_fn(|a| lanes(|k| if a < V::DIM { vs[k][a] } else { 0.0 }))
 }
 
-/// Lane `k` of lane vectors, as a scalar vector.
-#[inline(always)]
-#[must_use]
-pub fn lane<V: Vector>(v: &Vs, k: usize) -> V {
-    let mut out = V::ZERO;
-    for a in 0..V::DIM {
-        out[a] = v[a][k];
-    }
-    out
-}
-
 /// `a·b` of lane vectors, summed as [`Vector::dot`] sums, left to right: `(x·x' + y·y') + z·z'`.
 #[inline(always)]
 #[must_use]
@@ -201,6 +190,15 @@ pub fn unit<V: Vector>(v: &Vs) -> (Vs, M, F) {
 mod tests {
     use super::*;
     use glam::{DVec2, DVec3};
+
+    /// Lane `k` of lane vectors, as a scalar vector.
+    fn lane<V: Vector>(v: &Vs, k: usize) -> V {
+        let mut out = V::ZERO;
+        for a in 0..V::DIM {
+            out[a] = v[a][k];
+        }
+        out
+    }
 
     fn sample() -> [DVec3; LANES] {
         [
