@@ -75,8 +75,10 @@ build_dir="$root/target/wasm-build"
 # `-Cpanic=immediate-abort` and `-Zlocation-detail=none` leave out the panic messages' formatting
 # and their file names (3 060 040 -> 2 979 778 bytes, the module's 3 MB budget).
 flags="-C linker=wasm-ld -Zlocation-detail=none -Zunstable-options -Cpanic=immediate-abort"
+# At the usual priority: beside cargo test (./test.sh, .ci/run) this build ends last, and the
+# browser tests wait for both.
 RUSTC="$rustc" RUSTC_BOOTSTRAP=1 RUSTFLAGS="$flags" CARGO_TARGET_DIR="$build_dir" \
-  nice -n 10 "$cargo" build --quiet --profile wasm --target wasm32-unknown-unknown \
+  "$cargo" build --quiet --profile wasm --target wasm32-unknown-unknown \
   -Zbuild-std=std,panic_abort -p whitted-web >&2
 mkdir -p "$root/target/wasm"
 out="$root/target/wasm/whitted_web.wasm"
