@@ -17,11 +17,11 @@ script says which commits they name; it does not check that their renders agree)
 import argparse
 import json
 import os
-import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from run import paired_rounds, round_traces  # noqa: E402  (the one reading of a results file)
+# run.py's own reading of a results file and its estimators, so that a ratio here is one of its.
+from run import f, least, median, paired_rounds, ratio, round_traces, spread  # noqa: E402
 
 
 def key_of(config):
@@ -36,8 +36,8 @@ def main():
 
     runs = []
     for path in args.results:
-        with open(path) as f:
-            runs.append(json.load(f))
+        with open(path) as file:
+            runs.append(json.load(file))
     commits = sorted({r["machine"].get("commit", "?")[:7] for r in runs})
     keys = []
     for run in runs:
@@ -58,14 +58,15 @@ def main():
                 continue
             pairs = paired_rounds(config)
             if pairs:
-                per_run.append(statistics.median(p[0] / w[0] for w, p in pairs))
-            whitted += [t for t in round_traces(config, "whitted") if t]
-            povray += [t for t in round_traces(config, "povray") if t]
-        if not per_run or not whitted or not povray:
+                per_run.append(median([p[0] / w[0] for w, p in pairs]))
+            whitted += round_traces(config, "whitted")
+            povray += round_traces(config, "povray")
+        if not per_run:
             continue
-        print("| %s | %s | %d | %d | %d | %.2f (%.2f–%.2f) | %.2f | %.2f |" % (
-            *key, len(per_run), min(len(whitted), len(povray)), statistics.median(per_run), min(per_run),
-            max(per_run), statistics.median(povray) / statistics.median(whitted), min(povray) / min(whitted)))
+        rounds = min(sum(t is not None for t in whitted), sum(t is not None for t in povray))
+        print("| %s | %s | %d | %d | %d | %s | %s | %s |" % (
+            *key, len(per_run), rounds, spread(per_run), f(ratio(median(povray), median(whitted))),
+            f(ratio(least(povray), least(whitted)))))
 
 
 if __name__ == "__main__":
