@@ -130,6 +130,12 @@ impl<'a, V: Dim> Packets<'a, V> {
         self.planes
     }
 
+    /// The leaf's spheres, each with the primitive that names it.
+    #[must_use]
+    pub fn spheres(&self) -> &[(Prim, &'a Sphere<V>)] {
+        &self.spheres
+    }
+
     /// [`Accel::nearest`] in each lane of rays `o + t·d`, without a recorder: the nearest hit's
     /// t and primitive, the tests counted into `counts`, and the lanes the packet cannot answer
     /// (to be searched one ray at a time; their counts are to be dropped).

@@ -4,6 +4,7 @@
 //! The tracer counts the rays and `accel`'s tests count the tests; both count whatever the
 //! recorder.
 
+use super::event::RayKind;
 use std::ops::AddAssign;
 
 /// Rays traced, by kind.
@@ -24,6 +25,15 @@ impl RayCounts {
     #[must_use]
     pub fn total(&self) -> u64 {
         self.primary + self.reflected + self.transmitted + self.shadow
+    }
+    /// One more ray of `kind`.
+    #[inline(always)]
+    pub fn count(&mut self, kind: RayKind) {
+        match kind {
+            RayKind::Primary => self.primary += 1,
+            RayKind::Reflected => self.reflected += 1,
+            RayKind::Transmitted => self.transmitted += 1,
+        }
     }
 }
 

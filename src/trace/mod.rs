@@ -5,6 +5,8 @@
 #[cfg(target_arch = "x86_64")]
 pub mod packet;
 pub mod shade;
+#[cfg(target_arch = "x86_64")]
+mod wave;
 
 use crate::accel::Accel;
 use crate::geom::offset::{offset_distance, spawn_origin};
@@ -58,11 +60,7 @@ impl<'s, V: Dim, R: Recorder<V>> Tracer<'s, V, R> {
 
     /// `TraceRay(R, n)`: the nearest hit (none → the background), then `ShadePoint`.
     fn trace(&mut self, ray: &Ray<V>, kind: RayKind, level: u32, uv: &[f64]) -> Rgb {
-        match kind {
-            RayKind::Primary => self.stats.rays.primary += 1,
-            RayKind::Reflected => self.stats.rays.reflected += 1,
-            RayKind::Transmitted => self.stats.rays.transmitted += 1,
-        }
+        self.stats.rays.count(kind);
         self.recorder.open_ray(|| RayStart { kind, level, origin: ray.origin, direction: ray.dir });
         if kind == RayKind::Primary {
             self.recorder.event(|| Event::PrimaryRay {

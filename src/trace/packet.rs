@@ -1,17 +1,19 @@
 //! Primary rays in packets of [`LANES`] (`accel::packet`): each packet's nearest hits found at
 //! once, and the rays whose ray tree ends at that hit — a miss (the background), or a plane of
 //! a material that neither reflects nor transmits (the lecture's floor) — shaded at once too:
-//! the local model of §5 with its shadow segments, lane by lane the operations of
+//! the local model of §5 with its shadow segments ([`shade`]), lane by lane the operations of
 //! [`Tracer::local`] in its order. Every other ray (a sphere, a mirror, a lane the packet
-//! cannot answer) is traced by [`Tracer::trace_primary`], from the start. The colours, the rays
-//! and the tests counted are those of one ray at a time, bit for bit: a packet's counts for a
-//! lane are added only when its answer is kept.
+//! cannot answer) waits, from the start, for the batch's ray trees, traced a level at a time in
+//! packets too ([`super::wave`]). The colours, the rays and the tests counted are those of one
+//! ray at a time, bit for bit: a packet's counts for a lane are added only when its answer is
+//! kept.
 //!
 //! The width is chosen when the program runs: `pulp::Arch` asks the CPU once, and the packets'
 //! loop runs in code built for AVX2 where the CPU has it, else in the baseline build (SSE2).
 //! Everything the loop calls in the packet is inlined into that code (`#[inline(always)]` all
 //! the way down); the rays traced one at a time take the tracer's ordinary code.
 
+use super::wave::Trees;
 use super::Tracer;
 use crate::accel::packet::{key, LaneCounts, Packets, NO_KEY};
 use crate::geom::lanes::{
@@ -20,6 +22,8 @@ use crate::geom::lanes::{
 };
 use crate::geom::offset::OFFSET_SCALE;
 use crate::geom::ray::Ray;
+use crate::record::event::RayKind;
+use crate::record::stats::Stats;
 use crate::record::NoRecorder;
 use crate::scene::camera::{Camera, Projection};
 use crate::scene::material::{Material, Rgb};
@@ -28,7 +32,7 @@ use crate::shape::Dim;
 use std::sync::OnceLock;
 
 /// A colour per lane, channel by channel.
-type Colors = [F; 3];
+pub(super) type Colors = [F; 3];
 
 /// The instruction sets this CPU has, asked once.
 fn arch() -> pulp::Arch {
@@ -105,18 +109,22 @@ impl<V: Dim> pulp::WithSimd for Batch<'_, '_, V> {
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
         let Batch { tracer, packets, row, colors } = self;
+        let mut trees = Trees::take();
         let whole = row.us.len() - row.us.len() % LANES;
-        for (first, colors) in (0..whole).step_by(LANES).zip(colors[..whole].chunks_exact_mut(LANES)) {
-            packet(tracer, &packets, &row, first, colors);
+        for (first, part) in (0..whole).step_by(LANES).zip(colors[..whole].chunks_exact_mut(LANES)) {
+            packet(tracer, &packets, &row, first, part, &mut trees);
         }
-        // The last rays, fewer than a packet, one at a time.
-        for (i, color) in colors.iter_mut().enumerate().skip(whole) {
-            *color = tracer.trace_primary(&row.ray(i), &[]);
+        // The last rays, fewer than a packet, and the rays the packets left: their trees in waves.
+        for i in whole..row.us.len() {
+            trees.root(&row.ray(i), i);
         }
+        trees.trace(tracer, &packets, colors);
+        trees.keep();
     }
 }
 
-/// The packet of rays `first …` of `row` into their colours.
+/// The packet of rays `first …` of `row` into their colours, or into `trees` (a sphere, a
+/// mirror, a lane the packet cannot answer), which write them later.
 #[inline(always)]
 fn packet<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
@@ -124,6 +132,7 @@ fn packet<V: Dim>(
     row: &Row<'_, V>,
     first: usize,
     colors: &mut [Rgb],
+    trees: &mut Trees,
 ) {
     let scene = tracer.scene;
     let (o, d) = row.lanes(first);
@@ -150,16 +159,26 @@ fn packet<V: Dim>(
     let done = and_not(done, scalar);
     for k in 0..LANES {
         if holds(done, k) {
-            let stats = &mut tracer.stats;
-            stats.rays.primary += 1;
-            stats.rays.shadow += shadows[k];
-            stats.tests.object += counts.object[k];
-            stats.tests.node += counts.node[k];
+            keep(&mut tracer.stats, RayKind::Primary, (&counts, &shadows), k);
             colors[k] = Rgb(std::array::from_fn(|c| color[c][k]));
         } else {
-            colors[k] = tracer.trace_primary(&row.ray(first + k), &[]);
+            trees.root(&row.ray(first + k), first + k);
         }
     }
+}
+
+/// Lane `k`'s answer kept: its ray of `kind`, its shadow rays and its tests counted.
+#[inline(always)]
+pub(super) fn keep(
+    stats: &mut Stats,
+    kind: RayKind,
+    (counts, shadows): (&LaneCounts, &[u64; LANES]),
+    k: usize,
+) {
+    stats.rays.count(kind);
+    stats.rays.shadow += shadows[k];
+    stats.tests.object += counts.object[k];
+    stats.tests.node += counts.node[k];
 }
 
 /// A plane met by the lanes of a packet.
@@ -173,21 +192,17 @@ struct PlaneHit<'a, V> {
 }
 
 /// `I_local` of [`Tracer::local`] in the lanes `on`, each lane's hit on `hit`'s plane by the ray
-/// `o + t·d`, every light in scene order; also the lanes shaded (the others need the scalar
-/// code: a normalisation off its common case, a shadow ray the packet cannot search). The
-/// material reflects nothing, so `ks = 0` and there is no highlight. Tests and shadow rays are
-/// counted per lane.
+/// `o + t·d`: the hit as `Plane::surface_at` and `Tracer::trace` make it, then [`shade`]. The
+/// material reflects nothing, so `ks = 0` and there is no highlight.
 #[inline(always)]
-#[allow(clippy::float_cmp)] // The checker's parity is exactly 1 or not.
 fn local<V: Dim>(
     tracer: &Tracer<'_, V, NoRecorder>,
     packets: &Packets<'_, V>,
     hit: &PlaneHit<'_, V>,
     (o, d): (&Vs, &Vs),
     on: M,
-    (counts, shadows): (&mut LaneCounts, &mut [u64; LANES]),
+    tally: (&mut LaneCounts, &mut [u64; LANES]),
 ) -> (Colors, M) {
-    let scene = tracer.scene;
     let (material, t) = (hit.material, hit.t);
     let (p, n) = (axes(hit.plane.point), axes(hit.plane.normal));
     // `Plane::surface_at`: I = O + t·D re-projected, I − N·((I − P)·N).
@@ -202,8 +217,44 @@ fn local<V: Dim>(
     let (point_max, origin_max) = (max_abs::<V>(&point), max_abs::<V>(o));
     let delta = lanes(|k| OFFSET_SCALE * point_max[k].max(origin_max[k]).max(t[k].abs()).max(hit.scale));
     let (ka, kd) = colors_at::<V>(material, &point);
-    let mut sum: Colors = std::array::from_fn(|c| lanes(|k| scene.ambient.0[c] * ka[c][k]));
+    let view = vector::<V>(|a, k| -d[a][k]);
+    let surface =
+        Surface { point, n_f, delta, view, ka, kd, ks: splat(material.ks), materials: [material; LANES] };
+    shade(tracer, packets, &surface, on, tally)
+}
+
+/// A hit in each lane of a packet, as [`Tracer::local`] reads it: I, N_f, δ, the view vector
+/// `V = −D`, the material's colours at I (after its checker), its ks, and the material itself
+/// (for the highlight's exponent).
+pub(super) struct Surface<'m> {
+    pub point: Vs,
+    pub n_f: Vs,
+    pub delta: F,
+    pub view: Vs,
+    pub ka: Colors,
+    pub kd: Colors,
+    pub ks: F,
+    pub materials: [&'m Material; LANES],
+}
+
+/// `I_local` of [`Tracer::local`] in the lanes `on` of `at`, every light in scene order, lane
+/// by lane its operations in its order; also the lanes shaded (the others need the scalar code:
+/// a normalisation off its common case, a shadow ray the packet cannot search). Tests and shadow
+/// rays are counted per lane.
+#[inline(always)]
+pub(super) fn shade<V: Dim>(
+    tracer: &Tracer<'_, V, NoRecorder>,
+    packets: &Packets<'_, V>,
+    at: &Surface<'_>,
+    on: M,
+    (counts, shadows): (&mut LaneCounts, &mut [u64; LANES]),
+) -> (Colors, M) {
+    let scene = tracer.scene;
+    let (point, n_f, ks) = (&at.point, &at.n_f, &at.ks);
+    let mut sum: Colors = std::array::from_fn(|c| lanes(|k| scene.ambient.0[c] * at.ka[c][k]));
     let mut scalar = NONE;
+    // The lanes whose material has a highlight: ks > 0.
+    let glossy = and(on, test(|k| ks[k] > 0.0));
     for light in &scene.lights {
         let position = axes(light.position);
         let to_light = vector::<V>(|a, k| position[a] - point[a][k]);
@@ -212,23 +263,32 @@ fn local<V: Dim>(
         let fat = lanes(|k| light.fat(distance[k]));
         // try_unit's other branch (a light nearly at I, or very far) is the scalar code's.
         scalar = or(scalar, and_not(on, usual));
-        let n_dot_l = dot::<V>(&n_f, &l);
+        let n_dot_l = dot::<V>(n_f, &l);
         // lum = 1 iff N·L > 0; no shadow ray otherwise (§6).
         let lit = and(and(on, usual), test(|k| n_dot_l[k] > 0.0));
         if !any(lit) {
             continue;
         }
-        let (s, flagged) = shadow_factor(packets, (&point, &n_f, &delta), &to_light, position, lit, counts);
+        let (s, flagged) = shadow_factor(packets, (point, n_f, &at.delta), &to_light, position, lit, counts);
         scalar = or(scalar, flagged);
         let lit_once = ones(lit);
         *shadows = std::array::from_fn(|k| shadows[k] + lit_once[k]);
         let weight = lanes(|k| fat[k] * s[k]);
-        for c in 0..3 {
+        // H = normalize(L + V) where ks > 0, the highlight (N·H)^n; where H is off try_unit's
+        // common case (L = −V among them), the scalar code. Elsewhere the term is `·0`.
+        let shiny = and(glossy, lit);
+        let mut highlight = splat(0.0);
+        if any(shiny) {
+            let (h, usual_h, _) = unit::<V>(&vector::<V>(|a, k| l[a][k] + at.view[a][k]));
+            scalar = or(scalar, and_not(shiny, usual_h));
+            let n_dot_h = dot::<V>(n_f, &h);
+            highlight = lanes(|k| if holds(shiny, k) { at.materials[k].highlight(n_dot_h[k]) } else { 0.0 });
+        }
+        for (c, total) in sum.iter_mut().enumerate() {
             let intensity = light.intensity.0[c];
-            let diffuse = lanes(|k| intensity * kd[c][k] * (weight[k] * n_dot_l[k]));
-            // ks = 0: the highlight is not computed, and the term is `Isrc·(weight·ks·0)`.
-            let specular = lanes(|k| intensity * (weight[k] * material.ks * 0.0));
-            sum[c] = select(lit, lanes(|k| sum[c][k] + (diffuse[k] + specular[k])), sum[c]);
+            let diffuse = lanes(|k| intensity * at.kd[c][k] * (weight[k] * n_dot_l[k]));
+            let specular = lanes(|k| intensity * (weight[k] * ks[k] * highlight[k]));
+            *total = select(lit, lanes(|k| total[k] + (diffuse[k] + specular[k])), *total);
         }
     }
     (sum, and_not(on, scalar))
@@ -239,7 +299,7 @@ fn local<V: Dim>(
 /// sum are exact integers in `f64` below 2⁵³, and `s − 2·floor(s/2)` is then exactly 0 or 1.
 #[inline(always)]
 #[allow(clippy::float_cmp)] // The parity is exactly 1 or not.
-fn colors_at<V: Dim>(material: &Material, point: &Vs) -> (Colors, Colors) {
+pub(super) fn colors_at<V: Dim>(material: &Material, point: &Vs) -> (Colors, Colors) {
     let (ka, kd) = (material.ka.0, material.kd.0);
     let plain = (std::array::from_fn(|c| splat(ka[c])), std::array::from_fn(|c| splat(kd[c])));
     let Some(checker) = &material.checker else { return plain };
