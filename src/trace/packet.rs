@@ -13,7 +13,7 @@
 //! Everything the loop calls in the packet is inlined into that code (`#[inline(always)]` all
 //! the way down); the rays traced one at a time take the tracer's ordinary code.
 
-use super::wave::Trees;
+use super::wave::{Searched, Trees};
 use super::Tracer;
 use crate::accel::packet::{key, LaneCounts, Packets, NO_KEY};
 use crate::geom::lanes::{
@@ -116,7 +116,7 @@ impl<V: Dim> pulp::WithSimd for Batch<'_, '_, V> {
         }
         // The last rays, fewer than a packet, and the rays the packets left: their trees in waves.
         for i in whole..row.us.len() {
-            trees.root(&row.ray(i), i);
+            trees.root(&row.ray(i), i, None);
         }
         trees.trace(tracer, &packets, colors);
         trees.keep();
@@ -139,6 +139,8 @@ fn packet<V: Dim>(
     let mut counts = LaneCounts::default();
     let mut shadows = [0; LANES];
     let (best, scalar) = packets.nearest(&o, &d, &mut counts);
+    // The search's tests alone, for the lanes left to the ray trees.
+    let search = counts;
     let background = scene.background.0;
     let mut color: Colors = std::array::from_fn(|c| splat(background[c]));
     // Misses end here; so do the lanes a plane below shades.
@@ -162,7 +164,14 @@ fn packet<V: Dim>(
             keep(&mut tracer.stats, RayKind::Primary, (&counts, &shadows), k);
             colors[k] = Rgb(std::array::from_fn(|c| color[c][k]));
         } else {
-            trees.root(&row.ray(first + k), first + k);
+            let searched = Searched {
+                t: best.t[k],
+                key: best.key[k],
+                flagged: holds(scalar, k),
+                object_tests: search.object[k],
+                node_tests: search.node[k],
+            };
+            trees.root(&row.ray(first + k), first + k, Some(searched));
         }
     }
 }

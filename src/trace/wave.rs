@@ -13,7 +13,7 @@
 
 use super::packet::{colors_at, keep, shade, Colors, Surface};
 use super::Tracer;
-use crate::accel::packet::{key, LaneCounts, Packets, NO_KEY};
+use crate::accel::packet::{key, Best, LaneCounts, Packets, NO_KEY};
 use crate::accel::Prim;
 use crate::geom::lanes::{
     and, and_not, any, axes, dot, dot_axes, holds, lanes, max_abs, or, select, select_v, splat, test, unit,
@@ -52,6 +52,19 @@ struct Level {
     /// O and D, a [`Block`] per packet; the lanes of the last past its rays repeat its last ray.
     blocks: Vec<Block>,
     nodes: Vec<Node>,
+    /// Level 1 only: each primary ray's search, when its packet made it.
+    searched: Vec<Option<Searched>>,
+}
+
+/// A primary ray's nearest hit as its packet found it, and the tests that took.
+#[derive(Clone, Copy)]
+pub(super) struct Searched {
+    pub t: f64,
+    pub key: u64,
+    /// The lane was flagged: the scalar code must search it.
+    pub flagged: bool,
+    pub object_tests: u64,
+    pub node_tests: u64,
 }
 
 impl Level {
@@ -86,9 +99,24 @@ impl Level {
         ray
     }
 
+    /// The search of the packet of rays `first …`, when every ray of it has one: each lane's
+    /// nearest hit, the lanes flagged, and the tests counted.
+    #[inline(always)]
+    fn searched(&self, first: usize, real: usize) -> Option<(Best, M, LaneCounts)> {
+        let mut known = [None; LANES];
+        for (k, slot) in known.iter_mut().enumerate() {
+            *slot = Some(self.searched.get(first + k.min(real - 1)).copied().flatten()?);
+        }
+        let known = known.map(|k| k.expect("every lane searched"));
+        let best = Best { t: lanes(|k| known[k].t), key: known.map(|k| k.key) };
+        let tests = LaneCounts { object: known.map(|k| k.object_tests), node: known.map(|k| k.node_tests) };
+        Some((best, test(|k| known[k].flagged), tests))
+    }
+
     fn clear(&mut self) {
         self.blocks.clear();
         self.nodes.clear();
+        self.searched.clear();
     }
 }
 
@@ -114,13 +142,16 @@ impl Trees {
         ROOM.set(self);
     }
 
-    /// Adds the primary ray whose colour goes to place `slot` of the caller's colours.
+    /// Adds the primary ray whose colour goes to place `slot` of the caller's colours, with its
+    /// packet's search if it has one.
     #[inline(always)]
-    pub fn root<V: Dim>(&mut self, ray: &Ray<V>, slot: usize) {
+    pub fn root<V: Dim>(&mut self, ray: &Ray<V>, slot: usize, searched: Option<Searched>) {
         if self.levels.is_empty() {
             self.levels.push(Level::default());
         }
-        self.levels[0].push(axes(ray.origin), axes(ray.dir), RayKind::Primary, slot, 1.0);
+        let first = &mut self.levels[0];
+        first.push(axes(ray.origin), axes(ray.dir), RayKind::Primary, slot, 1.0);
+        first.searched.push(searched);
     }
 
     /// Traces every tree, a level at a time, and writes each primary ray's colour to its slot
@@ -195,7 +226,14 @@ fn wave<V: Dim>(
         let live = test(|k| k < real);
         let mut counts = LaneCounts::default();
         let mut shadows = [0; LANES];
-        let (best, flagged) = packets.nearest(&o, &d, &mut counts);
+        // Level 1's rays come with their packet's search, unless they were the row's last few.
+        let (best, flagged) = match here.searched(first, real) {
+            Some((best, flagged, tests)) => {
+                counts = tests;
+                (best, flagged)
+            }
+            None => packets.nearest(&o, &d, &mut counts),
+        };
         let on = and_not(and(live, test(|k| best.key[k] != NO_KEY)), flagged);
         let mut color: Colors = std::array::from_fn(|c| splat(tracer.scene.background.0[c]));
         let mut scalar = flagged;
