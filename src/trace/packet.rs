@@ -12,7 +12,7 @@
 //! Everything the loop calls in the packet is inlined into that code (`#[inline(always)]` all
 //! the way down); the rays traced one at a time take the tracer's ordinary code.
 
-use super::Tracer;
+use super::{Tracer, WindowV};
 use crate::accel::packet::{key, LaneCounts, Packets, NO_KEY};
 use crate::geom::lanes::{
     all, and, and_not, any, axes, dot, dot_axes, gather, holds, lanes, max_abs, ones, or, select, select_v,
@@ -36,25 +36,25 @@ fn arch() -> pulp::Arch {
     *ARCH.get_or_init(pulp::Arch::new)
 }
 
-/// The primary rays of a batch, a row of the window: `Camera::primary_ray(u, v)` of each `u` of
-/// `us`, at one `v`, made 4 at a time as they are traced.
+/// The primary rays of a batch of window points: `Camera::primary_ray(u, v)` of each `u` of `us`
+/// with its `v` (one for a row of the window), made 4 at a time as they are traced.
 #[derive(Clone, Copy)]
 pub(super) struct Row<'a, V> {
     pub camera: &'a Camera<V>,
     pub us: &'a [f64],
-    pub v: f64,
+    pub v: WindowV<'a>,
 }
 
 impl<V: Dim> Row<'_, V> {
     /// Ray `i`, as the scalar code makes it.
     #[inline(always)]
     fn ray(&self, i: usize) -> Ray<V> {
-        self.camera.primary_ray(self.us[i], self.v)
+        self.camera.primary_ray(self.us[i], self.v.at(i))
     }
     /// Rays `first … first + LANES − 1` as lane vectors: origins and directions.
     #[inline(always)]
     fn lanes(&self, first: usize) -> (Vs, Vs) {
-        if let Some(rays) = window_rays(self.camera, lanes(|k| self.us[first + k]), self.v) {
+        if let Some(rays) = window_rays(self.camera, lanes(|k| self.us[first + k]), lanes(|k| self.v.at(first + k))) {
             return rays;
         }
         let rays: [Ray<V>; LANES] = std::array::from_fn(|k| self.ray(first + k));
@@ -66,10 +66,10 @@ impl<V: Dim> Row<'_, V> {
 /// from S along `−w` (orthographic) or from O along `S − O` normalised (perspective). `None`
 /// when some lane's `S − O` is off `try_unit`'s usual branch: the scalar code makes those rays.
 #[inline(always)]
-fn window_rays<V: Dim>(camera: &Camera<V>, u: F, v: f64) -> Option<(Vs, Vs)> {
+fn window_rays<V: Dim>(camera: &Camera<V>, u: F, v: F) -> Option<(Vs, Vs)> {
     let frame = &camera.frame;
     let (eye, fu, fv, fw) = (axes(camera.eye), axes(frame.u), axes(frame.v), axes(frame.w));
-    let s = vector::<V>(|a, k| eye[a] + fu[a] * u[k] + fv[a] * v - fw[a] * camera.p);
+    let s = vector::<V>(|a, k| eye[a] + fu[a] * u[k] + fv[a] * v[k] - fw[a] * camera.p);
     match camera.projection {
         Projection::Orthographic => Some((s, vector::<V>(|a, _| -fw[a]))),
         Projection::Perspective => {
