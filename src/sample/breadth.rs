@@ -353,3 +353,190 @@ impl Stored<'_> {
         Stored { scratch, a, count: count.then_some(0) }
     }
 }
+
+/// The breadth-first render against the depth-first recursion: every pixel's colour bit for bit,
+/// its count of distinct samples, and the rays and tests, on one thread and two.
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::{Accel, AccelKind, AccelOptions};
+    use crate::record::stats::Stats;
+    use crate::render::{render, RenderConfig};
+    use crate::sample::Sampling;
+    use crate::scene::load::load_str;
+    use crate::scene::{AnyScene, Scene};
+    use proptest::prelude::*;
+    use std::collections::{HashMap, HashSet};
+
+    /// Pixel `(i, j)`'s samples for the recursion: each lattice point of the image traced once,
+    /// one ray at a time, whichever pixel reads it first; the pixel's distinct points in `read`.
+    struct Once<'r, 's, V: Dim> {
+        tracer: &'r mut Tracer<'s, V, NoRecorder>,
+        traced: &'r mut HashMap<(u64, u64), Rgb>,
+        read: HashSet<(u32, u32)>,
+        lattice: Lattice,
+        pixel: (usize, usize),
+    }
+
+    impl<V: Dim> SampleSource for Once<'_, '_, V> {
+        fn color(&mut self, a: u32, b: u32) -> Rgb {
+            self.read.insert((a, b));
+            let (x, y) = self.lattice.global(self.pixel.0, self.pixel.1, a, b);
+            let (tracer, lattice) = (&mut *self.tracer, self.lattice);
+            *self.traced.entry((x, y)).or_insert_with(|| {
+                let (u, v) = lattice.uv(&tracer.scene.camera, x, y);
+                tracer.trace_primary(&tracer.scene.camera.primary_ray(u, v), &[])
+            })
+        }
+    }
+
+    /// The recursion's image (each colour's bits), per-pixel counts and statistics.
+    type Rendered = (Vec<[u64; 3]>, Vec<u32>, Stats);
+
+    /// Every pixel of `scene` by [`subdivide`] with the rule `(threshold, K)`, rows from the bottom.
+    fn depth_first<V: Dim>(
+        scene: &Scene<V>,
+        accel: &Accel<V>,
+        (threshold, max_level): (f64, u32),
+    ) -> Rendered {
+        let lattice = Lattice::new(&scene.camera, max_level);
+        let mut tracer = Tracer::new(scene, accel, NoRecorder);
+        tracer.max_depth = scene.max_depth;
+        let mut traced = HashMap::new();
+        let (mut colors, mut counts) = (Vec::new(), Vec::new());
+        for j in 0..lattice.ny {
+            for i in 0..lattice.nx {
+                let mut source = Once {
+                    tracer: &mut tracer,
+                    traced: &mut traced,
+                    read: HashSet::new(),
+                    lattice,
+                    pixel: (i, j),
+                };
+                let color = subdivide(&mut source, &mut NoSquares, lattice.dims(), threshold, max_level);
+                colors.push(color.0.map(f64::to_bits));
+                counts.push(u32::try_from(source.read.len()).expect("at most (2^8 + 1)² points"));
+            }
+        }
+        (colors, counts, tracer.stats)
+    }
+
+    /// The render's pixels (each colour's bits), per-pixel counts and statistics on `threads`.
+    fn breadth_first<V: Dim>(
+        scene: &Scene<V>,
+        accel: &Accel<V>,
+        rule: (f64, u32),
+        threads: usize,
+    ) -> Rendered {
+        let sampling = Sampling::adaptive(rule.0, rule.1).expect("a valid rule");
+        let config =
+            RenderConfig { sampling, rays_per_pixel: true, ..RenderConfig::centers(scene.max_depth) };
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a pool");
+        let out = pool.install(|| render(scene, accel, &config));
+        let computed = scene.camera.nx * scene.camera.ny;
+        let colors = out.image.pixels[..computed].iter().map(|c| c.0.map(f64::to_bits)).collect();
+        (colors, out.rays_per_pixel.expect("asked for"), out.stats)
+    }
+
+    /// The render agrees with the recursion on `scene` for each rule, on one thread and on two;
+    /// returns the most samples a pixel read.
+    fn agree<V: Dim>(scene: &Scene<V>, rules: &[(f64, u32)]) -> u32 {
+        let mut most = 0;
+        let accel = Accel::build_for_render(scene, &AccelOptions::of(AccelKind::Bvh));
+        for &rule in rules {
+            let (colors, counts, stats) = depth_first(scene, &accel, rule);
+            assert!(stats.rays.primary > 0);
+            most = most.max(counts.iter().copied().max().unwrap_or(0));
+            if rule.0 == 0.0 {
+                // Every square splits down to level K: all (2^K + 1)^dims points of every pixel.
+                let all = ((1 << rule.1) + 1u32).pow(u32::try_from(V::DIM - 1).expect("1 or 2"));
+                assert!(counts.iter().all(|&n| n == all), "threshold 0 at K = {}", rule.1);
+            }
+            for threads in [1, 2] {
+                let (bfs_colors, bfs_counts, bfs_stats) = breadth_first(scene, &accel, rule, threads);
+                let differ = bfs_colors.iter().zip(&colors).position(|(a, b)| a != b);
+                assert_eq!(differ, None, "the first pixel that differs, rule {rule:?}, {threads} threads");
+                assert_eq!(bfs_counts, counts, "samples per pixel, rule {rule:?}, {threads} threads");
+                assert_eq!(bfs_stats, stats, "rule {rule:?}, {threads} threads");
+            }
+        }
+        most
+    }
+
+    /// Thresholds 0 (every square splits), the lecture's 0.3 and +∞ (none does), K = 0 … 3.
+    fn rules() -> Vec<(f64, u32)> {
+        [0.0, 0.3, f64::INFINITY].into_iter().flat_map(|t| (0..=3).map(move |k| (t, k))).collect()
+    }
+
+    fn space(text: &str, (nx, ny): (usize, usize)) -> Scene<glam::DVec3> {
+        let Ok(AnyScene::Space(mut scene)) = load_str(text) else { panic!("a 3D scene") };
+        (scene.camera.nx, scene.camera.ny) = (nx, ny);
+        scene
+    }
+
+    #[test]
+    fn the_lecture_scene_is_the_recursion_s() {
+        let scene = space(include_str!("../../scenes/whitted.json"), (40, 30));
+        assert_eq!(agree(&scene, &rules()), 9 * 9, "threshold 0 at K = 3");
+    }
+
+    #[test]
+    fn a_2d_line_is_the_recursion_s() {
+        let text = r#"{ "camera": { "eye": [0, 6], "center": [0, 0], "window": { "l": -1.5, "r": 1.5 }, "resolution": [61] },
+            "max_depth": 3, "lights": [ { "position": [3, 5] }, { "position": [-2, 1] } ],
+            "objects": [
+              { "type": "plane", "point": [0, -2], "normal": [0, 1],
+                "material": { "kd": [0.8, 0.7, 0.2], "checker": { "size": 0.3, "kd2": [0.1, 0.2, 0.3] } } },
+              { "type": "sphere", "center": [0.3, 1], "radius": 0.8, "material": { "ks": 0.2, "kt": 0.9, "ior": 1.5 } },
+              { "type": "sphere", "center": [-1.5, -1], "radius": 0.5, "material": { "ks": 0.8 } } ] }"#;
+        let Ok(AnyScene::Flat(scene)) = load_str(text) else { panic!("a 2D scene") };
+        assert_eq!(agree(&scene, &rules()), 9, "threshold 0 at K = 3");
+    }
+
+    #[test]
+    fn deep_levels_take_a_row_in_chunks_that_share_their_edges() {
+        let scene = space(include_str!("../../scenes/whitted.json"), (9, 5));
+        // K = 7: (2^7 + 1)² points a pixel, 3 pixels a chunk; K = 8: one pixel a chunk.
+        assert_eq!(Scratch::new(Lattice::new(&scene.camera, 7)).pixels, 3);
+        assert_eq!(Scratch::new(Lattice::new(&scene.camera, 8)).pixels, 1);
+        // Some pixels split below level 2 (more than its 25 points).
+        assert!(agree(&scene, &[(0.3, 7), (0.3, 8)]) > 25);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(16))]
+        /// Random spheres over a random checkered plane, random lights and eye, a random rule.
+        #[test]
+        fn random_scenes_are_the_recursion_s(
+            spheres in prop::collection::vec(
+                ((-2.0..2.0f64, -1.0..2.0f64, -2.0..2.0f64), 0.1..1.2f64, 0..3usize), 0..4),
+            lights in prop::collection::vec((-5.0..5.0f64, -2.0..6.0f64, -5.0..5.0f64), 1..3),
+            eye in (-4.0..4.0f64, -0.5..4.0f64, 2.0..7.0f64),
+            rule in (0.0..0.6f64, 0..=3u32),
+        ) {
+            const MATERIALS: [&str; 3] = [
+                r#"{ "kd": [0.6, 0.5, 0.4] }"#,
+                r#"{ "ks": 0.6, "kd": 0.3 }"#,
+                r#"{ "ks": 0.1, "kt": 0.8, "ior": 1.33 }"#,
+            ];
+            let mut objects = vec![r#"{ "type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0],
+                "material": { "kd": [0.7, 0.2, 0.1], "checker": { "size": 0.7, "kd2": [0.9, 0.9, 0.2] } } }"#
+                .to_string()];
+            for ((x, y, z), r, m) in spheres {
+                objects.push(format!(
+                    r#"{{ "type": "sphere", "center": [{x}, {y}, {z}], "radius": {r}, "material": {} }}"#,
+                    MATERIALS[m]
+                ));
+            }
+            let lights: Vec<String> =
+                lights.iter().map(|(x, y, z)| format!(r#"{{ "position": [{x}, {y}, {z}] }}"#)).collect();
+            let text = format!(
+                r#"{{ "camera": {{ "eye": [{}, {}, {}], "center": [0, 0, 0], "up": [0, 1, 0],
+                    "window": {{ "l": -2, "r": 2, "b": -1.5, "t": 1.5 }}, "resolution": [21, 13] }},
+                    "max_depth": 3, "lights": [ {} ], "objects": [ {} ] }}"#,
+                eye.0, eye.1, eye.2, lights.join(","), objects.join(",")
+            );
+            agree(&space(&text, (21, 13)), &[rule]);
+        }
+    }
+}

@@ -54,7 +54,9 @@ impl<V: Dim> Row<'_, V> {
     /// Rays `first … first + LANES − 1` as lane vectors: origins and directions.
     #[inline(always)]
     fn lanes(&self, first: usize) -> (Vs, Vs) {
-        if let Some(rays) = window_rays(self.camera, lanes(|k| self.us[first + k]), lanes(|k| self.v.at(first + k))) {
+        if let Some(rays) =
+            window_rays(self.camera, lanes(|k| self.us[first + k]), lanes(|k| self.v.at(first + k)))
+        {
             return rays;
         }
         let rays: [Ray<V>; LANES] = std::array::from_fn(|k| self.ray(first + k));
