@@ -1,10 +1,10 @@
 //! Whitted's adaptive subdivision (algorithm.md §8.2) of a render's pixel row, breadth first:
 //! the squares of the row that split at level L give their new points, all traced together in
 //! packets ([`Tracer::trace_window_points`]), and only then are the squares of level L + 1
-//! decided, each once. A pixel's colour is then summed by [`subdivide`]'s recursion over the
-//! stored colours, so its arithmetic is the recursion's and its bytes those of a depth-first
-//! render; `trace` and anything recorded keep the depth-first recursion, which traces a sample
-//! when a square first reads it.
+//! decided, each once. Then each split square's colour is summed, deepest level first, in the
+//! arithmetic of [`super::adaptive::subdivide`]'s recursion, so that a pixel's bytes are those
+//! of a depth-first render; `trace` and anything recorded keep the depth-first recursion, which
+//! traces a sample when a square first reads it.
 //!
 //! A row is taken in chunks of pixels ([`Scratch`]: all of a 640-pixel row at K = 2), each a
 //! dense lattice of the colours of its points, stamped so that nothing is cleared per chunk. The
@@ -14,27 +14,20 @@
 //! claimed and traced with the level's batch, or, if another thread is tracing it, awaited once
 //! this thread's own claims are filled. So every sample is traced once, as in the recursion.
 
-use super::adaptive::{new_points, splits, subdivide, unsplit, NoSquares, SampleSource, CORNERS};
-use super::corners::Lattice;
+use super::adaptive::{new_points, splits, unsplit, CORNERS};
+use super::corners::{corner_mean, Lattice};
 use super::shared::{trace_point, Claim, Claims, Edges, Line};
 use crate::record::NoRecorder;
 use crate::scene::material::Rgb;
 use crate::shape::Dim;
 use crate::trace::Tracer;
 
-/// The most lattice points a chunk holds: 2 MiB of [`Memo`]s a thread, whatever K.
+/// The most lattice points a chunk holds: 1.8 MiB of colours and stamps a thread, whatever K.
 const CHUNK_POINTS: usize = 1 << 16;
 
-/// One point of a chunk's lattice: its colour, valid when `stamp` is the current chunk's.
-#[derive(Clone, Copy, Debug, Default)]
-struct Memo {
-    stamp: u32,
-    color: Rgb,
-}
-
 /// One thread's memory for the pixel rows of a lattice: a chunk's lattice of colours and, per
-/// level below K, the squares of the chunk that split at it; the level's batch of points to
-/// trace; the per-pixel marks that count distinct samples when asked.
+/// level below K, the squares of the chunk that split at it and their colours; the level's
+/// batch of points to trace.
 #[derive(Debug)]
 pub struct Scratch {
     /// `2^K`.
@@ -45,22 +38,23 @@ pub struct Scratch {
     width: usize,
     /// Rows of a chunk's lattice: `2^K + 1`, or 1 on a 2D scene's line.
     rows: usize,
-    /// The chunk's points, row by row.
-    memo: Vec<Memo>,
+    /// The colours of the chunk's points, row by row, valid where `stamps` holds `current`.
+    colors: Vec<Rgb>,
+    /// Per point of `colors`, the stamp of the chunk that last gave it a colour.
+    stamps: Vec<u32>,
     /// The current chunk's stamp.
     current: u32,
-    /// Per level `L < K`, the lower-left points of the chunk's squares that split at `L`.
+    /// Per level `L < K`, the lower-left points of the chunk's squares that split at `L`, in the
+    /// order decided (a parent's children together, in the order the recursion visits them).
     split: Vec<Vec<(u32, u32)>>,
-    /// The level's points to trace: their window coordinates, their places in `memo`, and their
-    /// colours once traced.
+    /// Per level, the colours of the squares of `split`, in the same order.
+    sums: Vec<Vec<Rgb>>,
+    /// The level's points to trace.
     batch: Batch,
-    /// Per local point of the pixel being summed, the stamp of the pixel that last read it.
-    seen: Vec<u32>,
-    /// The stamp of the pixel being summed.
-    seen_current: u32,
 }
 
-/// A level's points to trace, in the order gathered.
+/// A level's points to trace, in the order gathered: their window coordinates, their places in
+/// [`Scratch::colors`], and their colours once traced.
 #[derive(Debug, Default)]
 struct Batch {
     us: Vec<f64>,
@@ -73,38 +67,43 @@ impl Scratch {
     /// The memory for pixel rows of `lattice`.
     #[must_use]
     pub fn new(lattice: Lattice) -> Self {
-        let side = lattice.scale as usize + 1;
-        let rows = if lattice.dims() == 1 { 1 } else { side };
-        let pixels = (CHUNK_POINTS / (side * rows)).clamp(1, lattice.nx.max(1));
+        let (pixels, rows) = Self::chunk(lattice);
         let width = pixels * lattice.scale as usize + 1;
+        let levels = lattice.max_level.max(1) as usize;
         Self {
             scale: lattice.scale,
             pixels,
             width,
             rows,
-            memo: vec![Memo::default(); width * rows],
+            colors: vec![Rgb::BLACK; width * rows],
+            stamps: vec![0; width * rows],
             current: 0,
-            split: vec![Vec::new(); lattice.max_level.max(1) as usize],
+            split: vec![Vec::new(); levels],
+            sums: vec![Vec::new(); levels],
             batch: Batch::default(),
-            seen: vec![0; side * rows],
-            seen_current: 0,
         }
     }
-    /// The bytes of one thread's [`Scratch`] for `lattice` (its lattice of colours, the most).
+    /// The bytes of one thread's [`Scratch`] for `lattice` (its lattice, the most of it).
     #[must_use]
     pub fn bytes(lattice: Lattice) -> usize {
+        let (pixels, rows) = Self::chunk(lattice);
+        let point = std::mem::size_of::<Rgb>() + std::mem::size_of::<u32>();
+        (pixels * lattice.scale as usize + 1) * rows * point
+    }
+    /// The pixels of a chunk of `lattice` and the rows of its lattice: each pixel holds
+    /// `(2^K + 1)^dims` points, a chunk at most [`CHUNK_POINTS`] (but one pixel, at least).
+    fn chunk(lattice: Lattice) -> (usize, usize) {
         let side = lattice.scale as usize + 1;
         let rows = if lattice.dims() == 1 { 1 } else { side };
-        let pixels = (CHUNK_POINTS / (side * rows)).clamp(1, lattice.nx.max(1));
-        (pixels * lattice.scale as usize + 1) * rows * std::mem::size_of::<Memo>()
+        ((CHUNK_POINTS / (side * rows)).clamp(1, lattice.nx.max(1)), rows)
     }
     /// Starts a new chunk: every point becomes stale, but for the last column of the previous
     /// chunk if `carry`, which becomes the first column (the edge the chunks share).
     fn next_chunk(&mut self, carry: bool) {
         if self.current == u32::MAX {
             // Renumbered, so that the current chunk's points stay valid: 1, and the others 0.
-            for m in &mut self.memo {
-                m.stamp = u32::from(m.stamp == self.current);
+            for stamp in &mut self.stamps {
+                *stamp = u32::from(*stamp == self.current);
             }
             self.current = 1;
         }
@@ -112,9 +111,10 @@ impl Scratch {
         self.current += 1;
         if carry {
             for b in 0..self.rows {
-                let last = self.memo[b * self.width + self.width - 1];
-                if last.stamp == previous {
-                    self.memo[b * self.width] = Memo { stamp: self.current, color: last.color };
+                let (first, last) = (b * self.width, (b + 1) * self.width - 1);
+                if self.stamps[last] == previous {
+                    self.stamps[first] = self.current;
+                    self.colors[first] = self.colors[last];
                 }
             }
         }
@@ -122,10 +122,15 @@ impl Scratch {
             level.clear();
         }
     }
-    /// The index in `memo` of chunk point `(a, b)`.
+    /// The index in the chunk's lattice of point `(a, b)`.
     #[inline]
     fn index(&self, a: u32, b: u32) -> usize {
         b as usize * self.width + a as usize
+    }
+    /// Whether chunk point `(a, b)` has its colour (or is gathered to be traced) in this chunk.
+    #[inline]
+    fn known(&self, a: u32, b: u32) -> bool {
+        self.stamps[self.index(a, b)] == self.current
     }
 }
 
@@ -192,11 +197,11 @@ impl<'e> Chunk<'e> {
             let i = self.first + k;
             // Corner c is (c & 1, c >> 1) in pixel units: lower-left, lower-right, upper-left, …
             let corners: [&Rgb; N] = std::array::from_fn(|c| if c < 2 { &b[i + c] } else { &t[i + c - 2] });
+            if let Some(used) = used.as_deref_mut() {
+                used[k] = n;
+            }
             if let Some(color) = unsplit(corners, threshold, max_level) {
                 *pixel = color;
-                if let Some(used) = used.as_deref_mut() {
-                    used[k] = n;
-                }
                 continue;
             }
             // k < pixels ≤ CHUNK_POINTS: a lattice column of the chunk.
@@ -204,7 +209,8 @@ impl<'e> Chunk<'e> {
             let a = k as u32 * s;
             for (c, (dx, dy)) in CORNERS[..N].iter().enumerate() {
                 let at = scratch.index(a + dx * s, dy * s);
-                scratch.memo[at] = Memo { stamp: scratch.current, color: *corners[c] };
+                scratch.stamps[at] = scratch.current;
+                scratch.colors[at] = *corners[c];
             }
             scratch.split[0].push((a, 0));
         }
@@ -217,16 +223,16 @@ impl<'e> Chunk<'e> {
                 decide::<N>(scratch, self.rule, level);
             }
         }
-        let split = std::mem::take(&mut scratch.split[0]);
-        for &(a, _) in &split {
-            let k = (a / s) as usize;
-            let mut stored = Stored::new(scratch, a, used.is_some());
-            pixels[k] = subdivide(&mut stored, &mut NoSquares, self.lattice.dims(), threshold, max_level);
-            if let (Some(used), Some(count)) = (used.as_deref_mut(), stored.count) {
-                used[k] = count;
-            }
+        if max_level == 0 {
+            return;
         }
-        scratch.split[0] = split;
+        sum::<N>(scratch, max_level);
+        for (&(a, _), &color) in scratch.split[0].iter().zip(&scratch.sums[0]) {
+            pixels[(a / s) as usize] = color;
+        }
+        if let Some(used) = used {
+            count::<N>(scratch, max_level, used);
+        }
     }
 
     /// The new points of the squares that split at `level`, each not yet known traced once: read
@@ -242,7 +248,7 @@ impl<'e> Chunk<'e> {
         let (lattice, axes) = (self.lattice, self.edges.axes);
         let half = scratch.scale >> (level + 1);
         let (offsets, count) = const { new_points::<N>() };
-        let Scratch { memo, current, split, batch, width, .. } = scratch;
+        let Scratch { colors, stamps, current, split, batch, width, .. } = scratch;
         let (current, width) = (*current, *width);
         batch.us.clear();
         batch.vs.clear();
@@ -252,17 +258,17 @@ impl<'e> Chunk<'e> {
             for &(dx, dy) in &offsets[..count] {
                 let (a, b) = (x + dx * half, y + dy * half);
                 let at = b as usize * width + a as usize;
-                if memo[at].stamp == current {
+                if stamps[at] == current {
                     continue;
                 }
-                memo[at].stamp = current;
+                stamps[at] = current;
                 let (gx, gy) = lattice.global(self.first, self.j, a, b);
                 if let Some(line) = self.edges.line(lattice, b) {
                     // gx ≤ Nx·2^K: the index of a point of the line.
                     #[allow(clippy::cast_possible_truncation)]
                     match claims.claim(line, gx as usize, batch.us.len()) {
                         Claim::Traced(color) => {
-                            memo[at].color = color;
+                            colors[at] = color;
                             continue;
                         }
                         Claim::Theirs => {
@@ -283,74 +289,86 @@ impl<'e> Chunk<'e> {
         tracer.trace_window_points(&batch.us, &batch.vs, &mut batch.colors);
         claims.fill(&batch.colors);
         for (&at, &color) in batch.at.iter().zip(&batch.colors) {
-            memo[at].color = color;
+            colors[at] = color;
         }
         for (line, gx, gy, at) in theirs {
             #[allow(clippy::cast_possible_truncation)]
             let color = line.get_or_trace(gx as usize, || trace_point(tracer, (lattice, axes), gx, gy));
-            memo[at].color = color;
+            colors[at] = color;
         }
     }
+}
+
+/// The colours of a square's corners, whose lower-left point is `(a, b)` and side `side`, in
+/// the order lower-left, lower-right, upper-left, upper-right (2D: the first two).
+#[inline]
+fn corners_of<const N: usize>(scratch: &Scratch, (a, b): (u32, u32), side: u32) -> [Rgb; N] {
+    std::array::from_fn(|k| scratch.colors[scratch.index(a + CORNERS[k].0 * side, b + CORNERS[k].1 * side)])
 }
 
 /// The squares of level `level + 1`, children of those that split at `level`, that split in
 /// turn (§8.2's rule on their corners, given in the recursion's order), in the order visited.
 fn decide<const N: usize>(scratch: &mut Scratch, (threshold, max_level): (f64, u32), level: u32) {
     let half = scratch.scale >> (level + 1);
-    let Scratch { memo, split, width, .. } = scratch;
-    let (done, next) = split.split_at_mut(level as usize + 1);
-    let (parents, children) = (&done[level as usize], &mut next[0]);
-    for &(x, y) in parents {
+    let mut children = std::mem::take(&mut scratch.split[level as usize + 1]);
+    for &(x, y) in &scratch.split[level as usize] {
         for &(cx, cy) in &CORNERS[..N] {
-            let (a, b) = (x + cx * half, y + cy * half);
-            let corners: [&Rgb; N] = std::array::from_fn(|k| {
-                let (dx, dy) = CORNERS[k];
-                &memo[(b + dy * half) as usize * *width + (a + dx * half) as usize].color
+            let child = (x + cx * half, y + cy * half);
+            if splits(Rgb::spread(&corners_of::<N>(scratch, child, half)), level + 1, threshold, max_level) {
+                children.push(child);
+            }
+        }
+    }
+    scratch.split[level as usize + 1] = children;
+}
+
+/// The colours of the chunk's split squares, deepest level first: a split square's is
+/// `corner_mean` of its children's, visited lower-left, lower-right, upper-left, upper-right, a
+/// child's the colour of its own split or, for a leaf, `corner_mean` of its corners. The sums
+/// and the order of `subdivide`'s recursion: a split child is the next of the level below, whose
+/// squares were decided in this order.
+fn sum<const N: usize>(scratch: &mut Scratch, max_level: u32) {
+    for level in (0..max_level as usize).rev() {
+        let half = scratch.scale >> (level + 1);
+        let mut out = std::mem::take(&mut scratch.sums[level]);
+        out.clear();
+        let (below, below_sums) = match scratch.split.get(level + 1) {
+            Some(split) if level + 1 < max_level as usize => (&split[..], &scratch.sums[level + 1][..]),
+            _ => (&[][..], &[][..]),
+        };
+        let mut next = 0;
+        for &(x, y) in &scratch.split[level] {
+            let children: [Rgb; N] = std::array::from_fn(|c| {
+                let child = (x + CORNERS[c].0 * half, y + CORNERS[c].1 * half);
+                if below.get(next) == Some(&child) {
+                    next += 1;
+                    below_sums[next - 1]
+                } else {
+                    corner_mean(&corners_of::<N>(scratch, child, half))
+                }
             });
-            if splits(Rgb::spread(corners), level + 1, threshold, max_level) {
-                children.push((a, b));
-            }
+            out.push(corner_mean(&children));
         }
+        scratch.sums[level] = out;
     }
 }
 
-/// The stored samples of one split pixel, whose lower-left point is chunk column `a`, read by
-/// [`subdivide`] to sum it; `count` the distinct samples read, if asked.
-struct Stored<'s> {
-    scratch: &'s mut Scratch,
-    a: u32,
-    count: Option<u32>,
-}
-
-impl SampleSource for Stored<'_> {
-    #[inline]
-    fn color(&mut self, a: u32, b: u32) -> Rgb {
-        let scratch = &mut *self.scratch;
-        let memo = scratch.memo[scratch.index(self.a + a, b)];
-        debug_assert_eq!(memo.stamp, scratch.current, "a point the levels traced");
-        if let Some(count) = &mut self.count {
-            let side = scratch.scale as usize + 1;
-            let seen = &mut scratch.seen[b as usize * side + a as usize];
-            if *seen != scratch.seen_current {
-                *seen = scratch.seen_current;
-                *count += 1;
-            }
+/// Adds to each split pixel's `used` (its `N` corners already) the distinct points its split
+/// squares gave: a square's 5 new points (2D: 1), less its left and bottom midpoints where the
+/// square beside it in the same pixel split too (its centre traced), which gave them first.
+fn count<const N: usize>(scratch: &Scratch, max_level: u32, used: &mut [u32]) {
+    let s = scratch.scale;
+    let (_, new) = const { new_points::<N>() };
+    for level in 0..max_level as usize {
+        let half = s >> (level + 1);
+        for &(x, y) in &scratch.split[level] {
+            let beside = |(a, b): (u32, u32)| N == 4 && scratch.known(a, b);
+            let left = x % s != 0 && beside((x - half, y + half));
+            let below = y % s != 0 && beside((x + half, y - half));
+            #[allow(clippy::cast_possible_truncation)] // at most 5
+            let fresh = new as u32 - u32::from(left) - u32::from(below);
+            used[(x / s) as usize] += fresh;
         }
-        memo.color
-    }
-}
-
-impl Stored<'_> {
-    /// A source for the pixel at chunk column `a`, counting its distinct samples if `count`.
-    fn new(scratch: &mut Scratch, a: u32, count: bool) -> Stored<'_> {
-        if count {
-            if scratch.seen_current == u32::MAX {
-                scratch.seen.fill(0);
-                scratch.seen_current = 0;
-            }
-            scratch.seen_current += 1;
-        }
-        Stored { scratch, a, count: count.then_some(0) }
     }
 }
 
@@ -362,6 +380,7 @@ mod tests {
     use crate::accel::{Accel, AccelKind, AccelOptions};
     use crate::record::stats::Stats;
     use crate::render::{render, RenderConfig};
+    use crate::sample::adaptive::{subdivide, NoSquares, SampleSource};
     use crate::sample::Sampling;
     use crate::scene::load::load_str;
     use crate::scene::{AnyScene, Scene};
