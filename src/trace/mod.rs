@@ -178,7 +178,7 @@ impl<V: Dim> Tracer<'_, V, NoRecorder> {
     /// [`packet`]), else one at a time, made first into `rays` (their normalisations back to
     /// back, independent, so they overlap).
     pub fn trace_window_row(&mut self, us: &[f64], v: f64, rays: &mut Vec<Ray<V>>, colors: &mut [Rgb]) {
-        if self.trace_packets(us, WindowV::One(v), colors) {
+        if self.trace_packets(us, v, colors) {
             return;
         }
         let camera = &self.scene.camera;
@@ -194,7 +194,7 @@ impl<V: Dim> Tracer<'_, V, NoRecorder> {
     /// own point, where [`Tracer::trace_window_row`] would use packets, else one at a time.
     pub fn trace_window_points(&mut self, us: &[f64], vs: &[f64], colors: &mut [Rgb]) {
         debug_assert_eq!(us.len(), vs.len(), "a v for every u");
-        if self.trace_packets(us, WindowV::Each(vs), colors) {
+        if self.trace_packets(us, vs, colors) {
             return;
         }
         let camera = &self.scene.camera;
@@ -206,7 +206,7 @@ impl<V: Dim> Tracer<'_, V, NoRecorder> {
     /// The rays through `(us[i], v.at(i))` into `colors` in packets ([`packet`]), if this is
     /// x86-64 and the structure has a packet search: then true, else false and nothing traced.
     #[cfg_attr(not(target_arch = "x86_64"), allow(unused_variables, clippy::unused_self))]
-    fn trace_packets(&mut self, us: &[f64], v: WindowV<'_>, colors: &mut [Rgb]) -> bool {
+    fn trace_packets(&mut self, us: &[f64], v: impl WindowV, colors: &mut [Rgb]) -> bool {
         #[cfg(target_arch = "x86_64")]
         if let Some(packets) = self.accel.packets(self.scene) {
             let camera = &self.scene.camera;
@@ -217,24 +217,24 @@ impl<V: Dim> Tracer<'_, V, NoRecorder> {
     }
 }
 
-/// The `v` of a batch of window points: one for a row of the window, or one a point.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum WindowV<'a> {
-    /// Every point's `v`.
-    One(f64),
-    /// Point `i`'s `v` at index `i`.
-    Each(&'a [f64]),
+/// The `v` of a batch of window points: one `f64` for a row of the window, or a slice of one a
+/// point. A type, not a value, so that a row's packets are made with its one `v` in a register.
+pub(crate) trait WindowV: Copy {
+    /// The `v` of point `i`.
+    fn at(self, i: usize) -> f64;
 }
 
-impl WindowV<'_> {
-    /// The `v` of point `i`.
+impl WindowV for f64 {
     #[inline(always)]
-    #[must_use]
-    pub(crate) fn at(self, i: usize) -> f64 {
-        match self {
-            Self::One(v) => v,
-            Self::Each(vs) => vs[i],
-        }
+    fn at(self, _i: usize) -> f64 {
+        self
+    }
+}
+
+impl WindowV for &[f64] {
+    #[inline(always)]
+    fn at(self, i: usize) -> f64 {
+        self[i]
     }
 }
 

@@ -39,13 +39,13 @@ fn arch() -> pulp::Arch {
 /// The primary rays of a batch of window points: `Camera::primary_ray(u, v)` of each `u` of `us`
 /// with its `v` (one for a row of the window), made 4 at a time as they are traced.
 #[derive(Clone, Copy)]
-pub(super) struct Row<'a, V> {
+pub(super) struct Row<'a, V, W> {
     pub camera: &'a Camera<V>,
     pub us: &'a [f64],
-    pub v: WindowV<'a>,
+    pub v: W,
 }
 
-impl<V: Dim> Row<'_, V> {
+impl<V: Dim, W: WindowV> Row<'_, V, W> {
     /// Ray `i`, as the scalar code makes it.
     #[inline(always)]
     fn ray(&self, i: usize) -> Ray<V> {
@@ -83,10 +83,10 @@ fn window_rays<V: Dim>(camera: &Camera<V>, u: F, v: F) -> Option<(Vs, Vs)> {
 
 /// [`Tracer::trace_primary`] of each ray of `row` into the same place of `colors`, in
 /// packets searched by `packets`, in the widest code this CPU runs.
-pub(super) fn trace<'s, V: Dim>(
+pub(super) fn trace<'s, V: Dim, W: WindowV>(
     tracer: &mut Tracer<'s, V, NoRecorder>,
     packets: Packets<'s, V>,
-    row: Row<'_, V>,
+    row: Row<'_, V, W>,
     colors: &mut [Rgb],
 ) {
     debug_assert_eq!(row.us.len(), colors.len(), "a colour for every ray");
@@ -94,14 +94,14 @@ pub(super) fn trace<'s, V: Dim>(
 }
 
 /// The packets' loop, run by `pulp` in the code it chose.
-struct Batch<'b, 's, V: Dim> {
+struct Batch<'b, 's, V: Dim, W> {
     tracer: &'b mut Tracer<'s, V, NoRecorder>,
     packets: Packets<'s, V>,
-    row: Row<'b, V>,
+    row: Row<'b, V, W>,
     colors: &'b mut [Rgb],
 }
 
-impl<V: Dim> pulp::WithSimd for Batch<'_, '_, V> {
+impl<V: Dim, W: WindowV> pulp::WithSimd for Batch<'_, '_, V, W> {
     type Output = ();
 
     #[inline(always)]
@@ -120,10 +120,10 @@ impl<V: Dim> pulp::WithSimd for Batch<'_, '_, V> {
 
 /// The packet of rays `first …` of `row` into their colours.
 #[inline(always)]
-fn packet<V: Dim>(
+fn packet<V: Dim, W: WindowV>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     packets: &Packets<'_, V>,
-    row: &Row<'_, V>,
+    row: &Row<'_, V, W>,
     first: usize,
     colors: &mut [Rgb],
 ) {
