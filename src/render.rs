@@ -7,9 +7,10 @@
 //! rows, each row between two edge rows (the lattice rows on pixel-row boundaries) that it shares
 //! with the pixel rows below and above (`sample::shared`): an edge row is made by the first pixel
 //! row that needs it and dropped when the second is done, so every sample is traced exactly once
-//! and memory never holds the whole refined lattice. Each sample's colour depends
-//! only on its lattice point and each pixel sums its squares in a fixed order, so the image and the
-//! counts are the same for any number of threads.
+//! and memory never holds the whole refined lattice. A pixel row's subdivision runs breadth first
+//! (`sample::breadth`), in a thread's `Scratch`, which its jobs lend one after another (`Lent`).
+//! Each sample's colour depends only on its lattice point and each pixel sums its squares in a
+//! fixed order, so the image and the counts are the same for any number of threads.
 //!
 //! With `center` sampling each pixel row is one rayon job. No job waits at a barrier: rows are
 //! written in place into the image, and a job's size comes from `job_rows` (small jobs, so that a

@@ -1,13 +1,12 @@
 //! Sharing samples across a whole image (algorithm.md §8: "every sample is traced once and shared
 //! by all squares and pixels that touch it", keyed by integer lattice coordinates, never floats).
 //!
-//! One thread renders a pixel row left to right ([`render_row`]). The row's pixel corners are
-//! traced with the lattice row they lie on ([`EdgeRow`]). The other points of its bottom and top
-//! lattice rows are shared with the pixel row below or above, which another thread may render at
-//! the same time: the first thread to need a point traces it, any other waits ([`Line`]). The
-//! points of the edge between two pixels are carried to the next pixel, and those inside a pixel
-//! are private ([`Scratch`]). [`EdgeRows`] makes and drops the edge rows, so memory holds only
-//! those in use (see `render`).
+//! One thread renders a pixel row (`breadth::render_row`). The row's pixel corners are traced
+//! with the lattice row they lie on ([`EdgeRow`]). The other points of its bottom and top lattice
+//! rows are shared with the pixel row below or above, which another thread may render at the
+//! same time: the first thread to need a point traces it, any other waits ([`Line`]), and a
+//! thread that traces several at once claims them first ([`Claims`]). [`EdgeRows`] makes and
+//! drops the edge rows, so memory holds only those in use (see `render`).
 
 use super::corners::{Axes, Lattice};
 use crate::geom::ray::Ray;
