@@ -7,9 +7,10 @@
 //! rows, each row between two edge rows (the lattice rows on pixel-row boundaries) that it shares
 //! with the pixel rows below and above (`sample::shared`): an edge row is made by the first pixel
 //! row that needs it and dropped when the second is done, so every sample is traced exactly once
-//! and memory never holds the whole refined lattice. Each sample's colour depends
-//! only on its lattice point and each pixel sums its squares in a fixed order, so the image and the
-//! counts are the same for any number of threads.
+//! and memory never holds the whole refined lattice. A pixel row's subdivision runs breadth first
+//! (`sample::breadth`), in a thread's `Scratch`, which its jobs lend one after another (`Lent`).
+//! Each sample's colour depends only on its lattice point and each pixel sums its squares in a
+//! fixed order, so the image and the counts are the same for any number of threads.
 //!
 //! With `center` sampling each pixel row is one rayon job. No job waits at a barrier: rows are
 //! written in place into the image, and a job's size comes from `job_rows` (small jobs, so that a
@@ -28,8 +29,9 @@ use crate::geom::ray::Ray;
 use crate::image::{Image, Pixel};
 use crate::record::stats::Stats;
 use crate::record::NoRecorder;
+use crate::sample::breadth::{render_row, Scratch};
 use crate::sample::corners::{Axes, Lattice};
-use crate::sample::shared::{render_row, EdgeRow, EdgeRows, Edges, Scratch};
+use crate::sample::shared::{EdgeRow, EdgeRows, Edges};
 use crate::sample::Sampling;
 use crate::scene::material::Rgb;
 use crate::scene::Scene;
@@ -37,6 +39,7 @@ use crate::shape::Dim;
 use crate::trace::Tracer;
 use rayon::prelude::*;
 use std::ops::Range;
+use std::sync::{Mutex, PoisonError};
 
 /// What a render produced, its image of pixels `P` (linear colours unless asked otherwise).
 #[derive(Clone, Debug)]
@@ -104,8 +107,8 @@ const PNG_BYTES_PER_PIXEL: u64 = 6;
 
 /// About how many bytes a render of `scene` (its camera already resized) needs with `config` on
 /// `threads` threads: the linear image and its PNG, the per-pixel counts if asked, and for corners
-/// or adaptive sampling the lattice's u, v tables and the edge rows (two per thread in progress,
-/// plus `edge_memory` of rows waiting between jobs). It counts the linear image, 24 bytes a pixel,
+/// or adaptive sampling the lattice's u, v tables, the edge rows (two per thread in progress,
+/// plus `edge_memory` of rows waiting between jobs) and each thread's [`Scratch`]. It counts the linear image, 24 bytes a pixel,
 /// also for a render that keeps only the file's bytes ([`render_as`]): an over-estimate, so that
 /// one refusal holds for every caller.
 #[must_use]
@@ -125,6 +128,7 @@ pub fn memory_needed<V: Dim>(scene: &Scene<V>, config: &RenderConfig<'_>, thread
         bytes = bytes
             .saturating_add(axes.saturating_mul(std::mem::size_of::<f64>() as u64))
             .saturating_add(in_flight.saturating_mul(EdgeRow::bytes(lattice) as u64))
+            .saturating_add((threads as u64).saturating_mul(Scratch::bytes(lattice) as u64))
             .saturating_add(config.edge_memory as u64);
     }
     bytes
@@ -412,7 +416,8 @@ fn lattice_rows<V: Dim, P: Pixel>(
         P::keep(pixels, &colours);
         return tracer.stats;
     }
-    let rows = Rows { scene, accel, config, rule, lattice, edges: EdgeRows::new(lattice, &scene.camera) };
+    let edges = EdgeRows::new(lattice, &scene.camera);
+    let rows = Rows { scene, accel, config, rule, lattice, edges, spares: Mutex::new(Vec::new()) };
     match counts {
         Some(counts) => {
             rows.run(pixels.par_chunks_mut(nx).zip(counts.par_chunks_mut(nx)).map(|(p, c)| (p, Some(c))))
@@ -429,6 +434,36 @@ struct Rows<'a, V: Dim> {
     rule: (f64, u32),
     lattice: Lattice,
     edges: EdgeRows,
+    /// The [`Scratch`]es of jobs that ended, for the next jobs ([`Lent`]).
+    spares: Mutex<Vec<Scratch>>,
+}
+
+/// A rayon job's [`Scratch`], taken from the render's spares (made if there is none) and given
+/// back when the job ends: so a render makes one a thread, not one a job (a 640-pixel row's is
+/// 0.4 MB, all written when it is made).
+struct Lent<'s> {
+    scratch: Option<Scratch>,
+    spares: &'s Mutex<Vec<Scratch>>,
+}
+
+impl<'s> Lent<'s> {
+    /// A spare of `spares`, or a new one for `lattice`.
+    fn take(spares: &'s Mutex<Vec<Scratch>>, lattice: Lattice) -> Self {
+        let spare = spares.lock().unwrap_or_else(PoisonError::into_inner).pop();
+        Self { scratch: Some(spare.unwrap_or_else(|| Scratch::new(lattice))), spares }
+    }
+    /// The scratch, held until the job ends.
+    fn get(&mut self) -> &mut Scratch {
+        self.scratch.as_mut().expect("held until dropped")
+    }
+}
+
+impl Drop for Lent<'_> {
+    fn drop(&mut self) {
+        if let Some(scratch) = self.scratch.take() {
+            self.spares.lock().unwrap_or_else(PoisonError::into_inner).push(scratch);
+        }
+    }
 }
 
 impl<V: Dim> Rows<'_, V> {
@@ -446,14 +481,23 @@ impl<V: Dim> Rows<'_, V> {
             .map_init(
                 || {
                     let tracer = tracer(self.scene, self.accel, self.config.max_depth);
-                    (tracer, Scratch::new(lattice), vec![Rgb::BLACK; lattice.nx])
+                    (tracer, Lent::take(&self.spares, lattice), vec![Rgb::BLACK; lattice.nx])
                 },
                 |(tracer, scratch, colours), (j, (row, counts))| {
                     let out = P::colours(row, colours);
                     let top = edges.acquire(tracer, j + 1);
                     let bottom = edges.acquire(tracer, j);
                     let pair = Edges { bottom: &bottom, top: &top, axes: edges.axes() };
-                    lattice_row(tracer, scratch, lattice, self.rule, self.config, j, pair, (out, counts));
+                    lattice_row(
+                        tracer,
+                        scratch.get(),
+                        lattice,
+                        self.rule,
+                        self.config,
+                        j,
+                        pair,
+                        (out, counts),
+                    );
                     P::keep(row, colours);
                     edges.release(j);
                     edges.release(j + 1);

@@ -125,8 +125,9 @@ struct Rule<const N: usize> {
 }
 
 /// The corners of a square, in the order lower-left, lower-right, upper-left, upper-right, as
-/// offsets in half sides (2D: the first two).
-const CORNERS: [(u32, u32); 4] = [(0, 0), (1, 0), (0, 1), (1, 1)];
+/// offsets in half sides (2D: the first two); also its children's lower-left corners, in the
+/// order they are visited.
+pub(super) const CORNERS: [(u32, u32); 4] = [(0, 0), (1, 0), (0, 1), (1, 1)];
 
 /// One read of a split square's point by a child: the point's index `3·gy + gx` in the square's
 /// 3×3 grid, and whether no earlier read (nor the parent's corners) holds it yet.
@@ -159,6 +160,31 @@ const fn reads<const N: usize>() -> [[Read; N]; N] {
         child += 1;
     }
     out
+}
+
+/// The most new points a split square has: its 4 edge midpoints and its centre (2D: 1).
+pub(super) const MOST_NEW: usize = 5;
+
+/// A split square's new points, as offsets in half sides, in the order its children first read
+/// them ([`reads`]): the bottom, left, centre, right and top points (2D: the middle), the first
+/// `count` of the array, with `count`.
+pub(super) const fn new_points<const N: usize>() -> ([(u32, u32); MOST_NEW], usize) {
+    let reads = reads::<N>();
+    let mut out = [(0, 0); MOST_NEW];
+    let (mut count, mut child) = (0, 0);
+    while child < N {
+        let mut k = 0;
+        while k < N {
+            let read = reads[child][k];
+            if read.first {
+                out[count] = (read.point % 3, read.point / 3);
+                count += 1;
+            }
+            k += 1;
+        }
+        child += 1;
+    }
+    (out, count)
 }
 
 impl<const N: usize> Rule<N> {
@@ -258,6 +284,12 @@ mod tests {
         assert_eq!(sample_level(1, 2, 2), 2);
         assert_eq!(sample_level(3, 3, 2), 2);
         assert_eq!(sample_level(0, 0, 0), 0);
+    }
+
+    #[test]
+    fn new_points_are_the_midpoints_and_centre_in_reading_order() {
+        assert_eq!(new_points::<4>(), ([(1, 0), (0, 1), (1, 1), (2, 1), (1, 2)], 5));
+        assert_eq!(new_points::<2>().0[..new_points::<2>().1], [(1, 0)]);
     }
 
     #[test]

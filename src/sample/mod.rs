@@ -12,6 +12,7 @@
 //! labelled as the lecture does, `CA`, `CB`, ….
 
 pub mod adaptive;
+pub mod breadth;
 pub mod corners;
 pub mod shared;
 

@@ -1,15 +1,13 @@
 //! Sharing samples across a whole image (algorithm.md §8: "every sample is traced once and shared
 //! by all squares and pixels that touch it", keyed by integer lattice coordinates, never floats).
 //!
-//! One thread renders a pixel row left to right ([`render_row`]). The row's pixel corners are
-//! traced with the lattice row they lie on ([`EdgeRow`]). The other points of its bottom and top
-//! lattice rows are shared with the pixel row below or above, which another thread may render at
-//! the same time: the first thread to need a point traces it, any other waits ([`Line`]). The
-//! points of the edge between two pixels are carried to the next pixel, and those inside a pixel
-//! are private ([`Scratch`]). [`EdgeRows`] makes and drops the edge rows, so memory holds only
-//! those in use (see `render`).
+//! One thread renders a pixel row (`breadth::render_row`). The row's pixel corners are traced
+//! with the lattice row they lie on ([`EdgeRow`]). The other points of its bottom and top lattice
+//! rows are shared with the pixel row below or above, which another thread may render at the
+//! same time: the first thread to need a point traces it, any other waits ([`Line`]), and a
+//! thread that traces several at once claims them first ([`Claims`]). [`EdgeRows`] makes and
+//! drops the edge rows, so memory holds only those in use (see `render`).
 
-use super::adaptive::{subdivide, unsplit, NoSquares, SampleSource};
 use super::corners::{Axes, Lattice};
 use crate::geom::ray::Ray;
 use crate::record::NoRecorder;
@@ -34,7 +32,7 @@ impl Line {
         Self { points: (0..len).map(|_| Point::default()).collect() }
     }
     /// The colour of point `x`, traced by `trace` if no thread has traced it yet.
-    fn get_or_trace(&self, x: usize, trace: impl FnOnce() -> Rgb) -> Rgb {
+    pub(super) fn get_or_trace(&self, x: usize, trace: impl FnOnce() -> Rgb) -> Rgb {
         self.points[x].get_or_trace(trace)
     }
 }
@@ -72,24 +70,86 @@ impl Point {
     fn get_or_trace(&self, trace: impl FnOnce() -> Rgb) -> Rgb {
         loop {
             match self.state.load(Ordering::Acquire) {
-                READY => return Rgb(self.bits.each_ref().map(|b| f64::from_bits(b.load(Ordering::Relaxed)))),
-                EMPTY
-                    if self
-                        .state
-                        .compare_exchange(EMPTY, TRACING, Ordering::Acquire, Ordering::Acquire)
-                        .is_ok() =>
-                {
+                READY => return self.color(),
+                EMPTY if self.claim() => {
                     let unwinding = Unwinding(&self.state);
                     let color = trace();
-                    for (bits, channel) in self.bits.iter().zip(color.0) {
-                        bits.store(channel.to_bits(), Ordering::Relaxed);
-                    }
                     std::mem::forget(unwinding);
-                    self.state.store(READY, Ordering::Release);
+                    self.fill(color);
                     return color;
                 }
                 _ => std::thread::yield_now(),
             }
+        }
+    }
+    /// The channels of a traced point (once its [`READY`] state is read).
+    #[inline]
+    fn color(&self) -> Rgb {
+        Rgb(self.bits.each_ref().map(|b| f64::from_bits(b.load(Ordering::Relaxed))))
+    }
+    /// Whether this thread takes the point to trace: true if it was [`EMPTY`] (it is now
+    /// [`TRACING`], and [`Point::fill`] must follow).
+    #[inline]
+    fn claim(&self) -> bool {
+        self.state.compare_exchange(EMPTY, TRACING, Ordering::Acquire, Ordering::Acquire).is_ok()
+    }
+    /// A claimed point's colour: its channels, then (`Release`) its [`READY`] state.
+    #[inline]
+    fn fill(&self, color: Rgb) {
+        for (bits, channel) in self.bits.iter().zip(color.0) {
+            bits.store(channel.to_bits(), Ordering::Relaxed);
+        }
+        self.state.store(READY, Ordering::Release);
+    }
+}
+
+/// What a thread that wants a point of a [`Line`] finds there ([`Claims::claim`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Claim {
+    /// The point's colour: some thread traced it.
+    Traced(Rgb),
+    /// The point is this thread's to trace.
+    Mine,
+    /// Another thread is tracing it: wait for it with [`Line::get_or_trace`] (once this thread's
+    /// own claims are filled, so that no two threads wait for each other).
+    Theirs,
+}
+
+/// The points a thread claimed on [`Line`]s to trace together, each with the index of its colour
+/// in the batch: filled at once by [`Claims::fill`]; put back to [`EMPTY`] if dropped before
+/// (a trace that unwinds), so that a waiting thread traces them itself instead of waiting for
+/// ever.
+#[derive(Debug, Default)]
+pub(super) struct Claims<'l> {
+    points: Vec<(&'l Point, usize)>,
+}
+
+impl<'l> Claims<'l> {
+    /// Point `x` of `line`: its colour, or claimed now for batch index `at`, or another thread's.
+    #[inline]
+    pub(super) fn claim(&mut self, line: &'l Line, x: usize, at: usize) -> Claim {
+        let point = &line.points[x];
+        match point.state.load(Ordering::Acquire) {
+            READY => Claim::Traced(point.color()),
+            EMPTY if point.claim() => {
+                self.points.push((point, at));
+                Claim::Mine
+            }
+            _ => Claim::Theirs,
+        }
+    }
+    /// Every claimed point's colour from the batch's `colors`; no claim is left.
+    pub(super) fn fill(&mut self, colors: &[Rgb]) {
+        for (point, at) in self.points.drain(..) {
+            point.fill(colors[at]);
+        }
+    }
+}
+
+impl Drop for Claims<'_> {
+    fn drop(&mut self) {
+        for (point, _) in &self.points {
+            point.state.store(EMPTY, Ordering::Release);
         }
     }
 }
@@ -100,7 +160,7 @@ impl Point {
 #[derive(Debug)]
 pub struct EdgeRow {
     /// The colours of the corners `(i·2^K, y)`, `i = 0 … Nx`.
-    corners: Vec<Rgb>,
+    pub(super) corners: Vec<Rgb>,
     /// The finer points, shared by the two pixel rows the edge row bounds (None when K = 0, and
     /// on a 2D scene's line, whose finer points are each inside one pixel).
     finer: Option<Line>,
@@ -206,7 +266,7 @@ impl EdgeRows {
 }
 
 /// Traces the primary ray through global lattice point `(x, y)`.
-fn trace_point<V: Dim>(
+pub(super) fn trace_point<V: Dim>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     (lattice, axes): (Lattice, &Axes),
     x: u64,
@@ -223,71 +283,6 @@ fn primary_at<V: Dim>(camera: &Camera<V>, axes: &Axes, x: u64, y: u64) -> (Ray<V
     (camera.primary_ray(u, v), [u, v])
 }
 
-/// One memoised local point: valid when `stamp` is the current pixel's.
-#[derive(Clone, Copy, Debug, Default)]
-struct Memo {
-    stamp: u32,
-    color: Rgb,
-}
-
-/// One thread's per-pixel memory: a memo of the pixel's `(2^K + 1)^dims` local points (stamped, so
-/// nothing is cleared per pixel), and the left edge carried from the previous pixel.
-#[derive(Debug)]
-pub struct Scratch {
-    side: usize,
-    memo: Vec<Memo>,
-    current: u32,
-    left: Vec<Option<Rgb>>,
-    /// Whether `left` may hold a colour (else it is all `None`).
-    left_any: bool,
-}
-
-impl Scratch {
-    /// The memory for pixels of `lattice`.
-    #[must_use]
-    pub fn new(lattice: Lattice) -> Self {
-        let side = lattice.scale as usize + 1;
-        let points = if lattice.dims() == 1 { side } else { side * side };
-        Self {
-            side,
-            memo: vec![Memo::default(); points],
-            current: 0,
-            left: vec![None; side],
-            left_any: false,
-        }
-    }
-    /// Starts a new pixel: every memo entry becomes stale.
-    fn next_pixel(&mut self) {
-        if self.current == u32::MAX {
-            self.memo.fill(Memo::default());
-            self.current = 0;
-        }
-        self.current += 1;
-    }
-    /// After pixel `i`: its right edge `a = 2^K`, `0 < b < 2^K`, becomes pixel `i + 1`'s left edge
-    /// (the ends `b = 0`, `b = 2^K` are on the edge rows). `read_inside`: whether the pixel read
-    /// any point besides its corners (if not, it read none of its right edge either).
-    #[inline]
-    fn carry_right_edge(&mut self, dims: usize, read_inside: bool) {
-        if dims == 1 {
-            // A 2D scene's pixel has no vertical edge but its right end, a corner.
-            return;
-        }
-        if !read_inside {
-            if self.left_any {
-                self.left.fill(None);
-                self.left_any = false;
-            }
-            return;
-        }
-        for b in 1..self.side - 1 {
-            let m = self.memo[b * self.side + self.side - 1];
-            self.left[b] = (m.stamp == self.current).then_some(m.color);
-        }
-        self.left_any = true;
-    }
-}
-
 /// What a pixel row reads besides its own samples: the edge rows below and above it (a 2D
 /// scene's line: its one row, twice), and where the lattice's points lie on the window.
 #[derive(Clone, Copy, Debug)]
@@ -300,126 +295,19 @@ pub struct Edges<'l> {
     pub axes: &'l Axes,
 }
 
-/// Renders pixel row `j` with the subdivision rule `(threshold, K)` between its traced edge rows:
-/// writes the colour of pixel `first + k` to `pixels[k]` and, if asked, the number of distinct
-/// samples it read to `used[k]` (a whole row starts at `first = 0`; a band of a 2D scene's line
-/// elsewhere).
-// Tracer, lattice, rule, row, edges, scratch and the two outputs are all distinct; a struct
-// would only rename them.
-#[allow(clippy::too_many_arguments)]
-pub fn render_row<V: Dim>(
-    tracer: &mut Tracer<'_, V, NoRecorder>,
-    lattice: Lattice,
-    (threshold, max_level): (f64, u32),
-    (first, j): (usize, usize),
-    edges: Edges<'_>,
-    scratch: &mut Scratch,
-    pixels: &mut [Rgb],
-    mut used: Option<&mut [u32]>,
-) {
-    let dims = lattice.dims();
-    scratch.left.fill(None);
-    scratch.left_any = false;
-    let (b, t) = (&edges.bottom.corners, &edges.top.corners);
-    for (k, pixel) in pixels.iter_mut().enumerate() {
-        let i = first + k;
-        // Most pixels are not split (every pixel with K = 0): their corners decide them where
-        // the edge rows hold them, unread by the subdivision (which would read the same corners
-        // in the same order and split nothing).
-        let quiet = if dims == 1 {
-            unsplit([&b[i], &b[i + 1]], threshold, max_level)
-        } else {
-            unsplit([&b[i], &b[i + 1], &t[i], &t[i + 1]], threshold, max_level)
-        };
-        let count = if let Some(color) = quiet {
-            *pixel = color;
-            scratch.carry_right_edge(dims, false);
-            1 << dims
-        } else {
-            scratch.next_pixel();
-            let mut source = RowSource { tracer, lattice, i, j, edges, scratch, used: 0 };
-            *pixel = subdivide(&mut source, &mut NoSquares, dims, threshold, max_level);
-            let count = source.used;
-            // A pixel split at level 0 has read points inside it.
-            scratch.carry_right_edge(dims, true);
-            count
-        };
-        if let Some(used) = used.as_deref_mut() {
-            used[k] = count;
-        }
-    }
-}
-
-/// The samples of pixel `(i, j)` during a render.
-struct RowSource<'r, 't, 's, V: Dim> {
-    tracer: &'r mut Tracer<'s, V, NoRecorder>,
-    lattice: Lattice,
-    i: usize,
-    j: usize,
-    edges: Edges<'t>,
-    scratch: &'r mut Scratch,
-    used: u32,
-}
-
-impl<V: Dim> SampleSource for RowSource<'_, '_, '_, V> {
-    /// The pixel corners, traced with their edge rows: `subdivide` reads them once per pixel
-    /// (squares pass their corners down, and never ask [`SampleSource::color`] for them).
-    #[inline(always)]
-    fn corners<const N: usize>(&mut self, _side: u32) -> [Rgb; N] {
-        let (i, edges) = (self.i, self.edges);
-        #[allow(clippy::cast_possible_truncation)] // N is 2 or 4
-        let n = N as u32;
-        self.used += n;
-        // Corner k is (k & 1, k >> 1) in pixel units: lower-left, lower-right, upper-left, …
-        std::array::from_fn(|k| {
-            let row = if k < 2 { edges.bottom } else { edges.top };
-            row.corners[i + (k & 1)]
-        })
-    }
-    #[inline]
-    fn color(&mut self, a: u32, b: u32) -> Rgb {
-        let lattice = self.lattice;
-        let s = lattice.scale;
-        debug_assert!(
-            !((a == 0 || a == s) && (b == 0 || (b == s && lattice.dims() == 2))),
-            "a pixel corner is read through `corners`"
-        );
-        let side = self.scratch.side;
-        let k = b as usize * side + a as usize;
-        let memo = self.scratch.memo[k];
-        if memo.stamp == self.scratch.current {
-            return memo.color;
-        }
+impl<'l> Edges<'l> {
+    /// The shared line that holds the pixel row's local lattice row `b`: the finer points of the
+    /// bottom (`b = 0`) or the top (`b = 2^K`) edge row; none inside the pixel row, nor on a 2D
+    /// scene's line (whose finer points are each inside one pixel).
+    pub(super) fn line(&self, lattice: Lattice, b: u32) -> Option<&'l Line> {
         let row = if b == 0 {
-            Some(self.edges.bottom)
-        } else if b == s && lattice.dims() == 2 {
-            Some(self.edges.top)
+            self.bottom
+        } else if b == lattice.scale && lattice.dims() == 2 {
+            self.top
         } else {
-            None
+            return None;
         };
-        let color = match row {
-            // A finer point of an edge row shared with the pixel row below or above.
-            Some(EdgeRow { finer: Some(line), .. }) => {
-                let (x, y) = lattice.global(self.i, self.j, a, b);
-                // x ≤ Nx·2^K: the index of a point of the line.
-                #[allow(clippy::cast_possible_truncation)]
-                let index = x as usize;
-                let (tracer, axes) = (&mut *self.tracer, self.edges.axes);
-                line.get_or_trace(index, || trace_point(tracer, (lattice, axes), x, y))
-            }
-            // The left edge, already read by the pixel to the left.
-            None if a == 0 && self.scratch.left[b as usize].is_some() => {
-                self.scratch.left[b as usize].unwrap_or_default()
-            }
-            // Inside the pixel (or an edge point no neighbour read).
-            _ => {
-                let (x, y) = lattice.global(self.i, self.j, a, b);
-                trace_point(self.tracer, (lattice, self.edges.axes), x, y)
-            }
-        };
-        self.scratch.memo[k] = Memo { stamp: self.scratch.current, color };
-        self.used += 1;
-        color
+        row.finer.as_ref()
     }
 }
 

@@ -176,17 +176,63 @@ impl<V: Dim> Tracer<'_, V, NoRecorder> {
     /// [`packet`]), else one at a time, made first into `rays` (their normalisations back to
     /// back, independent, so they overlap).
     pub fn trace_window_row(&mut self, us: &[f64], v: f64, rays: &mut Vec<Ray<V>>, colors: &mut [Rgb]) {
-        let camera = &self.scene.camera;
-        #[cfg(target_arch = "x86_64")]
-        if let Some(packets) = self.accel.packets(self.scene) {
-            packet::trace(self, packets, packet::Row { camera, us, v }, colors);
+        if self.trace_packets(us, v, colors) {
             return;
         }
+        let camera = &self.scene.camera;
         rays.clear();
         rays.extend(us.iter().map(|&u| camera.primary_ray(u, v)));
         for (color, ray) in colors.iter_mut().zip(rays.iter()) {
             *color = self.trace_primary(ray, &[]);
         }
+    }
+
+    /// [`Tracer::trace_primary`] of the primary ray through each window point `(us[i], vs[i])`
+    /// into `colors[i]`, the same colours, rays and tests: in packets whose lanes each have their
+    /// own point, where [`Tracer::trace_window_row`] would use packets, else one at a time.
+    pub fn trace_window_points(&mut self, us: &[f64], vs: &[f64], colors: &mut [Rgb]) {
+        debug_assert_eq!(us.len(), vs.len(), "a v for every u");
+        if self.trace_packets(us, vs, colors) {
+            return;
+        }
+        let camera = &self.scene.camera;
+        for ((color, &u), &v) in colors.iter_mut().zip(us).zip(vs) {
+            *color = self.trace_primary(&camera.primary_ray(u, v), &[]);
+        }
+    }
+
+    /// The rays through `(us[i], v.at(i))` into `colors` in packets ([`packet`]), if this is
+    /// x86-64 and the structure has a packet search: then true, else false and nothing traced.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(unused_variables, clippy::unused_self))]
+    fn trace_packets(&mut self, us: &[f64], v: impl WindowV, colors: &mut [Rgb]) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(packets) = self.accel.packets(self.scene) {
+            let camera = &self.scene.camera;
+            packet::trace(self, packets, packet::Row { camera, us, v }, colors);
+            return true;
+        }
+        false
+    }
+}
+
+/// The `v` of a batch of window points: one `f64` for a row of the window, or a slice of one a
+/// point. A type, not a value, so that a row's packets are made with its one `v` in a register.
+pub(crate) trait WindowV: Copy {
+    /// The `v` of point `i`.
+    fn at(self, i: usize) -> f64;
+}
+
+impl WindowV for f64 {
+    #[inline(always)]
+    fn at(self, _i: usize) -> f64 {
+        self
+    }
+}
+
+impl WindowV for &[f64] {
+    #[inline(always)]
+    fn at(self, i: usize) -> f64 {
+        self[i]
     }
 }
 

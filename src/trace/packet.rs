@@ -14,7 +14,7 @@
 //! the way down); the rays traced one at a time take the tracer's ordinary code.
 
 use super::wave::{Searched, Trees};
-use super::Tracer;
+use super::{Tracer, WindowV};
 use crate::accel::packet::{key, LaneCounts, Packets, NO_KEY};
 use crate::geom::lanes::{
     all, and, and_not, any, axes, dot, dot_axes, gather, holds, lanes, max_abs, ones, or, select, select_v,
@@ -40,25 +40,27 @@ fn arch() -> pulp::Arch {
     *ARCH.get_or_init(pulp::Arch::new)
 }
 
-/// The primary rays of a batch, a row of the window: `Camera::primary_ray(u, v)` of each `u` of
-/// `us`, at one `v`, made 4 at a time as they are traced.
+/// The primary rays of a batch of window points: `Camera::primary_ray(u, v)` of each `u` of `us`
+/// with its `v` (one for a row of the window), made 4 at a time as they are traced.
 #[derive(Clone, Copy)]
-pub(super) struct Row<'a, V> {
+pub(super) struct Row<'a, V, W> {
     pub camera: &'a Camera<V>,
     pub us: &'a [f64],
-    pub v: f64,
+    pub v: W,
 }
 
-impl<V: Dim> Row<'_, V> {
+impl<V: Dim, W: WindowV> Row<'_, V, W> {
     /// Ray `i`, as the scalar code makes it.
     #[inline(always)]
     fn ray(&self, i: usize) -> Ray<V> {
-        self.camera.primary_ray(self.us[i], self.v)
+        self.camera.primary_ray(self.us[i], self.v.at(i))
     }
     /// Rays `first … first + LANES − 1` as lane vectors: origins and directions.
     #[inline(always)]
     fn lanes(&self, first: usize) -> (Vs, Vs) {
-        if let Some(rays) = window_rays(self.camera, lanes(|k| self.us[first + k]), self.v) {
+        if let Some(rays) =
+            window_rays(self.camera, lanes(|k| self.us[first + k]), lanes(|k| self.v.at(first + k)))
+        {
             return rays;
         }
         let rays: [Ray<V>; LANES] = std::array::from_fn(|k| self.ray(first + k));
@@ -70,10 +72,10 @@ impl<V: Dim> Row<'_, V> {
 /// from S along `−w` (orthographic) or from O along `S − O` normalised (perspective). `None`
 /// when some lane's `S − O` is off `try_unit`'s usual branch: the scalar code makes those rays.
 #[inline(always)]
-fn window_rays<V: Dim>(camera: &Camera<V>, u: F, v: f64) -> Option<(Vs, Vs)> {
+fn window_rays<V: Dim>(camera: &Camera<V>, u: F, v: F) -> Option<(Vs, Vs)> {
     let frame = &camera.frame;
     let (eye, fu, fv, fw) = (axes(camera.eye), axes(frame.u), axes(frame.v), axes(frame.w));
-    let s = vector::<V>(|a, k| eye[a] + fu[a] * u[k] + fv[a] * v - fw[a] * camera.p);
+    let s = vector::<V>(|a, k| eye[a] + fu[a] * u[k] + fv[a] * v[k] - fw[a] * camera.p);
     match camera.projection {
         Projection::Orthographic => Some((s, vector::<V>(|a, _| -fw[a]))),
         Projection::Perspective => {
@@ -85,10 +87,10 @@ fn window_rays<V: Dim>(camera: &Camera<V>, u: F, v: f64) -> Option<(Vs, Vs)> {
 
 /// [`Tracer::trace_primary`] of each ray of `row` into the same place of `colors`, in
 /// packets searched by `packets`, in the widest code this CPU runs.
-pub(super) fn trace<'s, V: Dim>(
+pub(super) fn trace<'s, V: Dim, W: WindowV>(
     tracer: &mut Tracer<'s, V, NoRecorder>,
     packets: Packets<'s, V>,
-    row: Row<'_, V>,
+    row: Row<'_, V, W>,
     colors: &mut [Rgb],
 ) {
     debug_assert_eq!(row.us.len(), colors.len(), "a colour for every ray");
@@ -96,14 +98,14 @@ pub(super) fn trace<'s, V: Dim>(
 }
 
 /// The packets' loop, run by `pulp` in the code it chose.
-struct Batch<'b, 's, V: Dim> {
+struct Batch<'b, 's, V: Dim, W> {
     tracer: &'b mut Tracer<'s, V, NoRecorder>,
     packets: Packets<'s, V>,
-    row: Row<'b, V>,
+    row: Row<'b, V, W>,
     colors: &'b mut [Rgb],
 }
 
-impl<V: Dim> pulp::WithSimd for Batch<'_, '_, V> {
+impl<V: Dim, W: WindowV> pulp::WithSimd for Batch<'_, '_, V, W> {
     type Output = ();
 
     #[inline(always)]
@@ -126,10 +128,10 @@ impl<V: Dim> pulp::WithSimd for Batch<'_, '_, V> {
 /// The packet of rays `first …` of `row` into their colours, or into `trees` (a sphere, a
 /// mirror, a lane the packet cannot answer), which write them later.
 #[inline(always)]
-fn packet<V: Dim>(
+fn packet<V: Dim, W: WindowV>(
     tracer: &mut Tracer<'_, V, NoRecorder>,
     packets: &Packets<'_, V>,
-    row: &Row<'_, V>,
+    row: &Row<'_, V, W>,
     first: usize,
     colors: &mut [Rgb],
     trees: &mut Trees,
