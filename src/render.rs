@@ -339,7 +339,8 @@ fn lattice_band<'s, V: Dim>(
 ) {
     let lattice = Lattice::new(&scene.camera, rule.1);
     let mut scratch = Scratch::new(lattice);
-    if lattice.dims() == 1 {
+    // `lattice.dims() = V::DIM − 1`: asked of V, so that each dimension builds only its own.
+    if V::DIM == 2 {
         // A 2D scene's line: pixels share only their ends (the finer points lie inside one pixel).
         let axes = Axes::new(lattice, &scene.camera);
         let ends = range.start..=range.end;
@@ -403,7 +404,8 @@ fn lattice_rows<V: Dim, P: Pixel>(
 ) -> Stats {
     let lattice = Lattice::new(&scene.camera, rule.1);
     let nx = lattice.nx;
-    if lattice.dims() == 1 {
+    // `lattice.dims() = V::DIM − 1`: asked of V, so that each dimension builds only its own.
+    if V::DIM == 2 {
         // A 2D scene: one line of intervals; its corners are its pixels' ends.
         let mut tracer = tracer(scene, accel, config.max_depth);
         let axes = Axes::new(lattice, &scene.camera);

@@ -158,7 +158,8 @@ pub fn render_row<V: Dim>(
         let start = c * size;
         let used = used.as_deref_mut().map(|u| &mut u[start..start + chunk.len()]);
         let row = Chunk { lattice, rule, first: first + start, j, edges };
-        if lattice.dims() == 1 {
+        // `lattice.dims() = V::DIM − 1`: asked of V, so that each dimension builds only its own.
+        if V::DIM == 2 {
             row.render::<2, V>(tracer, scratch, &mut claims, chunk, used);
         } else {
             row.render::<4, V>(tracer, scratch, &mut claims, chunk, used);
