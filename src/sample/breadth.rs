@@ -502,14 +502,9 @@ mod tests {
 
     #[test]
     fn a_2d_line_is_the_recursion_s() {
-        let text = r#"{ "camera": { "eye": [0, 6], "center": [0, 0], "window": { "l": -1.5, "r": 1.5 }, "resolution": [61] },
-            "max_depth": 3, "lights": [ { "position": [3, 5] }, { "position": [-2, 1] } ],
-            "objects": [
-              { "type": "plane", "point": [0, -2], "normal": [0, 1],
-                "material": { "kd": [0.8, 0.7, 0.2], "checker": { "size": 0.3, "kd2": [0.1, 0.2, 0.3] } } },
-              { "type": "sphere", "center": [0.3, 1], "radius": 0.8, "material": { "ks": 0.2, "kt": 0.9, "ior": 1.5 } },
-              { "type": "sphere", "center": [-1.5, -1], "radius": 0.5, "material": { "ks": 0.8 } } ] }"#;
-        let Ok(AnyScene::Flat(scene)) = load_str(text) else { panic!("a 2D scene") };
+        let Ok(AnyScene::Flat(scene)) = load_str(&crate::scene::fixtures::line(61)) else {
+            panic!("a 2D scene")
+        };
         assert_eq!(agree(&scene, &rules()), 9, "threshold 0 at K = 3");
     }
 
@@ -529,32 +524,18 @@ mod tests {
         #[test]
         fn random_scenes_are_the_recursion_s(
             spheres in prop::collection::vec(
-                ((-2.0..2.0f64, -1.0..2.0f64, -2.0..2.0f64), 0.1..1.2f64, 0..3usize), 0..4),
+                ((-2.0..2.0f64, -1.0..2.0f64, -2.0..2.0f64), 0.1..1.2f64, 0..4usize), 0..4),
             lights in prop::collection::vec((-5.0..5.0f64, -2.0..6.0f64, -5.0..5.0f64), 1..3),
             eye in (-4.0..4.0f64, -0.5..4.0f64, 2.0..7.0f64),
             rule in (0.0..0.6f64, 0..=3u32),
         ) {
-            const MATERIALS: [&str; 3] = [
-                r#"{ "kd": [0.6, 0.5, 0.4] }"#,
-                r#"{ "ks": 0.6, "kd": 0.3 }"#,
-                r#"{ "ks": 0.1, "kt": 0.8, "ior": 1.33 }"#,
-            ];
-            let mut objects = vec![r#"{ "type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0],
-                "material": { "kd": [0.7, 0.2, 0.1], "checker": { "size": 0.7, "kd2": [0.9, 0.9, 0.2] } } }"#
-                .to_string()];
-            for ((x, y, z), r, m) in spheres {
-                objects.push(format!(
-                    r#"{{ "type": "sphere", "center": [{x}, {y}, {z}], "radius": {r}, "material": {} }}"#,
-                    MATERIALS[m]
-                ));
-            }
-            let lights: Vec<String> =
-                lights.iter().map(|(x, y, z)| format!(r#"{{ "position": [{x}, {y}, {z}] }}"#)).collect();
+            use crate::scene::fixtures;
+            let (objects, lights) = (fixtures::objects((0.0, 1.0, 0.0), &spheres), fixtures::lights(&lights));
             let text = format!(
                 r#"{{ "camera": {{ "eye": [{}, {}, {}], "center": [0, 0, 0], "up": [0, 1, 0],
                     "window": {{ "l": -2, "r": 2, "b": -1.5, "t": 1.5 }}, "resolution": [21, 13] }},
                     "max_depth": 3, "lights": [ {} ], "objects": [ {} ] }}"#,
-                eye.0, eye.1, eye.2, lights.join(","), objects.join(",")
+                eye.0, eye.1, eye.2, lights, objects
             );
             agree(&space(&text, (21, 13)), &[rule]);
         }

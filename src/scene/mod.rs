@@ -108,3 +108,54 @@ pub enum AnyScene {
     /// A 3D scene.
     Space(Scene<DVec3>),
 }
+
+/// Scenes the tests of several modules share.
+#[cfg(test)]
+pub(crate) mod fixtures {
+    /// A 2D scene of `nx` pixels: a checkered floor line, a glass circle and a mirror one, two
+    /// lights, `max_depth` 3.
+    pub fn line(nx: usize) -> String {
+        format!(
+            r#"{{ "camera": {{ "eye": [0, 6], "center": [0, 0], "window": {{ "l": -1.5, "r": 1.5 }}, "resolution": [{nx}] }},
+            "max_depth": 3, "lights": [ {{ "position": [3, 5] }}, {{ "position": [-2, 1] }} ],
+            "objects": [
+              {{ "type": "plane", "point": [0, -2], "normal": [0, 1],
+                "material": {{ "kd": [0.8, 0.7, 0.2], "checker": {{ "size": 0.3, "kd2": [0.1, 0.2, 0.3] }} }} }},
+              {{ "type": "sphere", "center": [0.3, 1], "radius": 0.8, "material": {{ "ks": 0.2, "kt": 0.9, "ior": 1.5 }} }},
+              {{ "type": "sphere", "center": [-1.5, -1], "radius": 0.5, "material": {{ "ks": 0.8 }} }} ] }}"#
+        )
+    }
+
+    /// The materials of [`objects`]' spheres: matte, mirror, glass, and a transparent one of
+    /// index 1.
+    pub const MATERIALS: [&str; 4] = [
+        r#"{ "kd": [0.6, 0.5, 0.4] }"#,
+        r#"{ "ks": 0.6, "kd": 0.3 }"#,
+        r#"{ "ks": 0.1, "kt": 0.8, "ior": 1.33 }"#,
+        r#"{ "kt": 0.5, "ior": 1.0, "kd": 0.2 }"#,
+    ];
+
+    /// The JSON objects of a checkered floor through (0, −1, 0) with `normal` and `spheres`,
+    /// each `(centre, radius, material)`, the material an index in [`MATERIALS`].
+    pub fn objects(normal: (f64, f64, f64), spheres: &[((f64, f64, f64), f64, usize)]) -> String {
+        let mut objects = vec![format!(
+            r#"{{ "type": "plane", "point": [0, -1, 0], "normal": [{}, {}, {}],
+                "material": {{ "kd": [0.7, 0.2, 0.1], "checker": {{ "size": 0.7, "kd2": [0.9, 0.9, 0.2] }} }} }}"#,
+            normal.0, normal.1, normal.2
+        )];
+        for ((x, y, z), r, m) in spheres {
+            objects.push(format!(
+                r#"{{ "type": "sphere", "center": [{x}, {y}, {z}], "radius": {r}, "material": {} }}"#,
+                MATERIALS[*m]
+            ));
+        }
+        objects.join(",")
+    }
+
+    /// The JSON lights of white point lights at `positions`.
+    pub fn lights(positions: &[(f64, f64, f64)]) -> String {
+        let lights: Vec<String> =
+            positions.iter().map(|(x, y, z)| format!(r#"{{ "position": [{x}, {y}, {z}] }}"#)).collect();
+        lights.join(",")
+    }
+}

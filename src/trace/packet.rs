@@ -486,14 +486,7 @@ mod tests {
 
     #[test]
     fn a_2d_scene_is_the_same_in_packets() {
-        let text = r#"{ "camera": { "eye": [0, 6], "center": [0, 0], "window": { "l": -1.5, "r": 1.5 }, "resolution": [203] },
-            "max_depth": 3, "lights": [ { "position": [3, 5] }, { "position": [-2, 1] } ],
-            "objects": [
-              { "type": "plane", "point": [0, -2], "normal": [0, 1],
-                "material": { "kd": [0.8, 0.7, 0.2], "checker": { "size": 0.3, "kd2": [0.1, 0.2, 0.3] } } },
-              { "type": "sphere", "center": [0.3, 1], "radius": 0.8, "material": { "ks": 0.2, "kt": 0.9, "ior": 1.5 } },
-              { "type": "sphere", "center": [-1.5, -1], "radius": 0.5, "material": { "ks": 0.8 } } ] }"#;
-        agree(&flat(text), true);
+        agree(&flat(&crate::scene::fixtures::line(203)), true);
     }
 
     proptest! {
@@ -507,28 +500,11 @@ mod tests {
             lights in prop::collection::vec((-5.0..5.0f64, -2.0..6.0f64, -5.0..5.0f64), 1..3),
             eye in (-4.0..4.0f64, -0.5..4.0f64, 2.0..7.0f64),
         ) {
-            const MATERIALS: [&str; 4] = [
-                r#"{ "kd": [0.6, 0.5, 0.4] }"#,
-                r#"{ "ks": 0.6, "kd": 0.3 }"#,
-                r#"{ "ks": 0.1, "kt": 0.8, "ior": 1.33 }"#,
-                r#"{ "kt": 0.5, "ior": 1.0, "kd": 0.2 }"#,
-            ];
-            let mut objects = vec![format!(
-                r#"{{ "type": "plane", "point": [0, -1, 0], "normal": [{}, {}, {}],
-                    "material": {{ "kd": [0.7, 0.2, 0.1], "checker": {{ "size": 0.7, "kd2": [0.9, 0.9, 0.2] }} }} }}"#,
-                normal.0, normal.1, normal.2
-            )];
-            for ((x, y, z), r, m) in spheres {
-                objects.push(format!(
-                    r#"{{ "type": "sphere", "center": [{x}, {y}, {z}], "radius": {r}, "material": {} }}"#,
-                    MATERIALS[m]
-                ));
-            }
-            let lights: Vec<String> =
-                lights.iter().map(|(x, y, z)| format!(r#"{{ "position": [{x}, {y}, {z}] }}"#)).collect();
+            use crate::scene::fixtures;
             let eye = format!("[{}, {}, {}]", eye.0, eye.1, eye.2);
             // A BVH of several spheres may split, and then has no packet search.
-            agree(&space(&scene_3d(&eye, "perspective", &lights.join(","), &objects.join(","))), None);
+            let (objects, lights) = (fixtures::objects(normal, &spheres), fixtures::lights(&lights));
+            agree(&space(&scene_3d(&eye, "perspective", &lights, &objects)), None);
         }
     }
 }
