@@ -6,6 +6,8 @@
 pub mod packet;
 pub mod shade;
 #[cfg(target_arch = "x86_64")]
+mod surface;
+#[cfg(target_arch = "x86_64")]
 mod wave;
 
 use crate::accel::Accel;

@@ -1,7 +1,7 @@
 //! Primary rays in packets of [`LANES`] (`accel::packet`): each packet's nearest hits found at
 //! once, and the rays whose ray tree ends at that hit — a miss (the background), or a plane of
 //! a material that neither reflects nor transmits (the lecture's floor) — shaded at once too:
-//! the local model of §5 with its shadow segments ([`shade`]), lane by lane the operations of
+//! the local model of §5 with its shadow segments ([`shade`], [`super::surface`]), lane by lane the operations of
 //! [`Tracer::local`] in its order. Every other ray (a sphere, a mirror, a lane the packet
 //! cannot answer) waits, from the start, for the batch's ray trees, traced a level at a time in
 //! packets too ([`super::wave`]). The colours, the rays and the tests counted are those of one
@@ -13,26 +13,21 @@
 //! Everything the loop calls in the packet is inlined into that code (`#[inline(always)]` all
 //! the way down); the rays traced one at a time take the tracer's ordinary code.
 
+use super::surface::{colors_at, facing, keep, offset, plane_point, shade, Colors, Surface};
 use super::wave::{Searched, Trees};
 use super::{Tracer, WindowV};
 use crate::accel::packet::{key, LaneCounts, Packets, NO_KEY};
 use crate::geom::lanes::{
-    all, and, and_not, any, axes, dot, dot_axes, gather, holds, lanes, max_abs, ones, or, select, select_v,
-    splat, test, unit, vector, Vs, F, LANES, M, NONE,
+    all, and_not, any, axes, gather, holds, lanes, or, select, splat, test, unit, vector, Vs, F, LANES, M,
 };
-use crate::geom::offset::OFFSET_SCALE;
 use crate::geom::ray::Ray;
 use crate::record::event::RayKind;
-use crate::record::stats::Stats;
 use crate::record::NoRecorder;
 use crate::scene::camera::{Camera, Projection};
 use crate::scene::material::{Material, Rgb};
 use crate::shape::plane::Plane;
 use crate::shape::Dim;
 use std::sync::OnceLock;
-
-/// A colour per lane, channel by channel.
-pub(super) type Colors = [F; 3];
 
 /// The instruction sets this CPU has, asked once.
 fn arch() -> pulp::Arch {
@@ -178,20 +173,6 @@ fn packet<V: Dim, W: WindowV>(
     }
 }
 
-/// Lane `k`'s answer kept: its ray of `kind`, its shadow rays and its tests counted.
-#[inline(always)]
-pub(super) fn keep(
-    stats: &mut Stats,
-    kind: RayKind,
-    (counts, shadows): (&LaneCounts, &[u64; LANES]),
-    k: usize,
-) {
-    stats.rays.count(kind);
-    stats.rays.shadow += shadows[k];
-    stats.tests.object += counts.object[k];
-    stats.tests.node += counts.node[k];
-}
-
 /// A plane met by the lanes of a packet.
 struct PlaneHit<'a, V> {
     plane: &'a Plane<V>,
@@ -203,8 +184,9 @@ struct PlaneHit<'a, V> {
 }
 
 /// `I_local` of [`Tracer::local`] in the lanes `on`, each lane's hit on `hit`'s plane by the ray
-/// `o + t·d`: the hit as `Plane::surface_at` and `Tracer::trace` make it, then [`shade`]. The
-/// material reflects nothing, so `ks = 0` and there is no highlight.
+/// `o + t·d`, then [`shade`]: [`Hit::new`]'s surface for one plane and one material, which the
+/// lecture's floor, most of an image, takes without a lane's object chosen. The material
+/// reflects nothing, so `ks = 0` and there is no highlight.
 #[inline(always)]
 fn local<V: Dim>(
     tracer: &Tracer<'_, V, NoRecorder>,
@@ -214,140 +196,17 @@ fn local<V: Dim>(
     on: M,
     tally: (&mut LaneCounts, &mut [u64; LANES]),
 ) -> (Colors, M) {
-    let (material, t) = (hit.material, hit.t);
-    let (p, n) = (axes(hit.plane.point), axes(hit.plane.normal));
-    // `Plane::surface_at`: I = O + t·D re-projected, I − N·((I − P)·N).
+    let (material, t) = (hit.material, &hit.t);
+    let n = axes(hit.plane.normal);
     let raw = vector::<V>(|a, k| o[a][k] + d[a][k] * t[k]);
-    let off = dot_axes::<V>(&vector::<V>(|a, k| raw[a][k] - p[a]), &n);
-    let point = vector::<V>(|a, k| raw[a][k] - n[a] * off[k]);
-    // §3: entering iff D·N ≤ 0; N_f faces the incoming ray.
-    let d_dot_n = dot_axes::<V>(d, &n);
-    let entering = test(|k| d_dot_n[k] <= 0.0);
-    let n_f = select_v(entering, &vector::<V>(|a, _| n[a]), &vector::<V>(|a, _| -n[a]));
-    // `offset_distance`: δ = 2⁻⁴⁴·max(|I|∞, |O|∞, |t|, scale).
-    let (point_max, origin_max) = (max_abs::<V>(&point), max_abs::<V>(o));
-    let delta = lanes(|k| OFFSET_SCALE * point_max[k].max(origin_max[k]).max(t[k].abs()).max(hit.scale));
+    let point = plane_point::<V>(axes(hit.plane.point), n, &raw);
+    let (_, n_f) = facing::<V>(d, &vector::<V>(|a, _| n[a]));
+    let delta = offset::<V>(&point, o, t, &splat(hit.scale));
     let (ka, kd) = colors_at::<V>(material, &point);
     let view = vector::<V>(|a, k| -d[a][k]);
     let surface =
         Surface { point, n_f, delta, view, ka, kd, ks: splat(material.ks), materials: [material; LANES] };
     shade(tracer, packets, &surface, on, tally)
-}
-
-/// A hit in each lane of a packet, as [`Tracer::local`] reads it: I, N_f, δ, the view vector
-/// `V = −D`, the material's colours at I (after its checker), its ks, and the material itself
-/// (for the highlight's exponent).
-pub(super) struct Surface<'m> {
-    pub point: Vs,
-    pub n_f: Vs,
-    pub delta: F,
-    pub view: Vs,
-    pub ka: Colors,
-    pub kd: Colors,
-    pub ks: F,
-    pub materials: [&'m Material; LANES],
-}
-
-/// `I_local` of [`Tracer::local`] in the lanes `on` of `at`, every light in scene order, lane
-/// by lane its operations in its order; also the lanes shaded (the others need the scalar code:
-/// a normalisation off its common case, a shadow ray the packet cannot search). Tests and shadow
-/// rays are counted per lane.
-#[inline(always)]
-pub(super) fn shade<V: Dim>(
-    tracer: &Tracer<'_, V, NoRecorder>,
-    packets: &Packets<'_, V>,
-    at: &Surface<'_>,
-    on: M,
-    (counts, shadows): (&mut LaneCounts, &mut [u64; LANES]),
-) -> (Colors, M) {
-    let scene = tracer.scene;
-    let (point, n_f, ks) = (&at.point, &at.n_f, &at.ks);
-    let mut sum: Colors = std::array::from_fn(|c| lanes(|k| scene.ambient.0[c] * at.ka[c][k]));
-    let mut scalar = NONE;
-    // The lanes whose material has a highlight: ks > 0.
-    let glossy = and(on, test(|k| ks[k] > 0.0));
-    for light in &scene.lights {
-        let position = axes(light.position);
-        let to_light = vector::<V>(|a, k| position[a] - point[a][k]);
-        let (l, usual, dd) = unit::<V>(&to_light);
-        let distance = lanes(|k| dd[k].sqrt());
-        let fat = lanes(|k| light.fat(distance[k]));
-        // try_unit's other branch (a light nearly at I, or very far) is the scalar code's.
-        scalar = or(scalar, and_not(on, usual));
-        let n_dot_l = dot::<V>(n_f, &l);
-        // lum = 1 iff N·L > 0; no shadow ray otherwise (§6).
-        let lit = and(and(on, usual), test(|k| n_dot_l[k] > 0.0));
-        if !any(lit) {
-            continue;
-        }
-        let (s, flagged) = shadow_factor(packets, (point, n_f, &at.delta), &to_light, position, lit, counts);
-        scalar = or(scalar, flagged);
-        let lit_once = ones(lit);
-        *shadows = std::array::from_fn(|k| shadows[k] + lit_once[k]);
-        let weight = lanes(|k| fat[k] * s[k]);
-        // H = normalize(L + V) where ks > 0, the highlight (N·H)^n; where H is off try_unit's
-        // common case (L = −V among them), the scalar code. Elsewhere the term is `·0`.
-        let shiny = and(glossy, lit);
-        let mut highlight = splat(0.0);
-        if any(shiny) {
-            let (h, usual_h, _) = unit::<V>(&vector::<V>(|a, k| l[a][k] + at.view[a][k]));
-            scalar = or(scalar, and_not(shiny, usual_h));
-            let n_dot_h = dot::<V>(n_f, &h);
-            highlight = lanes(|k| if holds(shiny, k) { at.materials[k].highlight(n_dot_h[k]) } else { 0.0 });
-        }
-        for (c, total) in sum.iter_mut().enumerate() {
-            let intensity = light.intensity.0[c];
-            let diffuse = lanes(|k| intensity * at.kd[c][k] * (weight[k] * n_dot_l[k]));
-            let specular = lanes(|k| intensity * (weight[k] * ks[k] * highlight[k]));
-            *total = select(lit, lanes(|k| total[k] + (diffuse[k] + specular[k])), *total);
-        }
-    }
-    (sum, and_not(on, scalar))
-}
-
-/// `Material::colors_at` in each lane: `(ka2, kd2)` where the checker's cell is odd, else `(ka,
-/// kd)`. The parity of `Σ floor(x_i/size + 1e-10)` is `Checker::is_odd`'s: the floors and their
-/// sum are exact integers in `f64` below 2⁵³, and `s − 2·floor(s/2)` is then exactly 0 or 1.
-#[inline(always)]
-#[allow(clippy::float_cmp)] // The parity is exactly 1 or not.
-pub(super) fn colors_at<V: Dim>(material: &Material, point: &Vs) -> (Colors, Colors) {
-    let (ka, kd) = (material.ka.0, material.kd.0);
-    let plain = (std::array::from_fn(|c| splat(ka[c])), std::array::from_fn(|c| splat(kd[c])));
-    let Some(checker) = &material.checker else { return plain };
-    let mut cells = splat(0.0);
-    for axis in point.iter().take(V::DIM) {
-        cells = lanes(|k| cells[k] + (axis[k] / checker.size + 1e-10).floor());
-    }
-    let odd = test(|k| cells[k] - 2.0 * (cells[k] * 0.5).floor() == 1.0);
-    let pick = |odd_value: [f64; 3], even: &Colors| -> Colors {
-        std::array::from_fn(|c| select(odd, splat(odd_value[c]), even[c]))
-    };
-    (pick(checker.ka2.0, &plain.0), pick(checker.kd2.0, &plain.1))
-}
-
-/// `Tracer::shadow_factor` in the lanes `lit`: the segment from the offset origin to the light,
-/// searched by the packet; also the lanes the scalar code must take.
-#[inline(always)]
-fn shadow_factor<V: Dim>(
-    packets: &Packets<'_, V>,
-    (point, n_f, delta): (&Vs, &Vs, &F),
-    to_light: &Vs,
-    position: [f64; 3],
-    lit: M,
-    counts: &mut LaneCounts,
-) -> (F, M) {
-    // `spawn_origin`: I + N_f·δ on the side the direction leaves to.
-    let side = dot::<V>(to_light, n_f);
-    let outward = test(|k| side[k] >= 0.0);
-    let up = vector::<V>(|a, k| point[a][k] + n_f[a][k] * delta[k]);
-    let down = vector::<V>(|a, k| point[a][k] - n_f[a][k] * delta[k]);
-    let origin = select_v(outward, &up, &down);
-    let to_light = vector::<V>(|a, k| position[a] - origin[a][k]);
-    let (direction, usual, dd) = unit::<V>(&to_light);
-    let distance = lanes(|k| dd[k].sqrt());
-    let live = and(lit, usual);
-    let (s, flagged) = packets.shadow(&origin, &direction, distance, live, counts);
-    (s, or(flagged, and_not(lit, usual)))
 }
 
 /// The packets against one ray at a time, on the scenes that take each branch: the colours bit

@@ -11,20 +11,16 @@
 //! A level keeps its rays axis by axis (a structure of arrays), padded to whole packets, so
 //! that a packet's lanes are loaded as they lie.
 
-use super::packet::{colors_at, keep, shade, Colors, Surface};
+use super::surface::{keep, shade, spawn_origin, Colors, Hit, Surface};
 use super::Tracer;
-use crate::accel::packet::{key, Best, LaneCounts, Packets, NO_KEY};
-use crate::accel::Prim;
+use crate::accel::packet::{Best, LaneCounts, Packets, NO_KEY};
 use crate::geom::lanes::{
-    and, and_not, any, axes, dot, dot_axes, holds, lanes, max_abs, or, select, select_v, splat, test, unit,
-    vector, Vs, F, LANES, M, NONE,
+    and, and_not, any, axes, dot, holds, lanes, or, select, splat, test, vector, Vs, F, LANES, M,
 };
-use crate::geom::offset::OFFSET_SCALE;
 use crate::geom::ray::Ray;
 use crate::record::event::RayKind;
 use crate::record::NoRecorder;
-use crate::scene::material::{Material, Rgb};
-use crate::scene::Scene;
+use crate::scene::material::Rgb;
 use crate::shape::Dim;
 
 /// A ray of a level, what the lanes do not hold.
@@ -245,7 +241,7 @@ fn wave<V: Dim>(
             scalar = or(scalar, and_not(on, ok));
             color = std::array::from_fn(|c| select(ok, shaded[c], color[c]));
             if spawns {
-                children = hit.spawn::<V>(&d, ok);
+                children = spawn::<V>(&hit, &d, ok);
             }
         }
         for (k, i) in (first..first + real).enumerate() {
@@ -298,161 +294,33 @@ struct Children {
     transmitted: Child,
 }
 
-/// The surfaces and materials of a packet's hits, gathered object by object.
-struct Found<'m> {
-    point: Vs,
-    normal: Vs,
-    /// The object's scale, for δ.
-    scale: F,
-    ks: F,
-    kt: F,
-    ior: F,
-    ka: Colors,
-    kd: Colors,
-    /// The lanes the scalar code must take.
-    scalar: M,
-    materials: Option<[&'m Material; LANES]>,
-}
-
-impl<'m> Found<'m> {
-    fn new(raw: Vs) -> Self {
-        let zero = splat(0.0);
-        Self {
-            point: raw,
-            normal: raw,
-            scale: zero,
-            ks: zero,
-            kt: zero,
-            ior: splat(1.0),
-            ka: [zero; 3],
-            kd: [zero; 3],
-            scalar: NONE,
-            materials: None,
-        }
+/// `Tracer::spawn` in the lanes `on`: R = `N_f·(2·N_f·V) − V` where ks > 0, T = `η·D + (η·c
+/// − √k)·N_f` where kt > 0 and `k ≥ 0` (η = n1/n2, `c = −D·N_f` clamped to [−1, 1], `k = (1
+/// − η²) + (η·c)²`), each from I offset by δ along ±N_f to the side it leaves to.
+#[inline(always)]
+fn spawn<V: Dim>(hit: &Hit<'_>, d: &Vs, on: M) -> Children {
+    let Surface { point, n_f, delta, view, ks, .. } = &hit.surface;
+    let origin = |dir: &Vs| spawn_origin::<V>(point, n_f, dir, delta);
+    let reflects = and(on, test(|k| ks[k] > 0.0));
+    let mut children = Children::default();
+    if any(reflects) {
+        let twice = dot::<V>(n_f, view);
+        let dir = vector::<V>(|a, k| n_f[a][k] * (2.0 * twice[k]) - view[a][k]);
+        children.reflected = Child { lanes: reflects, origin: origin(&dir), dir, weight: *ks };
     }
-
-    /// The lanes `at` hit `prim` at I = `p` with normal `n`: its scale, its material's
-    /// coefficients and its colours at I (`Material::colors_at`).
-    #[inline(always)]
-    fn take<V: Dim>(&mut self, scene: &'m Scene<V>, prim: Prim, at: M, p: &Vs, n: &Vs) {
-        let object = &scene.objects[prim.object()];
-        let material = &scene.materials[object.material];
-        self.point = select_v(at, p, &self.point);
-        self.normal = select_v(at, n, &self.normal);
-        self.scale = select(at, splat(object.scale), self.scale);
-        self.ks = select(at, splat(material.ks), self.ks);
-        self.kt = select(at, splat(material.kt), self.kt);
-        self.ior = select(at, splat(material.ior), self.ior);
-        let (ka, kd) = colors_at::<V>(material, p);
-        self.ka = std::array::from_fn(|c| select(at, ka[c], self.ka[c]));
-        self.kd = std::array::from_fn(|c| select(at, kd[c], self.kd[c]));
-        let materials = self.materials.get_or_insert([material; LANES]);
-        for (k, m) in materials.iter_mut().enumerate() {
-            if holds(at, k) {
-                *m = material;
-            }
-        }
+    let transmits = and(on, test(|k| hit.kt[k] > 0.0));
+    if any(transmits) {
+        // Swap n1, n2 for a leaving ray (§3).
+        let n1 = select(hit.entering, splat(1.0), hit.ior);
+        let n2 = select(hit.entering, hit.ior, splat(1.0));
+        let eta = lanes(|k| n1[k] / n2[k]);
+        let d_dot_n = dot::<V>(d, n_f);
+        let c = lanes(|k| (-d_dot_n[k]).clamp(-1.0, 1.0));
+        let k2 = lanes(|k| (1.0 - eta[k] * eta[k]) + (eta[k] * c[k]) * (eta[k] * c[k]));
+        let refracts = and(transmits, test(|k| !(k2[k] < 0.0)));
+        let bend = lanes(|k| eta[k] * c[k] - k2[k].sqrt());
+        let dir = vector::<V>(|a, k| d[a][k] * eta[k] + n_f[a][k] * bend[k]);
+        children.transmitted = Child { lanes: refracts, origin: origin(&dir), dir, weight: hit.kt };
     }
-}
-
-/// The nearest hits of a packet, each lane's as `Nearest::found` and [`Tracer::trace`] make it.
-struct Hit<'m> {
-    surface: Surface<'m>,
-    /// §3: `D·N ≤ 0`.
-    entering: M,
-    /// The materials' kt and ior.
-    kt: F,
-    ior: F,
-    /// The lanes whose surface is off the packet's common case (the scalar code takes them).
-    scalar: M,
-}
-
-impl<'m> Hit<'m> {
-    /// The hits of the lanes `on` of rays `o + t·d` on the primitives `keys`: I and N as
-    /// `Plane::surface_at` (`I = R(t) − N·((R(t) − P)·N)`) or `Sphere::surface_at` (`N = (R(t)
-    /// − C)/|R(t) − C|`, `I = C + r·N`) make them, N_f, δ = 2⁻⁴⁴·max(|I|∞, |O|∞, |t|, scale), and
-    /// the material's colours at I.
-    #[inline(always)]
-    fn new<V: Dim>(
-        tracer: &Tracer<'m, V, NoRecorder>,
-        packets: &Packets<'_, V>,
-        (o, d): (&Vs, &Vs),
-        t: &F,
-        keys: &[u64; LANES],
-        on: M,
-    ) -> Self {
-        let scene = tracer.scene;
-        let raw = vector::<V>(|a, k| o[a][k] + d[a][k] * t[k]);
-        let mut found = Found::new(raw);
-        for (prim, plane) in packets.planes() {
-            let at = and(on, test(|k| keys[k] == key(*prim)));
-            if any(at) {
-                let (p, n) = (axes(plane.point), axes(plane.normal));
-                let off = dot_axes::<V>(&vector::<V>(|a, k| raw[a][k] - p[a]), &n);
-                let projected = vector::<V>(|a, k| raw[a][k] - n[a] * off[k]);
-                found.take::<V>(scene, *prim, at, &projected, &vector::<V>(|a, _| n[a]));
-            }
-        }
-        for (prim, sphere) in packets.spheres() {
-            let at = and(on, test(|k| keys[k] == key(*prim)));
-            if any(at) {
-                let c = axes(sphere.center);
-                let (n, usual, _) = unit::<V>(&vector::<V>(|a, k| raw[a][k] - c[a]));
-                found.scalar = or(found.scalar, and_not(at, usual));
-                let p = vector::<V>(|a, k| c[a] + n[a][k] * sphere.radius);
-                found.take::<V>(scene, *prim, at, &p, &n);
-            }
-        }
-        let Found { point, normal, scale, ks, kt, ior, ka, kd, scalar, materials } = found;
-        let d_dot_n = dot::<V>(d, &normal);
-        let entering = test(|k| d_dot_n[k] <= 0.0);
-        let n_f = select_v(entering, &normal, &vector::<V>(|a, k| -normal[a][k]));
-        let (point_max, origin_max) = (max_abs::<V>(&point), max_abs::<V>(o));
-        let delta = lanes(|k| OFFSET_SCALE * point_max[k].max(origin_max[k]).max(t[k].abs()).max(scale[k]));
-        let view = vector::<V>(|a, k| -d[a][k]);
-        let materials = materials.expect("a lane on a plane or a sphere");
-        Self {
-            surface: Surface { point, n_f, delta, view, ka, kd, ks, materials },
-            entering,
-            kt,
-            ior,
-            scalar,
-        }
-    }
-
-    /// `Tracer::spawn` in the lanes `on`: R = `N_f·(2·N_f·V) − V` where ks > 0, T = `η·D + (η·c
-    /// − √k)·N_f` where kt > 0 and `k ≥ 0` (η = n1/n2, `c = −D·N_f` clamped to [−1, 1], `k = (1
-    /// − η²) + (η·c)²`), each from I offset by δ along ±N_f to the side it leaves to.
-    #[inline(always)]
-    fn spawn<V: Dim>(&self, d: &Vs, on: M) -> Children {
-        let Surface { point, n_f, delta, view, ks, .. } = &self.surface;
-        let origin = |dir: &Vs| {
-            let side = dot::<V>(dir, n_f);
-            let up = vector::<V>(|a, k| point[a][k] + n_f[a][k] * delta[k]);
-            let down = vector::<V>(|a, k| point[a][k] - n_f[a][k] * delta[k]);
-            select_v(test(|k| side[k] >= 0.0), &up, &down)
-        };
-        let reflects = and(on, test(|k| ks[k] > 0.0));
-        let mut children = Children::default();
-        if any(reflects) {
-            let twice = dot::<V>(n_f, view);
-            let dir = vector::<V>(|a, k| n_f[a][k] * (2.0 * twice[k]) - view[a][k]);
-            children.reflected = Child { lanes: reflects, origin: origin(&dir), dir, weight: *ks };
-        }
-        let transmits = and(on, test(|k| self.kt[k] > 0.0));
-        if any(transmits) {
-            // Swap n1, n2 for a leaving ray (§3).
-            let n1 = select(self.entering, splat(1.0), self.ior);
-            let n2 = select(self.entering, self.ior, splat(1.0));
-            let eta = lanes(|k| n1[k] / n2[k]);
-            let d_dot_n = dot::<V>(d, n_f);
-            let c = lanes(|k| (-d_dot_n[k]).clamp(-1.0, 1.0));
-            let k2 = lanes(|k| (1.0 - eta[k] * eta[k]) + (eta[k] * c[k]) * (eta[k] * c[k]));
-            let refracts = and(transmits, test(|k| !(k2[k] < 0.0)));
-            let bend = lanes(|k| eta[k] * c[k] - k2[k].sqrt());
-            let dir = vector::<V>(|a, k| d[a][k] * eta[k] + n_f[a][k] * bend[k]);
-            children.transmitted = Child { lanes: refracts, origin: origin(&dir), dir, weight: self.kt };
-        }
-        children
-    }
+    children
 }
