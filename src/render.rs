@@ -108,9 +108,9 @@ const PNG_BYTES_PER_PIXEL: u64 = 6;
 /// About how many bytes a render of `scene` (its camera already resized) needs with `config` on
 /// `threads` threads: the linear image and its PNG, the per-pixel counts if asked, and for corners
 /// or adaptive sampling the lattice's u, v tables, the edge rows (two per thread in progress,
-/// plus `edge_memory` of rows waiting between jobs) and each thread's [`Scratch`]. It counts the linear image, 24 bytes a pixel,
-/// also for a render that keeps only the file's bytes ([`render_as`]): an over-estimate, so that
-/// one refusal holds for every caller.
+/// plus `edge_memory` of rows waiting between jobs) and each thread's [`Scratch`]. It counts the
+/// linear image, 24 bytes a pixel, also for a render that keeps only the file's bytes
+/// ([`render_as`]): an over-estimate, so that one refusal holds for every caller.
 #[must_use]
 pub fn memory_needed<V: Dim>(scene: &Scene<V>, config: &RenderConfig<'_>, threads: usize) -> u64 {
     let cam = &scene.camera;
