@@ -278,6 +278,14 @@ test('the playground: an example picked, a pixel clicked', async () => {
   assert.deepEqual(page.problems, []);
 });
 
+/** The module's budget in bytes (issue 34): what the course's pages download before the first render. */
+const MODULE_BUDGET = 3_000_000;
+
+test('the WebAssembly module stays within its budget', () => {
+  const bytes = readFileSync(join(ROOT, 'target', 'wasm', 'whitted_web.wasm')).length;
+  assert.ok(bytes <= MODULE_BUDGET, `the module is ${bytes} bytes, over its ${MODULE_BUDGET}`);
+});
+
 test('the WebAssembly build traces and draws byte for byte as the CLI', async () => {
   const page = await open(browser, `en/${LESSON}.html`);
   await settled(page);
