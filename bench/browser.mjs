@@ -28,6 +28,7 @@ import { join, resolve } from 'node:path';
 process.env.WHITTED_SITE ??= resolve('out');
 process.env.WHITTED_BIN ??= resolve('target/release/whitted');
 const { ROOT, SITE, BIN, launch, open, settled } = await import('../tests/browser/support.mjs');
+const { loadModules, callModule } = await import('./page-module.mjs');
 
 const CLICKS = 21;
 const RUNS = 5;
@@ -51,36 +52,17 @@ async function moduleAgainstNative([scenePath = join(ROOT, 'bench', 'scenes', 'w
   ];
   const browser = await launch();
   const page = await browser.newPage();
-  // The module instantiated in the page, called through web/README.md's ABI, as the course's
-  // worker calls it; each call timed by the page's own clock.
-  await page.evaluate(async (b64) => {
-    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
-    const { instance } = await WebAssembly.instantiate(bytes, {});
-    const x = instance.exports;
-    const encoder = new TextEncoder();
-    const decoder = new TextDecoder();
-    self.timedCall = (request) => {
-      const start = performance.now();
-      const input = encoder.encode(JSON.stringify(request));
-      const at = x.whitted_inbox(input.length);
-      new Uint8Array(x.memory.buffer, at, input.length).set(input);
-      const code = x.whitted_call();
-      const json = decoder.decode(new Uint8Array(x.memory.buffer, x.whitted_outbox(), x.whitted_outbox_len()));
-      const ms = performance.now() - start;
-      if (code !== 0) throw new Error(json);
-      return { ms, answer: JSON.parse(json) };
-    };
-  }, wasm.toString('base64'));
+  await loadModules(page, [wasm]);
   console.log(`${scenePath}, ${size}, ${rounds} rounds; page = the module in ${await browser.version()}, native = ${BIN} --threads 1`);
   console.log('| mode | page (ms) | native (ms) | page / native, median of rounds (range) |');
   console.log('|---|---:|---:|---:|');
   for (const [name, options, flags] of modes) {
     const request = { op: 'render', scene: text, options: { ...options, size: [w, h] } };
-    await page.evaluate((r) => self.timedCall(r), request); // a first, cold call
+    await callModule(page, 0, request); // a first, cold call
     const inPage = [];
     const native = [];
     for (let k = 0; k < Number(rounds); k++) {
-      const { ms, answer } = await page.evaluate((r) => self.timedCall(r), request);
+      const { ms, answer } = await callModule(page, 0, request);
       const doc = JSON.parse(execFileSync(BIN, ['render', scenePath, '--size', size, '--threads', '1', ...flags, '--json',
         '-o', '/dev/null'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }));
       if (JSON.stringify(doc.rays) !== JSON.stringify(answer.rays)) throw new Error(`${name}: the page and the binary traced other rays`);

@@ -8,6 +8,7 @@ import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 
 const { ROOT, launch } = await import('../tests/browser/support.mjs');
+const { loadModules, callModule } = await import('./page-module.mjs');
 
 const args = process.argv.slice(2);
 let rounds = 15;
@@ -34,27 +35,7 @@ const modes = [
 
 const browser = await launch();
 const page = await browser.newPage();
-await page.evaluate(async (all) => {
-  const encoder = new TextEncoder();
-  const decoder = new TextDecoder();
-  self.calls = [];
-  for (const b64 of all) {
-    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
-    const { instance } = await WebAssembly.instantiate(bytes, {});
-    const x = instance.exports;
-    self.calls.push((request) => {
-      const start = performance.now();
-      const input = encoder.encode(JSON.stringify(request));
-      const at = x.whitted_inbox(input.length);
-      new Uint8Array(x.memory.buffer, at, input.length).set(input);
-      const code = x.whitted_call();
-      const json = decoder.decode(new Uint8Array(x.memory.buffer, x.whitted_outbox(), x.whitted_outbox_len()));
-      const ms = performance.now() - start;
-      if (code !== 0) throw new Error(json);
-      return { ms, rays: JSON.parse(json).rays };
-    });
-  }
-}, modules.map((m) => readFileSync(m).toString('base64')));
+await loadModules(page, modules.map((m) => readFileSync(m)));
 
 const median = (xs) => [...xs].sort((a, b) => a - b)[xs.length >> 1];
 console.log(`${scenePath}, ${size}, ${rounds} rounds, ${await browser.version()}`);
@@ -64,13 +45,14 @@ console.log(`|---|${modules.map(() => '---:').join('|')}|${modules.slice(1).map(
 for (const [name, options] of modes) {
   const request = { op: 'render', scene: text, options: { ...options, size: [w, h] } };
   const times = modules.map(() => []);
-  for (let i = 0; i < modules.length; i++) await page.evaluate(([i, r]) => self.calls[i](r), [i, request]);
+  for (let i = 0; i < modules.length; i++) await callModule(page, i, request); // a first, cold call
   for (let k = 0; k < rounds; k++) {
     // The order turns each round, so that neither module always runs first.
     const order = modules.map((_, i) => (i + k) % modules.length);
     let rays = null;
     for (const i of order) {
-      const { ms, rays: r } = await page.evaluate(([i, r]) => self.calls[i](r), [i, request]);
+      const { ms, answer } = await callModule(page, i, request);
+      const r = answer.rays;
       if (rays !== null && JSON.stringify(rays) !== JSON.stringify(r)) throw new Error(`${name}: module ${i} traced other rays`);
       rays = r;
       times[i].push(ms);
