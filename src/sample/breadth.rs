@@ -384,7 +384,7 @@ mod tests {
     use crate::sample::adaptive::{subdivide, NoSquares, SampleSource};
     use crate::sample::Sampling;
     use crate::scene::load::load_str;
-    use crate::scene::{AnyScene, Scene};
+    use crate::scene::{fixtures, AnyScene, Scene};
     use proptest::prelude::*;
     use std::collections::{HashMap, HashSet};
 
@@ -502,9 +502,7 @@ mod tests {
 
     #[test]
     fn a_2d_line_is_the_recursion_s() {
-        let Ok(AnyScene::Flat(scene)) = load_str(&crate::scene::fixtures::line(61)) else {
-            panic!("a 2D scene")
-        };
+        let Ok(AnyScene::Flat(scene)) = load_str(&fixtures::line(61)) else { panic!("a 2D scene") };
         assert_eq!(agree(&scene, &rules()), 9, "threshold 0 at K = 3");
     }
 
@@ -523,13 +521,11 @@ mod tests {
         /// Random spheres over a random checkered plane, random lights and eye, a random rule.
         #[test]
         fn random_scenes_are_the_recursion_s(
-            spheres in prop::collection::vec(
-                ((-2.0..2.0f64, -1.0..2.0f64, -2.0..2.0f64), 0.1..1.2f64, 0..4usize), 0..4),
-            lights in prop::collection::vec((-5.0..5.0f64, -2.0..6.0f64, -5.0..5.0f64), 1..3),
-            eye in (-4.0..4.0f64, -0.5..4.0f64, 2.0..7.0f64),
+            spheres in fixtures::random_spheres(),
+            lights in fixtures::random_lights(),
+            eye in fixtures::random_eye(),
             rule in (0.0..0.6f64, 0..=3u32),
         ) {
-            use crate::scene::fixtures;
             let (objects, lights) = (fixtures::objects((0.0, 1.0, 0.0), &spheres), fixtures::lights(&lights));
             let text = format!(
                 r#"{{ "camera": {{ "eye": [{}, {}, {}], "center": [0, 0, 0], "up": [0, 1, 0],

@@ -112,6 +112,8 @@ pub enum AnyScene {
 /// Scenes the tests of several modules share.
 #[cfg(test)]
 pub(crate) mod fixtures {
+    use proptest::prelude::*;
+
     /// A 2D scene of `nx` pixels: a checkered floor line, a glass circle and a mirror one, two
     /// lights, `max_depth` 3.
     pub fn line(nx: usize) -> String {
@@ -150,6 +152,24 @@ pub(crate) mod fixtures {
             ));
         }
         objects.join(",")
+    }
+
+    /// Up to 3 random spheres for [`objects`]: centre, radius and an index in [`MATERIALS`].
+    pub fn random_spheres() -> impl Strategy<Value = Vec<((f64, f64, f64), f64, usize)>> {
+        prop::collection::vec(
+            ((-2.0..2.0f64, -1.0..2.0f64, -2.0..2.0f64), 0.1..1.2f64, 0..MATERIALS.len()),
+            0..4,
+        )
+    }
+
+    /// One or two random light positions for [`lights`].
+    pub fn random_lights() -> impl Strategy<Value = Vec<(f64, f64, f64)>> {
+        prop::collection::vec((-5.0..5.0f64, -2.0..6.0f64, -5.0..5.0f64), 1..3)
+    }
+
+    /// A random eye in front of the scene's origin (the camera looks at (0, 0, 0)).
+    pub fn random_eye() -> impl Strategy<Value = (f64, f64, f64)> {
+        (-4.0..4.0f64, -0.5..4.0f64, 2.0..7.0f64)
     }
 
     /// The JSON lights of white point lights at `positions`.

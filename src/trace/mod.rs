@@ -219,6 +219,8 @@ impl<V: Dim> Tracer<'_, V, NoRecorder> {
 
 /// The `v` of a batch of window points: one `f64` for a row of the window, or a slice of one a
 /// point. A type, not a value, so that a row's packets are made with its one `v` in a register.
+/// Only the packets read it: elsewhere (the WebAssembly module) it is carried and never read.
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 pub(crate) trait WindowV: Copy {
     /// The `v` of point `i`.
     fn at(self, i: usize) -> f64;

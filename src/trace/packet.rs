@@ -217,7 +217,7 @@ mod tests {
     use crate::accel::{Accel, AccelKind, AccelOptions};
     use crate::record::stats::Stats;
     use crate::scene::load::load_str;
-    use crate::scene::{AnyScene, Scene};
+    use crate::scene::{fixtures, AnyScene, Scene};
     use proptest::prelude::*;
 
     /// The colours and counts of every pixel centre of `scene`, traced by `trace`.
@@ -345,7 +345,7 @@ mod tests {
 
     #[test]
     fn a_2d_scene_is_the_same_in_packets() {
-        agree(&flat(&crate::scene::fixtures::line(203)), true);
+        agree(&flat(&fixtures::line(203)), true);
     }
 
     proptest! {
@@ -353,13 +353,11 @@ mod tests {
         /// Random spheres over a random plane, random lights and eye.
         #[test]
         fn random_scenes_are_the_same_in_packets(
-            spheres in prop::collection::vec(
-                ((-2.0..2.0f64, -1.0..2.0f64, -2.0..2.0f64), 0.1..1.2f64, 0..4usize), 0..4),
+            spheres in fixtures::random_spheres(),
             normal in (-0.3..0.3f64, 0.5..1.0f64, -0.3..0.3f64),
-            lights in prop::collection::vec((-5.0..5.0f64, -2.0..6.0f64, -5.0..5.0f64), 1..3),
-            eye in (-4.0..4.0f64, -0.5..4.0f64, 2.0..7.0f64),
+            lights in fixtures::random_lights(),
+            eye in fixtures::random_eye(),
         ) {
-            use crate::scene::fixtures;
             let eye = format!("[{}, {}, {}]", eye.0, eye.1, eye.2);
             // A BVH of several spheres may split, and then has no packet search.
             let (objects, lights) = (fixtures::objects(normal, &spheres), fixtures::lights(&lights));
